@@ -1,0 +1,39 @@
+#include "core/error_metric.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mdrmap {
+namespace {
+
+double rel_max(const std::vector<double>& q, const std::vector<double>& ref) {
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    num = std::max(num, std::abs(q[k] - ref[k]));
+    den = std::max(den, std::abs(ref[k]));
+  }
+  if (den == 0.0) return num; // reference identically zero (e.g. F_x for tau = 0)
+  return num / den;
+}
+
+} // namespace
+
+double CaseError::max() const {
+  return std::max({FN, Fx, mu, a2});
+}
+
+CaseError case_error(const Series& run, const Series& ref, double a1) {
+  if (run.size() != ref.size()) throw std::invalid_argument("case_error: series sizes differ");
+  CaseError e;
+  e.FN = rel_max(run.FN, ref.FN);
+  e.Fx = rel_max(run.Fx, ref.Fx);
+  e.mu = rel_max(run.mu, ref.mu);
+  double a2 = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+    a2 = std::max(a2, std::abs(run.a2[k] - ref.a2[k]));
+  e.a2 = a2 / a1;
+  return e;
+}
+
+} // namespace mdrmap

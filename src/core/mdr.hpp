@@ -1,0 +1,20 @@
+#pragma once
+// Discrete MDR simulator: the paper's row of Kelvin elements (spring 4 G dx,
+// dashpot 4 eta dx) under the sliding indenter.
+#include "core/solver.hpp"
+
+namespace mdrmap {
+
+struct MdrOptions {
+  double rtol = 1e-3;         ///< target case error; sets dx when cells_per_a1 == 0
+  double cells_per_a1 = 0;    ///< fixed resolution a1/dx (0: chosen from rtol)
+  bool spinup = false;        ///< start from an undeformed foundation, not the stationary state
+  double phase = 0.5;         ///< element offset at t = 0, in cells (x_i = (i + phase) dx)
+  bool estimate_error = true; ///< run a half-resolution companion for error_estimate
+};
+
+/// Runs the discrete model. With cells_per_a1 == 0 it picks dx from rtol and
+/// refines until its error estimate is below rtol.
+RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt);
+
+} // namespace mdrmap

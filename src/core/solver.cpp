@@ -1,0 +1,75 @@
+#include "core/solver.hpp"
+
+#include <cmath>
+
+#include "core/baseline.hpp"
+#include "core/exact.hpp"
+#include "core/mdr.hpp"
+
+namespace mdrmap {
+
+void Series::resize(std::size_t n) {
+  t.assign(n, 0.0);
+  FN.assign(n, 0.0);
+  Fx.assign(n, 0.0);
+  mu.assign(n, 0.0);
+  a2.assign(n, 0.0);
+}
+
+void Series::set(std::size_t k, double time, const State& st) {
+  t[k] = time;
+  FN[k] = st.FN;
+  Fx[k] = st.Fx;
+  mu[k] = st.mu;
+  a2[k] = st.a2;
+}
+
+SolverKind parse_solver(const std::string& name) {
+  if (name == "auto") return SolverKind::Auto;
+  if (name == "exact") return SolverKind::Exact;
+  if (name == "mdr") return SolverKind::Mdr;
+  if (name == "baseline") return SolverKind::Baseline;
+  throw InvalidInput("solver", "must be one of auto, exact, mdr, baseline; got '" + name + "'");
+}
+
+const char* solver_name(SolverKind k) {
+  switch (k) {
+  case SolverKind::Auto:
+    return "auto";
+  case SolverKind::Exact:
+    return "exact";
+  case SolverKind::Mdr:
+    return "mdr";
+  case SolverKind::Baseline:
+    return "baseline";
+  }
+  return "?";
+}
+
+void validate_rtol(double rtol) {
+  if (!std::isfinite(rtol) || !(rtol > 0.0) || !(rtol <= 0.1))
+    throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + std::to_string(rtol));
+}
+
+RunResult run_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol) {
+  validate(s);
+  validate(p);
+  validate_rtol(rtol);
+  switch (kind) {
+  case SolverKind::Auto:
+  case SolverKind::Exact:
+    return run_exact(s, p, rtol);
+  case SolverKind::Mdr: {
+    MdrOptions o;
+    o.rtol = rtol;
+    return run_mdr(s, p, o);
+  }
+  case SolverKind::Baseline: {
+    BaselineOptions o;
+    return run_baseline(s, p, o);
+  }
+  }
+  return run_exact(s, p, rtol);
+}
+
+} // namespace mdrmap
