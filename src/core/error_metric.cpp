@@ -7,8 +7,8 @@
 namespace mdrmap {
 namespace {
 
-double rel_max(const std::vector<double>& q, const std::vector<double>& ref) {
-  double num = 0.0, den = 0.0;
+double rel_max(const std::vector<double>& q, const std::vector<double>& ref, double floor = 0.0) {
+  double num = 0.0, den = floor;
   for (std::size_t k = 0; k < q.size(); ++k) {
     num = std::max(num, std::abs(q[k] - ref[k]));
     den = std::max(den, std::abs(ref[k]));
@@ -33,6 +33,17 @@ CaseError case_error(const Series& run, const Series& ref, double a1) {
   for (std::size_t k = 0; k < run.size(); ++k)
     a2 = std::max(a2, std::abs(run.a2[k] - ref.a2[k]));
   e.a2 = a2 / a1;
+  return e;
+}
+
+CaseError case_error(const Series& run, const Series& ref, const Scene& s) {
+  CaseError e = case_error(run, ref, contact_radius(s));
+  const double mu_scale = std::sqrt(s.d / s.R);
+  double fn_max = 0.0;
+  for (double f : ref.FN)
+    fn_max = std::max(fn_max, std::abs(f));
+  e.Fx = rel_max(run.Fx, ref.Fx, 1e-10 * fn_max * mu_scale);
+  e.mu = rel_max(run.mu, ref.mu, 1e-10 * mu_scale);
   return e;
 }
 

@@ -5,12 +5,20 @@
 
 namespace mdrmap {
 
+/// How the continuum forces and the trailing edge are read off the element row.
+enum class MdrSubgrid {
+  None,       ///< the paper: raw element sums, a2 = last element in contact (first order)
+  Linear,     ///< high-order quadrature, gap h - u interpolated linearly (second order)
+  Exponential ///< high-order quadrature, free depression interpolated log-linearly (default)
+};
+
 struct MdrOptions {
   double rtol = 1e-3;         ///< target case error; sets dx when cells_per_a1 == 0
   double cells_per_a1 = 0;    ///< fixed resolution a1/dx (0: chosen from rtol)
   bool spinup = false;        ///< start from an undeformed foundation, not the stationary state
   double phase = 0.5;         ///< element offset at t = 0, in cells (x_i = (i + phase) dx)
   bool estimate_error = true; ///< run a half-resolution companion for error_estimate
+  MdrSubgrid subgrid = MdrSubgrid::Exponential;
 };
 
 /// Runs the discrete model. With cells_per_a1 == 0 it picks dx from rtol and

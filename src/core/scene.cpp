@@ -4,13 +4,17 @@
 #include <sstream>
 
 namespace mdrmap {
-namespace {
-
-std::string show(double x) {
+std::string format_number(double x) {
   std::ostringstream os;
   os.precision(17);
   os << x;
   return os.str();
+}
+
+namespace {
+
+std::string show(double x) {
+  return format_number(x);
 }
 
 void require_positive(const char* name, double x) {

@@ -31,6 +31,9 @@ struct Scene {
   double G = 1.0;   ///< shear modulus, > 0
 };
 
+/// A number with 17 significant digits, as error messages quote it.
+std::string format_number(double x);
+
 /// Throws InvalidInput naming the first offending field.
 void validate(const Scene& s);
 

@@ -1,5 +1,6 @@
 #include "core/solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/baseline.hpp"
@@ -48,7 +49,7 @@ const char* solver_name(SolverKind k) {
 
 void validate_rtol(double rtol) {
   if (!std::isfinite(rtol) || !(rtol > 0.0) || !(rtol <= 0.1))
-    throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + std::to_string(rtol));
+    throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
 }
 
 RunResult run_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol) {
@@ -65,7 +66,8 @@ RunResult run_case(const Scene& s, const Protocol& p, SolverKind kind, double rt
     return run_mdr(s, p, o);
   }
   case SolverKind::Baseline: {
-    BaselineOptions o;
+    BaselineOptions o; // first order: a1/dx ~ 1/rtol, within what a fixed-step run can afford
+    o.cells_per_a1 = std::clamp(std::ceil(0.7 / rtol), 16.0, 4000.0);
     return run_baseline(s, p, o);
   }
   }
