@@ -1,1 +1,98 @@
-int main() { return 0; }
+// mdrmap: command-line front end. Dispatches to the subcommands; only this
+// layer prints (the core library reports through exceptions).
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "app/simulate_cmd.hpp"
+#include "mdrmap/version.hpp"
+
+namespace {
+
+using mdrmap::app::kExitBadInput;
+using mdrmap::app::kExitOk;
+using mdrmap::app::kExitRuntime;
+
+std::string usage() {
+  return std::string("mdrmap ") + mdrmap::kVersion + " (" + mdrmap::kGitCommit + R"()
+Viscoelastic friction in the method of dimensionality reduction (MDR): the
+response of a sliding parabolic contact on a Kelvin foundation to a step in
+the sliding velocity, for one case or as parameter maps.
+
+Usage: mdrmap <subcommand> [options]
+       mdrmap --help | --version
+
+Subcommands:
+  simulate   one velocity step: normal force, friction force, friction
+             coefficient and trailing edge of the contact over time, as CSV
+  study      parameter maps over many cases in parallel (MPI, HDF5);
+             not available yet
+
+Run 'mdrmap <subcommand> --help' (or 'mdrmap help <subcommand>') for the
+options of a subcommand.
+
+Exit codes: 0 success, 1 runtime failure, 2 bad input.
+)";
+}
+
+int print_stdout(const std::string& text) {
+  std::fputs(text.c_str(), stdout);
+  return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
+}
+
+int study_unavailable() {
+  std::fputs("mdrmap study: error: not available yet in this version; use 'mdrmap simulate' for "
+             "single cases\n",
+             stderr);
+  return kExitBadInput;
+}
+
+int dispatch(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    std::fputs("mdrmap: error: missing subcommand; usage: mdrmap <subcommand> [options] "
+               "(subcommands: simulate; see mdrmap --help)\n",
+               stderr);
+    return kExitBadInput;
+  }
+  const std::string& cmd = args.front();
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+
+  if (cmd == "--help" || cmd == "-h" || (cmd == "help" && rest.empty()))
+    return print_stdout(usage());
+  if (cmd == "--version" || cmd == "-V")
+    return print_stdout(std::string("mdrmap ") + mdrmap::kVersion + " (" + mdrmap::kGitCommit +
+                        ")\n");
+  if (cmd == "help") {
+    if (rest.front() == "simulate") return print_stdout(mdrmap::app::simulate_help());
+    if (rest.front() == "study") return study_unavailable();
+    std::fprintf(stderr,
+                 "mdrmap: error: no help for unknown subcommand '%s' (subcommands: simulate)\n",
+                 rest.front().c_str());
+    return kExitBadInput;
+  }
+  if (cmd == "simulate") return mdrmap::app::simulate_main(rest);
+  if (cmd == "study") return study_unavailable();
+
+  if (!cmd.empty() && cmd[0] == '-')
+    std::fprintf(stderr,
+                 "mdrmap: error: unknown option '%s'; the subcommand comes first: mdrmap "
+                 "<subcommand> [options] (see mdrmap --help)\n",
+                 cmd.c_str());
+  else
+    std::fprintf(
+        stderr, "mdrmap: error: unknown subcommand '%s'; available: simulate (see mdrmap --help)\n",
+        cmd.c_str());
+  return kExitBadInput;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mdrmap: error: %s\n", e.what());
+    return kExitRuntime;
+  }
+}
