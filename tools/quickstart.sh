@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Sets up, builds mdrmap and runs the built-in example(s), writing CSV to out/.
+#
+#   bash tools/quickstart.sh
+#
+# Environment: as tools/build.sh (BUILD_DIR, BUILD_TYPE, JOBS), and
+#   OUT_DIR=out   where the example output goes (relative to the repository root)
+# To add an example: add a line to the "Examples" section at the bottom.
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$ROOT"
+
+BUILD_DIR=${BUILD_DIR:-build}
+OUT_DIR=${OUT_DIR:-out}
+export BUILD_DIR
+
+bash tools/setup.sh
+BUILD_TARGETS=${BUILD_TARGETS:-mdrmap} bash tools/build.sh
+
+MDRMAP="$BUILD_DIR/src/mdrmap"
+[[ -x "$MDRMAP" ]] || { echo "quickstart: $MDRMAP was not built" >&2; exit 1; }
+mkdir -p "$OUT_DIR"
+
+# simulate NAME ARGS...: runs `mdrmap simulate ARGS --output OUT_DIR/NAME.csv`
+# and shows the start and the end of the file.
+simulate() {
+  local name=$1
+  shift
+  local csv="$OUT_DIR/$name.csv"
+  echo
+  echo "== $name: mdrmap simulate $* --output $csv"
+  rm -f "$csv"
+  "$MDRMAP" simulate "$@" --output "$csv"
+  if [[ ! -s "$csv" ]] || ! grep -q '^t,FN,Fx,mu,a2$' "$csv"; then
+    echo "quickstart: mdrmap simulate wrote no CSV with header t,FN,Fx,mu,a2 to $csv" >&2
+    exit 1
+  fi
+  local header_line
+  header_line=$(grep -n -m1 '^t,FN,Fx,mu,a2$' "$csv" | cut -d: -f1)
+  head -n "$((header_line + 4))" "$csv"
+  echo "..."
+  tail -n 1 "$csv"
+  echo "($(($(wc -l <"$csv") - header_line)) samples in $csv)"
+}
+
+# --- Examples ---------------------------------------------------------------
+# The seed paper's start-stop test: a fast slide, v tau / sqrt(R d) = 1e3
+# (a2 ~ 0, mu = 0.133 ~ 4/3 sqrt(d/R)), drops to v1 = 1e-4 v, v1 tau / sqrt(R d)
+# = 0.1. At t = 0+ F_N drops from 4.00 to 0.0031 and mu to 0.083 (3/4 sqrt(d/R)
+# = 0.075 in the limit v1 -> 0); then a2 grows from 5e-4 a1 towards
+# a2(v1) = 0.905 a1 (a1 = 0.1) and mu relaxes towards 0.0185.
+simulate start_stop --d 1e-2 --R 1 --tau 1 --v 100 --v1 1e-2 --G 1
+
+echo
+echo "quickstart: done; output in $OUT_DIR/"
