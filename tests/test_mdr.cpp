@@ -294,7 +294,7 @@ TEST(MdrHardCases, NoNaNNoBlowUp) {
 // decided at step ends, raw sums). That run converges at first order, so its
 // own accuracy at N cells is about |b(N/4) - b(N)| / 3; the continuum
 // solution must agree with b(N) to within that, and b must approach it.
-TEST(ExactVsBruteForce, AgreesToTheDiscreteRunsOwnAccuracy) {
+TEST(MdrBruteForce, ContinuumSolutionWithinTheDiscreteRunsOwnAccuracy) {
   const Scene scenes[] = {scene(0.5, 0.1), scene(2.0, 0.0), scene(1.0, 3.0), scene(0.2, 0.5, 0.1),
                           scene(1.0, 1e-3, 1e-6)};
   for (const Scene& s : scenes) {

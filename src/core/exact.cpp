@@ -93,9 +93,21 @@ RunResult run_exact(const Scene& s, const Protocol& p, double rtol) {
   }
   res.info.root_solves = ex.root_solves();
   res.info.steps = 0;
-  // The a2 error is at most half the final bracket (in units of a1); the forces
-  // respond to a2 with O(1) relative sensitivity. Add a rounding floor.
-  res.info.error_estimate = 4.0 * bracket + 64.0 * std::numeric_limits<double>::epsilon();
+  // The a2 error is at most half the final bracket (in units of a1). F_N
+  // responds to it with relative sensitivity <= 1.5; F_x and mu, measured on
+  // the scale of their largest value (the jump), with at most
+  // S = 4 a1^2 / (a1^2 - a2(v)^2): dF_x/da2 = -8 G a2 p(a2) / R with
+  // 0 <= p(a2) <= (a1^2 - a2v^2)/R, and F_x(jump) >= 2 G (a1^2 - a2v^2)^2 / R^2.
+  // S ~ 2/zeta for zeta << 1. Plus a rounding floor.
+  double sens = 0.0;
+  if (bracket > 0.0) { // (no root was solved for tau = 0, where S is infinite)
+    const double a1 = analytic::a1(s);
+    const double S =
+        4.0 * a1 * a1 /
+        (analytic::a1_minus_a2_stationary(s, s.v) * (a1 + analytic::a2_stationary(s, s.v)));
+    sens = 0.5 * (S + 1.5);
+  }
+  res.info.error_estimate = sens * bracket + 64.0 * std::numeric_limits<double>::epsilon();
   return res;
 }
 
