@@ -311,7 +311,9 @@ TEST(cli, TopBadSubcommandsExit2WithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.back(), '\n');
   }
-  EXPECT_NE(run_mdrmap({"study"}).err.find("not available"), std::string::npos);
+  const Outcome study = run_mdrmap({"study"});
+  EXPECT_EQ(study.code, 2);
+  EXPECT_NE(study.err.find("--config"), std::string::npos) << study.err;
 }
 
 TEST(cli, SimulateHelpMentionsEveryOption) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/simulate_cmd.hpp"
+#include "app/study_cmd.hpp"
 #include "mdrmap/version.hpp"
 
 namespace {
@@ -26,13 +27,14 @@ Usage: mdrmap <subcommand> [options]
 Subcommands:
   simulate   one velocity step: normal force, friction force, friction
              coefficient and trailing edge of the contact over time, as CSV
-  study      parameter maps over many cases in parallel (MPI, HDF5);
-             not available yet
+  study      parameter maps over many cases in parallel: MPI ranks share
+             the cases, results go to one HDF5 friction map
 
 Run 'mdrmap <subcommand> --help' (or 'mdrmap help <subcommand>') for the
 options of a subcommand.
 
-Exit codes: 0 success, 1 runtime failure, 2 bad input.
+Exit codes: 0 success, 1 runtime failure, 2 bad input, 3 interrupted (study;
+resume with --resume).
 )";
 }
 
@@ -41,17 +43,10 @@ int print_stdout(const std::string& text) {
   return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
 }
 
-int study_unavailable() {
-  std::fputs("mdrmap study: error: not available yet in this version; use 'mdrmap simulate' for "
-             "single cases\n",
-             stderr);
-  return kExitBadInput;
-}
-
-int dispatch(const std::vector<std::string>& args) {
+int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
   if (args.empty()) {
     std::fputs("mdrmap: error: missing subcommand; usage: mdrmap <subcommand> [options] "
-               "(subcommands: simulate; see mdrmap --help)\n",
+               "(subcommands: simulate, study; see mdrmap --help)\n",
                stderr);
     return kExitBadInput;
   }
@@ -65,14 +60,15 @@ int dispatch(const std::vector<std::string>& args) {
                         ")\n");
   if (cmd == "help") {
     if (rest.front() == "simulate") return print_stdout(mdrmap::app::simulate_help());
-    if (rest.front() == "study") return study_unavailable();
-    std::fprintf(stderr,
-                 "mdrmap: error: no help for unknown subcommand '%s' (subcommands: simulate)\n",
-                 rest.front().c_str());
+    if (rest.front() == "study") return print_stdout(mdrmap::app::study_help());
+    std::fprintf(
+        stderr,
+        "mdrmap: error: no help for unknown subcommand '%s' (subcommands: simulate, study)\n",
+        rest.front().c_str());
     return kExitBadInput;
   }
   if (cmd == "simulate") return mdrmap::app::simulate_main(rest);
-  if (cmd == "study") return study_unavailable();
+  if (cmd == "study") return mdrmap::app::study_main(rest, argc, argv);
 
   if (!cmd.empty() && cmd[0] == '-')
     std::fprintf(stderr,
@@ -81,7 +77,8 @@ int dispatch(const std::vector<std::string>& args) {
                  cmd.c_str());
   else
     std::fprintf(
-        stderr, "mdrmap: error: unknown subcommand '%s'; available: simulate (see mdrmap --help)\n",
+        stderr,
+        "mdrmap: error: unknown subcommand '%s'; available: simulate, study (see mdrmap --help)\n",
         cmd.c_str());
   return kExitBadInput;
 }
@@ -90,7 +87,7 @@ int dispatch(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
   try {
-    return dispatch(std::vector<std::string>(argv + 1, argv + argc));
+    return dispatch(std::vector<std::string>(argv + 1, argv + argc), argc, argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mdrmap: error: %s\n", e.what());
     return kExitRuntime;

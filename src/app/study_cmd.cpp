@@ -1,0 +1,289 @@
+// mdrmap study: the MPI parameter study (app layer: options, signals,
+// progress printing, exit codes). The work is in study/runner.
+#include "app/study_cmd.hpp"
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "app/simulate_cmd.hpp"
+#include "mdrmap/version.hpp"
+#include "study/runner.hpp"
+
+namespace mdrmap::app {
+namespace {
+
+namespace po = boost::program_options;
+
+volatile std::sig_atomic_t g_stop = 0;
+extern "C" void on_stop_signal(int) {
+  g_stop = 1;
+}
+
+void install_signal_handlers() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGTERM, SIGINT, SIGUSR1})
+    sigaction(sig, &sa, nullptr);
+}
+
+std::string shell_quote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                        "0123456789-_./=:,+@%") == std::string::npos)
+    return s;
+  std::string out = "'";
+  for (char c : s)
+    out += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  const long t = std::lround(s);
+  char buf[32];
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
+  return buf;
+}
+
+// Rank 0's progress printer: a live bar on a terminal, plain lines in a log.
+class StderrProgress : public study::ProgressSink {
+public:
+  explicit StderrProgress(bool quiet) : quiet_(quiet), tty_(::isatty(2) != 0) {
+    interval = tty_ ? 0.25 : 10.0;
+  }
+  void report(const study::Progress& p) override {
+    if (quiet_) return;
+    const std::size_t n = p.done + p.failed;
+    const double rate = p.elapsed > 0 ? static_cast<double>(n) / p.elapsed : 0.0;
+    const double eta = rate > 0 ? static_cast<double>(p.todo - n) / rate : NAN;
+    const double frac = p.todo ? static_cast<double>(n) / static_cast<double>(p.todo) : 1.0;
+    if (tty_) {
+      char bar[31];
+      const int filled = static_cast<int>(frac * 30.0);
+      for (int i = 0; i < 30; ++i)
+        bar[i] = i < filled ? '#' : '.';
+      bar[30] = '\0';
+      std::fprintf(stderr, "\r[%s] %zu/%zu cases %5.1f%%  %zu failed  %.0f cases/s  ETA %s   ", bar,
+                   n, p.todo, 100.0 * frac, p.failed, rate, format_duration(eta).c_str());
+      if (p.final) std::fputc('\n', stderr);
+    } else if (!p.final) {
+      std::fprintf(stderr, "progress: %zu/%zu cases (%.1f%%), %zu failed, %.0f cases/s, ETA %s\n",
+                   n, p.todo, 100.0 * frac, p.failed, rate, format_duration(eta).c_str());
+    }
+    std::fflush(stderr);
+  }
+
+private:
+  bool quiet_, tty_;
+};
+
+struct StudyArgs {
+  std::string config, output;
+  bool resume = false, overwrite = false, quiet = false;
+  std::vector<std::pair<std::string, std::string>> overrides;
+};
+
+const char* const kOverrides[][2] = {{"samples", "run.samples"},
+                                     {"rtol", "run.rtol"},
+                                     {"solver", "run.solver"},
+                                     {"t-end-over-tau", "run.t_end_over_tau"},
+                                     {"timeseries", "run.timeseries"},
+                                     {"G", "run.G"},
+                                     {"d", "grid.d"},
+                                     {"R", "grid.R"},
+                                     {"tau", "grid.tau"},
+                                     {"v", "grid.v"},
+                                     {"v1", "grid.v1"},
+                                     {"v1-over-v", "grid.v1_over_v"}};
+
+po::options_description options() {
+  po::options_description o;
+  o.add_options()("config", po::value<std::string>(), "")("output", po::value<std::string>(), "")(
+      "resume", po::bool_switch(), "")("overwrite", po::bool_switch(), "")(
+      "quiet", po::bool_switch(), "")("help", po::bool_switch(), "");
+  for (const auto& ov : kOverrides)
+    o.add_options()(ov[0], po::value<std::string>(), "");
+  return o;
+}
+
+std::string default_output(const std::string& config) {
+  std::string base = config.substr(config.find_last_of('/') + 1);
+  const auto dot = base.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) base = base.substr(0, dot);
+  return base + ".h5";
+}
+
+// Throws InvalidInput for bad options.
+StudyArgs parse(const std::vector<std::string>& args, bool& help) {
+  po::variables_map vm;
+  try {
+    po::store(
+        po::command_line_parser(args)
+            .options(options())
+            .style(po::command_line_style::unix_style ^ po::command_line_style::allow_guessing)
+            .run(),
+        vm);
+  } catch (const po::error_with_option_name& e) {
+    std::string opt = e.get_option_name();
+    while (!opt.empty() && opt[0] == '-')
+      opt.erase(0, 1);
+    throw InvalidInput(opt.empty() ? "config" : opt, e.what());
+  } catch (const po::error& e) {
+    throw InvalidInput("config", e.what());
+  }
+  StudyArgs a;
+  help = vm["help"].as<bool>();
+  if (help) return a;
+  if (!vm.count("config"))
+    throw InvalidInput("config", "is required: the INI file of the study (see --help)");
+  a.config = vm["config"].as<std::string>();
+  a.output = vm.count("output") ? vm["output"].as<std::string>() : default_output(a.config);
+  a.resume = vm["resume"].as<bool>();
+  a.overwrite = vm["overwrite"].as<bool>();
+  a.quiet = vm["quiet"].as<bool>();
+  for (const auto& ov : kOverrides)
+    if (vm.count(ov[0])) a.overrides.emplace_back(ov[1], vm[ov[0]].as<std::string>());
+  return a;
+}
+
+void print_error(const InvalidInput& e) {
+  const std::string& opt = e.option();
+  // "section.key" names a setting of the INI file; anything else is an option
+  // (whole-file problems are reported against --config)
+  const bool config_key = opt.find('.') != std::string::npos;
+  std::fprintf(stderr, "mdrmap study: error: %s%s: %s\n", config_key ? "" : "--", opt.c_str(),
+               e.what());
+}
+
+} // namespace
+
+std::string study_help() {
+  return R"(Usage: mpirun -np P mdrmap study --config FILE.ini [--output MAP.h5] [--resume | --overwrite]
+                 [--quiet] [overrides...]
+
+Runs a parameter study: every case of the config (a grid over d, R, tau, v,
+v1 or v1/v, or a CSV list of cases) is one velocity step v -> v1, solved as
+by 'mdrmap simulate'. Rank 0 hands out cases in chunks on request and
+computes too; every rank writes its results into one HDF5 friction map
+(parallel HDF5 through MPI-IO), beside the corrected analytic estimates of
+the seed paper and the residuals between the two. Works with P = 1.
+
+Options:
+  --config FILE     the study (INI: [grid] or [cases], and [run]; see README)
+  --output MAP.h5   the map file. Default: the config's name with .h5, in the
+                    current directory. An existing file is never touched
+                    without --resume or --overwrite.
+  --resume          continue MAP.h5: run only the cases not yet done. Refused
+                    when the study (config and overrides) differs from the one
+                    stored in the file.
+  --overwrite       replace MAP.h5, only if it is an mdrmap map. The new map is
+                    built under a temporary name and renamed when created.
+  --quiet           no progress output (errors and the summary still print)
+  --help            this text
+
+Overrides (win over the config file; values as in the INI):
+  --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
+  --G G  --d SPEC  --R SPEC  --tau SPEC  --v SPEC  --v1 SPEC  --v1-over-v SPEC
+  (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
+
+Progress goes to stderr on rank 0: a live bar on a terminal, a line every 10 s
+in a batch log, then one summary line.
+
+Signals: SIGTERM, SIGINT or SIGUSR1 (what batch systems send before the wall
+time limit) make every rank stop taking work, write what it finished, and
+exit with code 3; the message says how to resume.
+
+Exit codes: 0 study complete (failed cases are recorded in the map, status
+-1, with their message), 1 runtime failure, 2 bad input, 3 interrupted
+(resume with --resume).
+)";
+}
+
+int study_main(const std::vector<std::string>& args, int argc, char** argv) {
+  bool help = false;
+  StudyArgs a;
+  // Option errors are found before MPI starts: every rank sees the same
+  // arguments, only rank 0 would print, so print from the first process only
+  // where the rank is known (OMPI_COMM_WORLD_RANK / PMI_RANK).
+  const char* env_rank = std::getenv("OMPI_COMM_WORLD_RANK");
+  if (!env_rank) env_rank = std::getenv("PMI_RANK");
+  const bool first = !env_rank || std::string(env_rank) == "0";
+  try {
+    a = parse(args, help);
+  } catch (const InvalidInput& e) {
+    if (first) print_error(e);
+    return kExitBadInput;
+  }
+  if (help) {
+    if (first) std::fputs(study_help().c_str(), stdout);
+    return kExitOk;
+  }
+
+  MPI_Init(&argc, &argv);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  install_signal_handlers();
+  int code = kExitOk;
+  try {
+    study::StudyRequest req;
+    req.config = study::load_config(a.config);
+    for (const auto& ov : a.overrides)
+      study::apply_override(req.config, ov.first, ov.second);
+    req.output = a.output;
+    req.resume = a.resume;
+    req.overwrite = a.overwrite;
+    req.stop = &g_stop;
+    std::string cl = "mdrmap";
+    for (int i = 1; i < argc; ++i)
+      cl += " " + shell_quote(argv[i]);
+    req.command_line = cl;
+    StderrProgress progress(a.quiet);
+    const auto sum = study::run_study(MPI_COMM_WORLD, req, rank == 0 ? &progress : nullptr);
+    if (rank == 0) {
+      const std::size_t ran = sum.done + sum.failed;
+      if (sum.interrupted) {
+        std::fprintf(stderr,
+                     "mdrmap study: interrupted: %zu of %zu cases done (%zu this run), %zu "
+                     "pending; resume with: mpirun -np %d mdrmap study --config %s --output %s "
+                     "--resume\n",
+                     sum.already_done + ran, sum.total, ran, sum.pending, size,
+                     shell_quote(a.config).c_str(), shell_quote(a.output).c_str());
+      } else {
+        std::fprintf(
+            stderr,
+            "mdrmap study: %zu cases in %s: %zu done, %zu failed this run (%zu done "
+            "before), wall %.2f s, %.0f cases/s, %d ranks\n",
+            sum.total, a.output.c_str(), sum.done, sum.failed, sum.already_done, sum.wall_seconds,
+            sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size);
+      }
+    }
+    code = sum.interrupted ? kExitInterrupted : kExitOk;
+  } catch (const InvalidInput& e) {
+    // decided collectively (or identically on every rank): clean shutdown
+    if (rank == 0) print_error(e);
+    code = kExitBadInput;
+  } catch (const study::CollectiveFailure& e) {
+    if (rank == 0) std::fprintf(stderr, "mdrmap study: error: %s\n", e.what());
+    code = kExitRuntime;
+  } catch (const std::exception& e) {
+    // one rank alone: the others may be waiting on it; end the job
+    std::fprintf(stderr, "mdrmap study: error (rank %d): %s\n", rank, e.what());
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, kExitRuntime);
+  }
+  MPI_Finalize();
+  return code;
+}
+
+} // namespace mdrmap::app

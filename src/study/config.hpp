@@ -1,0 +1,94 @@
+#pragma once
+// A parameter study: which cases to run and how. Read from an INI file,
+// overridden from the command line, expanded to a case list. Pure C++: no
+// MPI, no HDF5, no printing.
+//
+//   [grid]                  ; cartesian product, case order: last axis fastest
+//   d   = 1e-3              ; a number,
+//   R   = 1, 2, 5           ; a comma list,
+//   tau = linspace:0.5:2:4  ; n evenly spaced values from lo to hi (inclusive),
+//   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values from lo to hi (values, not exponents)
+//   v1_over_v = 0, 1e-4     ; or v1 = ... (absolute); exactly one of the two
+//
+//   [cases]                 ; instead of [grid]
+//   file = cases.csv        ; columns d,R,tau,v,v1 (header line required), relative to the INI
+//
+//   [run]
+//   t_end_over_tau = 6      ; sampled window after the step, in units of tau (tau = 0:
+//   default_t_end) samples = 201 rtol = 1e-4 solver = auto           ; auto | exact | mdr |
+//   baseline timeseries = false      ; store the full time series of every case G = 1
+//
+// Comments start with ';' or '#'. Keys are case-sensitive.
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace mdrmap::study {
+
+/// Bad config: InvalidInput whose option() is "section.key" (or "config"),
+/// and whose message starts with "FILE:LINE: " when it comes from a file.
+using ConfigError = InvalidInput;
+
+struct Axis {
+  std::string name; ///< d, R, tau, v, v1 or v1_over_v
+  std::string spec; ///< as written
+  std::vector<double> values;
+  bool logarithmic = false; ///< from logspace (plots use log axes)
+};
+
+struct RunSettings {
+  double t_end_over_tau = 6.0;
+  long samples = 201;
+  double rtol = 1e-4;
+  std::string solver = "auto";
+  bool timeseries = false;
+  double G = 1.0;
+};
+
+struct StudyConfig {
+  enum class Kind { Grid, Cases };
+  Kind kind = Kind::Grid;
+  std::vector<Axis> axes; ///< grid only: d, R, tau, v, v1|v1_over_v, in this order
+  std::string cases_file; ///< cases only: path as resolved against the INI's directory
+  RunSettings run;
+  std::string source_path; ///< the INI file ("" when parsed from text)
+  std::string source_text; ///< the INI file's text, for provenance
+};
+
+/// Parses INI text. base_dir resolves [cases] file. Unknown sections or keys
+/// are errors that name the nearest known key ("did you mean 'samples'?").
+StudyConfig parse_config(const std::string& text, const std::string& base_dir,
+                         const std::string& source_name = "config");
+
+/// Reads and parses a file; errors name the file and line.
+StudyConfig load_config(const std::string& path);
+
+/// Overrides one setting, as from the command line: key is "section.key"
+/// (e.g. "run.samples", "grid.v1_over_v") and value as in the INI.
+void apply_override(StudyConfig& c, const std::string& key, const std::string& value);
+
+/// Parses one grid axis value: number, comma list, linspace:lo:hi:n,
+/// logspace:lo:hi:n. Throws ConfigError("grid.<name>").
+Axis parse_axis(const std::string& name, const std::string& spec);
+
+/// The cases in study order, each validated (mdrmap::validate); G from [run].
+/// Throws ConfigError naming the axis, or the CSV file, line and column.
+std::vector<Scene> expand_cases(const StudyConfig& c);
+
+/// Number of cases without building them (grid: product of axis sizes).
+std::size_t case_count(const StudyConfig& c);
+
+/// The protocol of one case: t_end = t_end_over_tau * tau (tau = 0: default_t_end).
+Protocol protocol_for(const StudyConfig& c, const Scene& s);
+
+/// Canonical text of everything that determines the results (axes values or
+/// the case list's contents, and the [run] settings), normalized so that
+/// formatting, comments and key order do not matter. Resume compares it.
+std::string canonical(const StudyConfig& c);
+
+/// Reads a CSV case list (header d,R,tau,v,v1 in any column order; extra
+/// columns are an error). Throws ConfigError naming file, line and column.
+std::vector<Scene> read_cases_csv(const std::string& path, double G);
+
+} // namespace mdrmap::study

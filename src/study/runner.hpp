@@ -1,0 +1,72 @@
+#pragma once
+// The MPI parameter study: cases are handed out by rank 0 in chunks on
+// request (pull-based), computed by every rank (rank 0 too, between
+// requests), and written by the rank that computed them straight into the
+// map file. The communicator is a parameter; nothing here prints.
+#include <mpi.h>
+
+#include <csignal>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "core/solver.hpp"
+#include "io/map_file.hpp"
+#include "study/config.hpp"
+
+namespace mdrmap::study {
+
+/// A runtime failure that every rank of the communicator raised together, so
+/// all can shut down cleanly (any other exception from run_study is local to
+/// one rank, and the caller should abort the job).
+class CollectiveFailure : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct StudyRequest {
+  StudyConfig config;
+  std::string output;
+  bool resume = false;
+  bool overwrite = false;
+  std::string command_line;
+  /// Set asynchronously (SIGTERM/SIGINT handler): stop taking work, flush, return.
+  const volatile std::sig_atomic_t* stop = nullptr;
+  /// Target wall time of one chunk; bounds the work lost to a kill and the tail.
+  double chunk_seconds = 0.2;
+};
+
+struct Progress {
+  std::size_t done = 0, failed = 0; ///< in this run
+  std::size_t todo = 0;             ///< cases this run set out to do
+  std::size_t total = 0;            ///< cases in the study
+  std::size_t already_done = 0;     ///< done before this run (resume)
+  double elapsed = 0.0;             ///< seconds since the dispatch began
+  bool final = false;
+};
+
+/// Receives progress on rank 0 (at most every `interval` seconds, and a final call).
+class ProgressSink {
+public:
+  virtual ~ProgressSink() = default;
+  virtual void report(const Progress& p) = 0;
+  double interval = 1.0;
+};
+
+struct StudySummary {
+  bool interrupted = false;
+  std::size_t total = 0, already_done = 0, done = 0, failed = 0, pending = 0;
+  double wall_seconds = 0.0;
+};
+
+/// Collective over comm. Bad input (existing output, mismatched resume, ...)
+/// throws InvalidInput on every rank alike; runtime failures throw
+/// std::runtime_error (io::H5Error) on the rank where they happen.
+StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sink);
+
+/// One case, as a map row (results, analytic estimates, residuals). Never
+/// throws for a failing solver: the row is marked failed with the message.
+io::CaseRow compute_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol,
+                         bool timeseries);
+
+} // namespace mdrmap::study
