@@ -1,5 +1,8 @@
 #include "core/baseline.hpp"
 
+#include "core/error_metric.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,8 +17,9 @@
 
 namespace mdrmap {
 
-RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions& opt) {
-  validate(s);
+namespace {
+
+RunResult run_baseline_once(const Scene& s, const Protocol& p, const BaselineOptions& opt) {
   validate(p);
   if (!(opt.cells_per_a1 >= 2.0) || !(opt.spinup_travel >= 2.0) || !(opt.steps_per_cell > 0.0))
     throw InvalidInput("cells-per-a1", "baseline needs cells_per_a1 >= 2, spin-up >= 2 a1");
@@ -28,8 +32,8 @@ RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions&
   const double n_elem_d = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
   if (n_elem_d > static_cast<double>(opt.max_elements) || n_post_d > 1e9 ||
       n_elem_d * (n_post_d + static_cast<double>(n_pre)) > 1e12)
-    throw std::runtime_error("baseline: the scene needs " + std::to_string(n_elem_d) +
-                             " elements and " + std::to_string(n_post_d) +
+    throw std::runtime_error("baseline: the scene needs " + format_number(n_elem_d) +
+                             " elements and " + format_number(n_post_d) +
                              " steps after the step; too expensive for the fixed-step method");
   const auto n_elem = static_cast<std::size_t>(n_elem_d);
   const auto n_post = static_cast<long>(n_post_d);
@@ -102,6 +106,24 @@ RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions&
   }
   res.info.steps = n_pre + done;
   res.info.element_updates = static_cast<long>(n_elem) * (n_pre + done + 1);
+  return res;
+}
+
+} // namespace
+
+RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions& opt) {
+  validate(s);
+  validate(p);
+  RunResult res = run_baseline_once(s, p, opt);
+  if (opt.estimate_error) {
+    // First order: the difference to a half-resolution run is about the error.
+    BaselineOptions half = opt;
+    half.cells_per_a1 = std::max(2.0, 0.5 * opt.cells_per_a1);
+    const RunResult coarse = run_baseline_once(s, p, half);
+    res.info.error_estimate = case_error(coarse.series, res.series, s, 1e-12).max();
+    res.info.steps += coarse.info.steps;
+    res.info.element_updates += coarse.info.element_updates;
+  }
   return res;
 }
 

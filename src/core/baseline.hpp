@@ -12,6 +12,7 @@ struct BaselineOptions {
   double spinup_travel = 4.0;     ///< travel before the step, in units of a1 (>= 2)
   double steps_per_cell = 1.0;    ///< time step = dx / (steps_per_cell * max(v, v1))
   long max_elements = 50'000'000; ///< refuse scenes that would need more
+  bool estimate_error = true;     ///< run a half-resolution companion for error_estimate
 };
 
 RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions& opt);

@@ -36,14 +36,20 @@ CaseError case_error(const Series& run, const Series& ref, double a1) {
   return e;
 }
 
-CaseError case_error(const Series& run, const Series& ref, const Scene& s) {
+CaseError case_error(const Series& run, const Series& ref, const Scene& s, double floor_rel) {
   CaseError e = case_error(run, ref, contact_radius(s));
   const double mu_scale = std::sqrt(s.d / s.R);
-  double fn_max = 0.0;
-  for (double f : ref.FN)
-    fn_max = std::max(fn_max, std::abs(f));
-  e.Fx = rel_max(run.Fx, ref.Fx, 1e-10 * fn_max * mu_scale);
-  e.mu = rel_max(run.mu, ref.mu, 1e-10 * mu_scale);
+  double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
+  for (std::size_t k = 0; k < ref.size(); ++k) {
+    fn_max = std::max(fn_max, std::abs(ref.FN[k]));
+    fx_max = std::max(fx_max, std::abs(ref.Fx[k]));
+    mu_max = std::max(mu_max, std::abs(ref.mu[k]));
+  }
+  const double fx_scale = fn_max * mu_scale;
+  if (fx_max == 0.0 || floor_rel > 0.0)
+    e.Fx = rel_max(run.Fx, ref.Fx, fx_max == 0.0 ? fx_scale : floor_rel * fx_scale);
+  if (mu_max == 0.0 || floor_rel > 0.0)
+    e.mu = rel_max(run.mu, ref.mu, mu_max == 0.0 ? mu_scale : floor_rel * mu_scale);
   return e;
 }
 

@@ -13,12 +13,12 @@ struct CaseError {
 /// for a2: max_k |a2_k - ref_k| / a1. Series must have equal sizes.
 CaseError case_error(const Series& run, const Series& ref, double a1);
 
-/// The same metric, with the denominators of F_x and mu floored at 1e-10 of
-/// their natural scales (max|F_N| sqrt(d/R) and sqrt(d/R)). Where the
-/// reference is identically zero (tau = 0: F_x = mu = 0) the plain relative
-/// error is rounding noise over zero: each element term of F_x carries a
-/// rounding error ~1e-16 F_N sqrt(d/R). The floor is far below any physical
-/// F_x of the hard set (smallest: ~1e-8 G d^2 at v tau / a1 = 1e-4).
-CaseError case_error(const Series& run, const Series& ref, const Scene& s);
+/// The same metric where a reference that is identically zero (tau = 0:
+/// F_x = mu = 0) is measured on its natural scale (max|F_N| sqrt(d/R) for
+/// F_x, sqrt(d/R) for mu) instead of dividing by zero. With floor_rel > 0 the
+/// F_x and mu denominators are also at least floor_rel times those scales:
+/// comparing two runs whose F_x is rounding noise over zero then stays
+/// meaningful (each element term carries ~1e-16 of the scale).
+CaseError case_error(const Series& run, const Series& ref, const Scene& s, double floor_rel = 0.0);
 
 } // namespace mdrmap

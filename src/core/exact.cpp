@@ -30,6 +30,7 @@ ExactSolution::ExactSolution(const Scene& s, int bits) : s_(s), bits_(std::clamp
   a1_ = analytic::a1(s);
   a2v_ = analytic::a2_stationary(s, s.v);
   a2v1_ = analytic::a2_stationary(s, s.v1);
+  a1_minus_a2v_ = analytic::a1_minus_a2_stationary(s, s.v);
   a1_minus_a2v1_ = analytic::a1_minus_a2_stationary(s, s.v1);
   pre_ = analytic::stationary(s, s.v);
   post_ = analytic::stationary(s, s.v1);
@@ -50,7 +51,7 @@ State ExactSolution::at(double t) const {
   // Multiplied by R/a1^2 and written in Y = y/a1 it is G(Y) below: increasing in
   // Y, negative at 0, so the trailing edge is its unique root (or the cap a2v1).
   const double one_minus_c = -std::expm1(-t * (1.0 - s_.v1 / s_.v) / s_.tau);
-  const double a1_minus_a2v = analytic::a1_minus_a2_stationary(s_, s_.v);
+  const double a1_minus_a2v = a1_minus_a2v_; // (constant: cached, it costs a hypot and two sqrt)
   const double ratio_a = 2.0 * (a2v_ / a1_) * (L_ / a1_) * one_minus_c; // R h(a2v)(1-c)/a1^2
   const double ratio_b = 2.0 * a2v_ / L_;                               // R h(a2v)/L^2
   const double scale = a1_ / L_;

@@ -31,7 +31,7 @@ private:
   Scene s_;
   int bits_;
   State pre_, post_;
-  double a1_ = 0, a2v_ = 0, a2v1_ = 0, a1_minus_a2v1_ = 0, h_a2v_ = 0, L_ = 0;
+  double a1_ = 0, a2v_ = 0, a2v1_ = 0, a1_minus_a2v_ = 0, a1_minus_a2v1_ = 0, h_a2v_ = 0, L_ = 0;
   bool transient_ = false;
   mutable double last_bracket_ = 0.0;
   mutable long root_solves_ = 0;

@@ -458,6 +458,7 @@ RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt) {
   if (!(cells >= 2.0) || cells > 1e8)
     throw InvalidInput("cells-per-a1", "must be between 2 and 1e8");
   const bool adaptive = opt.cells_per_a1 <= 0.0;
+  double prev_est = 0.0;
   for (int attempt = 0;; ++attempt) {
     SingleRun fine = run_once(s, p, cells, opt);
     res.info.steps += fine.steps;
@@ -470,13 +471,16 @@ RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt) {
       SingleRun coarse = run_once(s, p, 0.5 * cells, opt);
       res.info.steps += coarse.steps;
       res.info.element_updates += coarse.updates;
-      est = case_error(coarse.series, fine.series, s).max();
+      est = case_error(coarse.series, fine.series, s, 1e-12).max();
     }
     res.series = std::move(fine.series);
     res.info.error_estimate = est;
     res.info.cells_per_a1 = cells;
     res.info.elements = fine.elements;
-    if (!adaptive || est <= opt.rtol || attempt >= 5 || cells >= 1e7) break;
+    // stop when refining no longer helps: the estimate is at rounding level
+    const bool stagnant = attempt > 0 && est > 0.5 * prev_est;
+    prev_est = est;
+    if (!adaptive || est <= opt.rtol || stagnant || attempt >= 5 || cells >= 1e7) break;
     cells = std::min(1e7, std::ceil(cells * std::max(1.5, 1.2 * std::sqrt(est / opt.rtol))));
   }
   return res;
