@@ -22,6 +22,8 @@ PACKAGES=(
   libboost-program-options-dev libgtest-dev libbenchmark-dev
   # post-processing (tools/*.py)
   python3-numpy python3-h5py python3-matplotlib
+  # profiling in tools/bench.sh
+  valgrind
 )
 
 log() { printf 'setup: %s\n' "$*" >&2; }

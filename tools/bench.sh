@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# The work-precision benchmark of the solvers (issue 3), in one command:
+#
+#   bash tools/bench.sh [--quick] [--no-profile] [--publish]
+#
+#   1. installs missing Debian packages (tools/setup.sh) and builds mdrmap_bench
+#      in Release (tools/build.sh, build directory $BUILD_DIR);
+#   2. records the machine in $OUT_DIR/machine.txt (lscpu model name, cores,
+#      memory, OS, compiler, date, git commit);
+#   3. runs mdrmap_bench, which writes $OUT_DIR/bench.csv (one row per setting
+#      and case subset), bench_cases.csv (one row per setting and scene) and
+#      bench.md (machine, tables, the cost targets, peak memory);
+#   4. plots $OUT_DIR/work_precision.png (tools/pyrun tools/plot_bench.py);
+#   5. profiles with valgrind --tool=callgrind (skipped with --no-profile or
+#      --quick, or when valgrind is not installed): mdrmap_bench --profile mdr
+#      and --profile auto, top functions in $OUT_DIR/profile_{mdr,auto}.txt.
+#
+# --quick      smoke run of a few seconds (short ladders, one call per scene)
+# --no-profile skip step 5
+# --publish    copy bench.md, bench.csv and work_precision.png to tools/bench/,
+#              where the README's Performance section takes them from
+#
+# Environment: BUILD_DIR=build-bench, OUT_DIR=out/bench (relative to the
+# repository root, or absolute), JOBS, CI (as tools/build.sh).
+set -euo pipefail
+
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$ROOT"
+
+quick=0 profile=1 publish=0
+for arg in "$@"; do
+  case "$arg" in
+  --quick) quick=1 ;;
+  --no-profile) profile=0 ;;
+  --publish) publish=1 ;;
+  -h | --help)
+    sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'
+    exit 0
+    ;;
+  *)
+    echo "bench: unknown option '$arg' (see bash tools/bench.sh --help)" >&2
+    exit 2
+    ;;
+  esac
+done
+((quick)) && profile=0
+
+BUILD_DIR=${BUILD_DIR:-build-bench}
+OUT_DIR=${OUT_DIR:-out/bench}
+log() { printf 'bench: %s\n' "$*" >&2; }
+
+# 1. build (Release: timings of an unoptimised build mean nothing)
+bash tools/setup.sh
+BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release BUILD_TARGETS=mdrmap_bench \
+  bash tools/build.sh -DMDRMAP_BUILD_BENCH=ON
+BENCH="$BUILD_DIR/tools/bench/mdrmap_bench"
+[[ -x "$BENCH" ]] || {
+  log "$BENCH was not built"
+  exit 1
+}
+mkdir -p "$OUT_DIR"
+
+# 2. the machine
+cxx=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt" | sed -n 1p)
+flags=$(sed -n 's/^CMAKE_CXX_FLAGS_RELEASE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt" | sed -n 1p)
+commit=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)
+if [[ "$commit" != unknown ]] && ! git diff --quiet HEAD -- src tools 2>/dev/null; then
+  commit="$commit (with uncommitted changes in src/ or tools/)"
+fi
+{
+  echo "CPU:       $(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | sed -n 1p)"
+  echo "Cores:     $(nproc) ($(lscpu | sed -n 's/^Core(s) per socket:[[:space:]]*//p' | sed -n 1p) per socket, $(lscpu | sed -n 's/^Thread(s) per core:[[:space:]]*//p' | sed -n 1p) thread(s) per core)"
+  echo "Memory:    $(free -h | awk '/^Mem:/ {print $2}')"
+  echo "OS:        $(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME"), Linux $(uname -r)"
+  echo "Compiler:  $("${cxx:-c++}" --version | sed -n 1p), flags $flags"
+  echo "Commit:    $commit"
+  echo "Date:      $(date -u '+%Y-%m-%d %H:%M UTC')"
+} >"$OUT_DIR/machine.txt"
+cat "$OUT_DIR/machine.txt" >&2
+
+# 3. the benchmark
+cmd="bash tools/bench.sh"
+bench_args=(--out-dir "$OUT_DIR" --machine-file "$OUT_DIR/machine.txt")
+if ((quick)); then
+  bench_args+=(--quick)
+  cmd+=" --quick"
+fi
+log "$BENCH ${bench_args[*]}"
+"$BENCH" "${bench_args[@]}" --command "$cmd" >"$OUT_DIR/bench.log"
+
+# 4. the plot
+cpu=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | sed -n 1p)
+tools/pyrun tools/plot_bench.py "$OUT_DIR/bench.csv" -o "$OUT_DIR/work_precision.png" \
+  --title "$cpu, $(nproc) cores, $(date -u '+%Y-%m-%d')$( ((quick)) && echo ' (--quick smoke run)')"
+
+# 5. the profile
+if ((profile)); then
+  if command -v valgrind >/dev/null 2>&1 && command -v callgrind_annotate >/dev/null 2>&1; then
+    # passes over the case set: enough that program start-up is a small share
+    for what in mdr:3 auto:30; do
+      repeat=${what#*:} what=${what%:*}
+      raw="$OUT_DIR/callgrind.$what.out"
+      log "valgrind --tool=callgrind $BENCH --profile $what --repeat $repeat"
+      valgrind --tool=callgrind --callgrind-out-file="$raw" "$BENCH" --profile "$what" \
+        --repeat "$repeat" >"$OUT_DIR/profile_$what.log" 2>&1
+      {
+        echo "# valgrind --tool=callgrind $BENCH --profile $what --repeat $repeat"
+        echo "# $(grep '^profile' "$OUT_DIR/profile_$what.log")"
+        echo "## exclusive (self) instruction counts"
+        callgrind_annotate --auto=no "$raw" 2>/dev/null | sed -n '/file:function/,$p' | sed -n '1,24p'
+        echo "## inclusive instruction counts"
+        callgrind_annotate --auto=no --inclusive=yes "$raw" 2>/dev/null | sed -n '/file:function/,$p' |
+          sed -n '1,24p'
+      } >"$OUT_DIR/profile_$what.txt"
+    done
+  else
+    log "valgrind not installed: no profile (apt-get install valgrind)"
+  fi
+fi
+
+# --publish: what the README shows
+if ((publish)); then
+  cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/work_precision.png" tools/bench/
+  log "copied bench.md, bench.csv, work_precision.png to tools/bench/"
+fi
+
+log "wrote $OUT_DIR/{bench.csv,bench_cases.csv,bench.md,work_precision.png,machine.txt}"
+sed -n '/^### Targets/,/^### Error estimates/p' "$OUT_DIR/bench.md" | sed '$d'

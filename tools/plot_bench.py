@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+# pyrun-needs: matplotlib
+"""Work-precision plot of the mdrmap benchmark (error against time, log-log).
+
+Reads the summary CSV written by mdrmap_bench (tools/bench.sh writes it to
+out/bench/bench.csv) and writes a PNG with three panels:
+
+  1. all scenes of the case set: largest case error over the scenes;
+  2. the baseline subset: largest case error;
+  3. the baseline subset: median case error (where the fixed-step baseline's
+     typical accuracy shows).
+
+x is the median wall time of one solver call per scene. Errors that are
+exactly zero (the reference itself) are drawn as hollow markers at the bottom
+of the axis.
+
+Usage:
+    tools/pyrun tools/plot_bench.py out/bench/bench.csv -o out/bench/work_precision.png
+"""
+
+import argparse
+import csv
+import math
+import sys
+
+STYLE = {  # family: (label, colour, marker)
+    "exact": ("exact (continuum), rtol ladder", "tab:blue", "o"),
+    "auto": ("simulate default (auto, rtol 1e-4)", "black", "*"),
+    "mdr": ("mdr, rtol ladder (log-linear edge)", "tab:green", "s"),
+    "mdr-linear": ("mdr, fixed a1/dx, linear edge", "tab:orange", "^"),
+    "mdr-none": ("mdr, fixed a1/dx, raw sums (paper)", "tab:red", "D"),
+    "baseline": ("fixed-step baseline, a1/dx ladder", "tab:purple", "X"),
+}
+ZERO_FLOOR = 1e-17  # where exact zeros are drawn
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise SystemExit(f"plot_bench: {path} has no rows")
+    need = {"solver", "setting", "subset", "median_time_s", "max_error", "median_error"}
+    missing = need - set(rows[0])
+    if missing:
+        raise SystemExit(f"plot_bench: {path} lacks columns {sorted(missing)}")
+    return rows
+
+
+def number(text):
+    try:
+        x = float(text)
+    except ValueError:
+        return math.nan
+    return x
+
+
+def short_label(setting):
+    """'rtol=1e-04' -> '1e-4', 'a1/dx=500' -> '500'."""
+    value = setting.split("=", 1)[-1]
+    if "e-0" in value:
+        value = value.replace("e-0", "e-")
+    return value
+
+
+def panel(ax, rows, subset, column, title):
+    floor_used = False
+    for family, (label, colour, marker) in STYLE.items():
+        pts = [r for r in rows if r["solver"] == family and r["subset"] == subset]
+        pts = [r for r in pts if not math.isnan(number(r["median_time_s"]))]
+        if not pts:
+            continue
+        t = [1e3 * number(r["median_time_s"]) for r in pts]
+        e = [number(r[column]) for r in pts]
+        shown = [x if x > 0 else ZERO_FLOOR for x in e]
+        floor_used |= any(x == 0 for x in e)
+        ax.plot(t, shown, color=colour, lw=1.2, alpha=0.7, zorder=2)
+        filled = [i for i, x in enumerate(e) if x > 0]
+        hollow = [i for i, x in enumerate(e) if not x > 0]
+        ax.scatter([t[i] for i in filled], [shown[i] for i in filled], color=colour,
+                   marker=marker, s=70 if marker == "*" else 34, label=label, zorder=3)
+        if hollow:
+            ax.scatter([t[i] for i in hollow], [shown[i] for i in hollow], facecolors="none",
+                       edgecolors=colour, marker=marker, s=34, zorder=3)
+        if family != "auto":  # one label per distinct point: "1e-2,1e-3" where they coincide
+            groups = {}
+            for ti, ei, r in zip(t, shown, pts):
+                key = (round(4 * math.log10(ti)), round(4 * math.log10(ei)))  # quarter decades
+                groups.setdefault(key, (ti, ei, []))[2].append(short_label(r["setting"]))
+            for ti, ei, names in groups.values():
+                ax.annotate(",".join(names), (ti, ei), textcoords="offset points",
+                            xytext=(4, 3), fontsize=6.5, color=colour)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("median wall time per scene [ms]")
+    ax.set_ylabel("max case error" if column == "max_error" else "median case error")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="major", alpha=0.3)
+    ax.grid(True, which="minor", alpha=0.08)
+    if floor_used:
+        ax.text(0.02, 0.02, f"hollow: error exactly 0, drawn at {ZERO_FLOOR:g}",
+                transform=ax.transAxes, fontsize=7, color="0.3")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(
+        description="Work-precision plot (error vs time, log-log) of mdrmap_bench's CSV.")
+    ap.add_argument("csv", help="summary CSV written by mdrmap_bench (bench.csv)")
+    ap.add_argument("-o", "--output", default="work_precision.png", help="PNG to write")
+    ap.add_argument("--title", default="", help="figure title (e.g. the machine)")
+    ap.add_argument("--dpi", type=int, default=110)
+    args = ap.parse_args(argv)
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = read_rows(args.csv)
+    n_all = max((int(r["cases"]) for r in rows if r["subset"] == "all"), default=0)
+    n_sub = max((int(r["cases"]) for r in rows if r["subset"] == "baseline-subset"), default=0)
+
+    fig, axes = plt.subplots(1, 3, figsize=(17, 5.6))
+    panel(axes[0], rows, "all", "max_error", f"all {n_all} scenes: largest error")
+    panel(axes[1], rows, "baseline-subset", "max_error",
+          f"baseline subset ({n_sub} scenes): largest error")
+    panel(axes[2], rows, "baseline-subset", "median_error",
+          f"baseline subset ({n_sub} scenes): median error")
+    handles, labels = [], []
+    for ax in axes:
+        for h, l in zip(*ax.get_legend_handles_labels()):
+            if l not in labels:
+                handles.append(h)
+                labels.append(l)
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8.5, frameon=False)
+    title = "mdrmap work-precision: error against the continuum solution vs time per scene"
+    if args.title:
+        title += "\n" + args.title
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout(rect=(0, 0.08, 1, 0.95))
+    fig.savefig(args.output, dpi=args.dpi)
+    print(f"plot_bench: wrote {args.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
