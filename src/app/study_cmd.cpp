@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,7 @@ private:
 };
 
 struct StudyArgs {
+  double chunk_seconds = 0.2;
   std::string config, output;
   bool resume = false, overwrite = false, quiet = false;
   std::vector<std::pair<std::string, std::string>> overrides;
@@ -110,7 +112,8 @@ po::options_description options() {
   po::options_description o;
   o.add_options()("config", po::value<std::string>(), "")("output", po::value<std::string>(), "")(
       "resume", po::bool_switch(), "")("overwrite", po::bool_switch(), "")(
-      "quiet", po::bool_switch(), "")("help", po::bool_switch(), "");
+      "quiet", po::bool_switch(), "")("help", po::bool_switch(), "")("chunk-seconds",
+                                                                     po::value<std::string>(), "");
   for (const auto& ov : kOverrides)
     o.add_options()(ov[0], po::value<std::string>(), "");
   return o;
@@ -151,6 +154,15 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
   a.resume = vm["resume"].as<bool>();
   a.overwrite = vm["overwrite"].as<bool>();
   a.quiet = vm["quiet"].as<bool>();
+  if (vm.count("chunk-seconds")) {
+    const std::string& txt = vm["chunk-seconds"].as<std::string>();
+    char* end = nullptr;
+    const double x = std::strtod(txt.c_str(), &end);
+    if (txt.empty() || *end != '\0' || !std::isfinite(x) || !(x > 0.0) || x > 3600.0)
+      throw InvalidInput("chunk-seconds",
+                         "must be a number of seconds in (0, 3600], got '" + txt + "'");
+    a.chunk_seconds = x;
+  }
   for (const auto& ov : kOverrides)
     if (vm.count(ov[0])) a.overrides.emplace_back(ov[1], vm[ov[0]].as<std::string>());
   return a;
@@ -189,6 +201,9 @@ Options:
   --overwrite       replace MAP.h5, only if it is an mdrmap map. The new map is
                     built under a temporary name and renamed when created.
   --quiet           no progress output (errors and the summary still print)
+  --chunk-seconds S target compute time of one chunk of cases (default 0.2):
+                    larger means fewer dispatch messages, smaller means less
+                    work lost to a kill and a shorter tail
   --help            this text
 
 Overrides (win over the config file; values as in the INI):
@@ -244,6 +259,7 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
     req.resume = a.resume;
     req.overwrite = a.overwrite;
     req.stop = &g_stop;
+    req.chunk_seconds = a.chunk_seconds;
     std::string cl = "mdrmap";
     for (int i = 1; i < argc; ++i)
       cl += " " + shell_quote(argv[i]);
@@ -263,9 +279,10 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
         std::fprintf(
             stderr,
             "mdrmap study: %zu cases in %s: %zu done, %zu failed this run (%zu done "
-            "before), wall %.2f s, %.0f cases/s, %d ranks\n",
+            "before), wall %.2f s, %.0f cases/s, %d ranks, %zu chunks, %zu requests served\n",
             sum.total, a.output.c_str(), sum.done, sum.failed, sum.already_done, sum.wall_seconds,
-            sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size);
+            sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size,
+            sum.chunks, sum.messages);
       }
     }
     code = sum.interrupted ? kExitInterrupted : kExitOk;

@@ -418,10 +418,12 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
         if (msg[3] != 0) stopping = true; // that worker was asked to stop
         if (w.stop_requested()) stopping = true;
         long long assign[2] = {0, 0};
+        ++sum.messages;
         if (!stopping && pos < todo.size()) {
           const std::size_t k = chunk_size(size);
           assign[0] = static_cast<long long>(pos), assign[1] = static_cast<long long>(k);
           pos += k;
+          ++sum.chunks;
         } else {
           --active;
         }
@@ -438,6 +440,7 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
             (size == 1) ? chunk_size(1) : std::min<std::size_t>(chunk_size(size), 64);
         const std::size_t p0 = pos;
         pos += k;
+        ++sum.chunks;
         const double before = w.compute_seconds;
         const std::size_t n_before = w.done + w.failed;
         const std::size_t finished = w.run_chunk(p0, k, [&] { serve(false); });

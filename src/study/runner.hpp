@@ -56,6 +56,8 @@ public:
 struct StudySummary {
   bool interrupted = false;
   std::size_t total = 0, already_done = 0, done = 0, failed = 0, pending = 0;
+  std::size_t chunks = 0;   ///< chunks handed out (to workers and to rank 0 itself)
+  std::size_t messages = 0; ///< request/assignment pairs rank 0 served
   double wall_seconds = 0.0;
 };
 
