@@ -72,5 +72,7 @@ bool has_attr(hid_t obj, const std::string& name);
 void write_scalar_attr(hid_t obj, const std::string& name, long long value);
 void write_int_array_attr(hid_t obj, const std::string& name, const std::vector<long long>& v);
 bool has_link(hid_t loc, const std::string& path);
+/// A 1-D uint8 dataset read as text (up to the first NUL).
+std::string read_text_dataset(hid_t loc, const std::string& name);
 
 } // namespace mdrmap::io

@@ -81,18 +81,6 @@ void write_text_dataset(hid_t loc, const std::string& name, const std::string& t
   d.close("closing /" + name);
 }
 
-std::string read_text_dataset(hid_t loc, const std::string& name) {
-  const std::string what = "reading /" + name;
-  Handle d = make_dataset(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), what);
-  Handle sp = make_space(H5Dget_space(d.id()), what);
-  const hssize_t n = H5Sget_simple_extent_npoints(sp.id());
-  if (n < 0) throw H5Error(what + ": bad extent");
-  std::string buf(static_cast<std::size_t>(n), '\0');
-  check_status(H5Dread(d.id(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()), what);
-  buf.resize(std::strlen(buf.c_str()));
-  return buf;
-}
-
 Handle mpio_fapl(MPI_Comm comm, const std::string& what) {
   Handle fapl = make_plist(H5Pcreate(H5P_FILE_ACCESS), what);
   check_status(H5Pset_fapl_mpio(fapl.id(), comm, MPI_INFO_NULL), what);

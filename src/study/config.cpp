@@ -409,16 +409,12 @@ std::vector<double> extremes(const std::vector<double>& v) {
   return out;
 }
 
-/// Validates every case of a grid without expanding it: each axis value is in
-/// range (parse_axis), and the combined checks of validate(Scene) and
-/// validate(Protocol) are monotone in each parameter, so the corners of the
-/// grid (smallest, largest, smallest positive value per axis) decide them.
-template <class WhereFn> void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
-  const std::string& v1_name = c.axes[4].name;
-  const bool ratio = v1_name == "v1_over_v";
-  const auto D = extremes(c.axes[0].values), R = extremes(c.axes[1].values),
-             T = extremes(c.axes[2].values), V = extremes(c.axes[3].values),
-             V1 = extremes(c.axes[4].values);
+/// Calls f(scene) for every combination of the five axis value lists, in C
+/// order (last axis fastest); v1 is v1_over_v * v when `ratio`.
+template <class F>
+void for_each_combination(const std::vector<double>& D, const std::vector<double>& R,
+                          const std::vector<double>& T, const std::vector<double>& V,
+                          const std::vector<double>& V1, bool ratio, double G, F f) {
   for (const double d : D)
     for (const double r : R)
       for (const double tau : T)
@@ -430,14 +426,29 @@ template <class WhereFn> void check_grid_corners(const StudyConfig& c, const Whe
             s.tau = tau;
             s.v = v;
             s.v1 = ratio ? x * v : x;
-            s.G = c.run.G;
-            try {
-              validate_case(c, s);
-            } catch (const InvalidInput& e) {
-              const std::string option = grid_option(e.option(), s, v1_name);
-              throw ConfigError(option, where(option).prefix() + case_problem(e, s, v1_name));
-            }
+            s.G = G;
+            f(s);
           }
+}
+
+/// Validates every case of a grid without expanding it: each axis value is in
+/// range (parse_axis), and the combined checks of validate(Scene) and
+/// validate(Protocol) are monotone in each parameter, so the corners of the
+/// grid (smallest, largest, smallest positive value per axis) decide them.
+template <class WhereFn> void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
+  const std::string& v1_name = c.axes[4].name;
+  const bool ratio = v1_name == "v1_over_v";
+  const auto D = extremes(c.axes[0].values), R = extremes(c.axes[1].values),
+             T = extremes(c.axes[2].values), V = extremes(c.axes[3].values),
+             V1 = extremes(c.axes[4].values);
+  for_each_combination(D, R, T, V, V1, ratio, c.run.G, [&](const Scene& s) {
+    try {
+      validate_case(c, s);
+    } catch (const InvalidInput& e) {
+      const std::string option = grid_option(e.option(), s, v1_name);
+      throw ConfigError(option, where(option).prefix() + case_problem(e, s, v1_name));
+    }
+  });
 }
 
 /// Every check that involves more than one setting.
@@ -865,27 +876,18 @@ std::vector<Scene> expand_cases(const StudyConfig& c) {
   const bool ratio = A[4].name == "v1_over_v";
   std::vector<Scene> out;
   out.reserve(count);
-  for (const double d : A[0].values)
-    for (const double r : A[1].values)
-      for (const double tau : A[2].values)
-        for (const double v : A[3].values)
-          for (const double x : A[4].values) {
-            Scene s;
-            s.d = d;
-            s.R = r;
-            s.tau = tau;
-            s.v = v;
-            s.v1 = ratio ? x * v : x;
-            s.G = c.run.G;
-            try {
-              validate_case(c, s);
-            } catch (const InvalidInput& e) {
-              throw ConfigError(grid_option(e.option(), s, A[4].name),
-                                src.prefix() + "case " + std::to_string(out.size() + 1) + ": " +
-                                    case_problem(e, s, A[4].name));
-            }
-            out.push_back(s);
-          }
+  for_each_combination(A[0].values, A[1].values, A[2].values, A[3].values, A[4].values, ratio,
+                       c.run.G, [&](const Scene& s) {
+                         try {
+                           validate_case(c, s);
+                         } catch (const InvalidInput& e) {
+                           throw ConfigError(grid_option(e.option(), s, A[4].name),
+                                             src.prefix() + "case " +
+                                                 std::to_string(out.size() + 1) + ": " +
+                                                 case_problem(e, s, A[4].name));
+                         }
+                         out.push_back(s);
+                       });
   return out;
 }
 

@@ -136,13 +136,7 @@ void check_resume_matches(const StudyRequest& req, const std::string& canon) {
   io::Handle file(f, H5Fclose);
   std::string stored;
   try {
-    io::Handle d = io::make_dataset(H5Dopen2(f, "provenance/config_canonical", H5P_DEFAULT), "");
-    io::Handle sp = io::make_space(H5Dget_space(d.id()), "");
-    const hssize_t n = H5Sget_simple_extent_npoints(sp.id());
-    stored.assign(static_cast<std::size_t>(std::max<hssize_t>(n, 0)), '\0');
-    io::check_status(
-        H5Dread(d.id(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data()), "");
-    stored.resize(std::strlen(stored.c_str()));
+    stored = io::read_text_dataset(f, "provenance/config_canonical");
   } catch (const io::H5Error&) {
     throw InvalidInput("resume", "'" + req.output + "' has no readable study definition");
   }
