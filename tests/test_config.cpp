@@ -739,8 +739,11 @@ TEST(StudyExamples, ShippedConfigsLoad) {
   const StudyConfig s = load_config((dir / "start_stop.ini").string());
   EXPECT_TRUE(s.run.timeseries);
   for (const Scene& sc : expand_cases(s)) {
+    // a start-stop test: fast before (zeta >> 1, a2 ~ 0) and nearly stopped
+    // after (zeta1 << 1, a2 -> a1), v1 = 1e-4 v as in the paper
     EXPECT_EQ(sc.v1, 1e-4 * sc.v);
-    EXPECT_GT(mdrmap::zeta(sc), 1e4);
+    EXPECT_GE(mdrmap::zeta(sc), 100.0);
+    EXPECT_LE(mdrmap::zeta1(sc), 0.1 + 1e-12);
   }
 }
 
