@@ -22,8 +22,8 @@ PACKAGES=(
   libboost-program-options-dev libgtest-dev libbenchmark-dev
   # post-processing (tools/*.py)
   python3-numpy python3-h5py python3-matplotlib
-  # profiling in tools/bench.sh
-  valgrind
+  # profiling in tools/bench.sh; linting the job scripts in the tests
+  valgrind shellcheck
 )
 
 log() { printf 'setup: %s\n' "$*" >&2; }
