@@ -43,31 +43,14 @@ import os
 import re
 import sys
 
+from maplib import CASE_COLS, SCHEMA, Parser, UserError, open_map, text
+
 PROG = "map_summary"
-SCHEMA = "mdrmap-map/1"
 QUANT = ["FN", "Fx", "mu", "a2"]
 WHEN = ["pre", "jump", "post"]
-CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
 PARAMS = set(["case"] + CASE_COLS + DERIVED)
 MAX_FAILED = 20  # failed cases listed
-
-
-class UserError(Exception):
-    """A problem with the input: reported in one line, exit code 2."""
-
-
-class Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line instead of usage + message
-        raise UserError(f"{message} (see --help)")
-
-
-def text(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    if hasattr(value, "dtype") and value.dtype.kind in "uiS" and getattr(value, "ndim", 0) == 1:
-        return bytes(value.astype("u1")).decode("utf-8", "replace")
-    return str(value)
 
 
 def fmt(x, digits=3):
@@ -85,27 +68,8 @@ def fmt(x, digits=3):
     return s
 
 
-def open_map(path, h5py):
-    if not os.path.exists(path):
-        raise UserError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise UserError(f"{path} is a directory, not an mdrmap map")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise UserError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    if "mdrmap_schema" not in f.attrs:
-        f.close()
-        raise UserError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
-    for need in ["results/status"] + [f"cases/{c}" for c in CASE_COLS[:5]]:
-        if need not in f:
-            f.close()
-            raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
-    return f
-
-
 def load(path, np, h5py):
-    f = open_map(path, h5py)
+    f = open_map(path, h5py, PROG)
     m = {"path": path}
     with f:
         m["attrs"] = {k: f.attrs[k] for k in f.attrs}

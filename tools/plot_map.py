@@ -44,10 +44,10 @@ import math
 import os
 import sys
 
+from maplib import CASE_COLS, Parser, UserError, open_map, text
+
 PROG = "plot_map"
-SCHEMA = "mdrmap-map/1"
 GROUPS = ["results", "analytic", "residuals"]
-CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
 SYMBOL = {"FN": "F$_N$", "Fx": "F$_x$", "mu": "\u03bc", "a2": "a$_2$"}
 NAME = {"FN": "normal force", "Fx": "friction force", "mu": "friction coefficient",
@@ -60,21 +60,6 @@ COLNAME = {"d": "depth d", "R": "radius R", "tau": "\u03c4 = \u03b7/G", "v": "ve
            "v1_over_v": "v$_1$ / v", "zeta": "\u03b6 = v\u03c4/a$_1$",
            "zeta1": "\u03b6$_1$ = v$_1$\u03c4/a$_1$"}
 LABEL_BOX = {"facecolor": "white", "alpha": 0.7, "edgecolor": "none", "pad": 0.6}
-
-
-class UserError(Exception):
-    """A problem with the input: reported in one line, exit code 2."""
-
-
-class Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line instead of usage + message
-        raise UserError(f"{message} (see --help)")
-
-
-def text(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    return str(value)
 
 
 def fmt(x):
@@ -92,31 +77,8 @@ def fmt(x):
 
 # ----------------------------------------------------------------- reading
 
-def open_map(path, h5py):
-    if not os.path.exists(path):
-        raise UserError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise UserError(f"{path} is a directory, not an mdrmap map")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise UserError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    if "mdrmap_schema" not in f.attrs:
-        f.close()
-        raise UserError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
-    schema = text(f.attrs["mdrmap_schema"])
-    if schema != SCHEMA:
-        print(f"{PROG}: warning: {path} has schema {schema}; this tool reads {SCHEMA}",
-              file=sys.stderr)
-    for need in ["results/status"] + [f"cases/{c}" for c in CASE_COLS[:5]]:
-        if need not in f:
-            f.close()
-            raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
-    return f
-
-
 def load(path, np, h5py):
-    f = open_map(path, h5py)
+    f = open_map(path, h5py, PROG)
     m = {"path": path, "data": {}}
     with f:
         n = f["results/status"].shape[0]

@@ -48,30 +48,12 @@ import math
 import os
 import sys
 
+from maplib import CASE_COLS, Parser, UserError, open_map, text
+
 PROG = "plot_timeseries"
-SCHEMA = "mdrmap-map/1"
 QUANT = ["FN", "Fx", "mu", "a2"]
-CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
 MAX_LISTED = 8  # skipped cases listed by number at most
-
-
-class UserError(Exception):
-    """A problem with the input: reported in one line, exit code 2."""
-
-
-class Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line instead of usage + message
-        raise UserError(f"{message} (see --help)")
-
-
-def text(value):
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    if hasattr(value, "tobytes") and getattr(value, "dtype", None) is not None \
-            and value.dtype.kind in "uS":
-        return value.tobytes().decode("utf-8", "replace")
-    return str(value)
 
 
 def fmt(x):
@@ -90,31 +72,8 @@ def fmt(x):
     return s
 
 
-def open_map(path, np, h5py):
-    if not os.path.exists(path):
-        raise UserError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise UserError(f"{path} is a directory, not an mdrmap map")
-    try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise UserError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    if "mdrmap_schema" not in f.attrs:
-        f.close()
-        raise UserError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
-    schema = text(f.attrs["mdrmap_schema"])
-    if schema != SCHEMA:
-        print(f"{PROG}: warning: {path} has schema {schema}; this tool reads {SCHEMA}",
-              file=sys.stderr)
-    for need in ["results/status"] + [f"cases/{c}" for c in CASE_COLS[:5]]:
-        if need not in f:
-            f.close()
-            raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
-    return f
-
-
 def load(path, np, h5py):
-    f = open_map(path, np, h5py)
+    f = open_map(path, h5py, PROG)
     with f:
         if "timeseries" not in f or any(f"timeseries/{s}" not in f for s in ["t"] + QUANT):
             raise UserError(f"{path} has no /timeseries; rerun the study with "

@@ -1,0 +1,55 @@
+"""Shared by the map tools (plot_map, plot_timeseries, map_summary): opening an
+mdrmap friction map with clear one-line errors.
+
+Not a script: the tools import it from their own directory.
+"""
+import argparse
+import os
+import sys
+
+SCHEMA = "mdrmap-map/1"
+CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
+
+
+class UserError(Exception):
+    """A problem with the input: reported in one line, exit code 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line instead of usage + message
+        raise UserError(f"{message} (see --help)")
+
+
+def text(value):
+    """An HDF5 string attribute or a uint8 text dataset as str."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    if getattr(value, "dtype", None) is not None and value.dtype.kind in "uiS" \
+            and getattr(value, "ndim", 0) <= 1:
+        return bytes(value.astype("u1") if value.dtype.kind != "S" else value.tobytes()) \
+            .decode("utf-8", "replace")
+    return str(value)
+
+
+def open_map(path, h5py, prog):
+    """Opens PATH read-only; UserError unless it is a readable mdrmap map."""
+    if not os.path.exists(path):
+        raise UserError(f"no such file: {path}")
+    if os.path.isdir(path):
+        raise UserError(f"{path} is a directory, not an mdrmap map")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise UserError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
+    if "mdrmap_schema" not in f.attrs:
+        f.close()
+        raise UserError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
+    schema = text(f.attrs["mdrmap_schema"])
+    if schema != SCHEMA:
+        print(f"{prog}: warning: {path} has schema {schema}; this tool reads {SCHEMA}",
+              file=sys.stderr)
+    for need in ["results/status"] + [f"cases/{c}" for c in CASE_COLS[:5]]:
+        if need not in f:
+            f.close()
+            raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
+    return f
