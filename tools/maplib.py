@@ -24,11 +24,12 @@ def text(value):
     """An HDF5 string attribute or a uint8 text dataset as str."""
     if isinstance(value, bytes):
         return value.decode("utf-8", "replace")
-    if getattr(value, "dtype", None) is not None and value.dtype.kind in "uiS" \
-            and getattr(value, "ndim", 0) <= 1:
-        return bytes(value.astype("u1") if value.dtype.kind != "S" else value.tobytes()) \
-            .decode("utf-8", "replace")
-    return str(value)
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and dtype.kind == "S":
+        return value.tobytes().decode("utf-8", "replace")
+    if dtype is not None and dtype.kind in "ui" and getattr(value, "ndim", 0) == 1:
+        return bytes(value.astype("u1")).decode("utf-8", "replace")  # a text dataset
+    return str(value)  # numbers (e.g. integer attributes) as they print
 
 
 def open_map(path, h5py, prog):

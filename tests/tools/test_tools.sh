@@ -313,7 +313,7 @@ ok "11 PNGs: signature, IHDR chunk, width x height, size"
 # ---------------------------------------------------------------- summary and CSV
 for s in "cases: 36  done 36, failed 0, pending 0" "grid: 5 axes, shape 3 x 1 x 2 x 3 x 2" \
   "d          3 values (log): 1e-4, 0.001, 0.01" "numerical error" "distance from a state or a limit" \
-  "mdrmap-map/1" "config text:"; do
+  "mdrmap-map/1" "config text:" "MPI size      2" "samples       21 per case"; do
   expect_in ms_grid "$W/ms_grid.out" "$s"
 done
 expect_in ms_partial "$W/ms_partial.out" "cases: 36  done 26, failed 1, pending 9"
