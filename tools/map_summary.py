@@ -43,7 +43,7 @@ import os
 import re
 import sys
 
-from maplib import CASE_COLS, SCHEMA, Parser, UserError, open_map, text
+from maplib import CASE_COLS, SCHEMA, Parser, UserError, open_map, run_tool, text
 
 PROG = "map_summary"
 QUANT = ["FN", "Fx", "mu", "a2"]
@@ -386,20 +386,6 @@ def main(argv=None):
     return 0
 
 
-def run():
-    try:
-        return main()
-    except UserError as e:
-        print(f"{PROG}: {e}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # e.g. piped into head
-        try:
-            sys.stdout = None
-        finally:
-            return 0
-    except KeyboardInterrupt:
-        return 130
-
 
 if __name__ == "__main__":
-    sys.exit(run())
+    sys.exit(run_tool(main, PROG))

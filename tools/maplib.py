@@ -54,3 +54,19 @@ def open_map(path, h5py, prog):
             f.close()
             raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
     return f
+
+
+def run_tool(main, prog):
+    """Runs main(); a UserError becomes one line on stderr and exit code 2."""
+    try:
+        return main()
+    except UserError as e:
+        print(f"{prog}: {e}", file=sys.stderr)
+        return 2
+    except BrokenPipeError:  # e.g. piped into head
+        try:
+            sys.stdout = None
+        finally:
+            return 0
+    except KeyboardInterrupt:
+        return 130

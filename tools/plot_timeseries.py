@@ -48,7 +48,7 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, open_map, text
+from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, text
 
 PROG = "plot_timeseries"
 QUANT = ["FN", "Fx", "mu", "a2"]
@@ -439,15 +439,6 @@ def main(argv=None):
     return 0
 
 
-def run():
-    try:
-        return main()
-    except UserError as e:
-        print(f"{PROG}: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        return 130
-
 
 if __name__ == "__main__":
-    sys.exit(run())
+    sys.exit(run_tool(main, PROG))
