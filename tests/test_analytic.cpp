@@ -17,6 +17,7 @@
 
 #include "core/analytic.hpp"
 #include "core/scene.hpp"
+#include "test_scene.hpp"
 
 namespace {
 
@@ -157,16 +158,7 @@ ld a1_minus_a2_newton(ld a1, ld L) {
   return x;
 }
 
-Scene make_scene(double d, double R, double tau, double v, double v1 = 0.0, double G = 1.0) {
-  Scene s;
-  s.d = d;
-  s.R = R;
-  s.tau = tau;
-  s.v = v;
-  s.v1 = v1;
-  s.G = G;
-  return s;
-}
+using mdrmap::testing::make_scene;
 
 // Velocity giving v tau / a1 = zeta.
 double vel(const Scene& s, double zeta) {

@@ -26,6 +26,7 @@
 #include "core/error_metric.hpp"
 #include "core/exact.hpp"
 #include "core/scene.hpp"
+#include "test_scene.hpp"
 
 namespace {
 
@@ -39,16 +40,7 @@ using ld = long double;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr ld kEpsLd = std::numeric_limits<ld>::epsilon();
 
-Scene make_scene(double d, double R, double tau, double v, double v1, double G = 1.0) {
-  Scene s;
-  s.d = d;
-  s.R = R;
-  s.tau = tau;
-  s.v = v;
-  s.v1 = v1;
-  s.G = G;
-  return s;
-}
+using mdrmap::testing::make_scene;
 
 // Scene with zeta = v tau / a1 and v1 = ratio * v.
 Scene scene_z(double zeta, double ratio, double d_over_R = 1e-3, double R = 0.05, double tau = 2e-3,
