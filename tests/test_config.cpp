@@ -4,14 +4,19 @@
 
 #include <stdlib.h> // mkdtemp
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <random>
 #include <sstream>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -748,6 +753,601 @@ TEST(StudyExamples, ShippedConfigsLoad) {
 }
 
 // --- Fuzz ------------------------------------------------------------------------------
+//
+// Seeded and deterministic: the same inputs on every run. The environment can
+// run longer or other inputs:
+//   MDRMAP_FUZZ_ITERS=N   iterations of every fuzz test (defaults: a few seconds
+//                         under ASan in all)
+//   MDRMAP_FUZZ_SEED=S    mixed into every test's seed
+// e.g. MDRMAP_FUZZ_ITERS=200000 build-asan/tests/test_study --gtest_filter='StudyFuzz.*'
+// A failure prints the input as a C string literal (and the seed, iteration).
+// tests/fuzz/fuzz_config.cpp is the same check for libFuzzer (MDRMAP_LIBFUZZER).
+
+/// MDRMAP_FUZZ_ITERS, or `fallback`.
+int fuzz_iters(int fallback) {
+  const char* env = std::getenv("MDRMAP_FUZZ_ITERS");
+  if (env == nullptr || *env == '\0') return fallback;
+  char* end = nullptr;
+  const long n = std::strtol(env, &end, 10);
+  if (*end != '\0' || n < 1 || n > 2'000'000'000L) {
+    ADD_FAILURE() << "MDRMAP_FUZZ_ITERS=" << env << " is not a count from 1 to 2e9";
+    return fallback;
+  }
+  return static_cast<int>(n);
+}
+
+/// A test's seed, varied by MDRMAP_FUZZ_SEED.
+std::uint64_t fuzz_seed(std::uint64_t base) {
+  const char* env = std::getenv("MDRMAP_FUZZ_SEED");
+  if (env == nullptr || *env == '\0') return base;
+  return base + 0x9E3779B97F4A7C15ULL * (std::strtoull(env, nullptr, 10) + 1);
+}
+
+/// Text as a C string literal (octal escapes), to paste a failing input into a test.
+std::string c_literal(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (ch == '\n') {
+      out += "\\n";
+    } else if (c < 0x20 || c >= 0x7f) {
+      const char digits[] = {'\\', static_cast<char>('0' + (c >> 6)),
+                             static_cast<char>('0' + ((c >> 3) & 7)),
+                             static_cast<char>('0' + (c & 7)), '\0'};
+      out += digits;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+/// Writes a file the fast way: in place, then cut to size. (Truncating an
+/// existing file to 0 and writing it again makes ext4 flush it on close, about
+/// 2 ms each; creating a file each time is also slower.)
+void write_fast(const std::string& path, const std::string& content) {
+  {
+    std::fstream out(path, std::ios::in | std::ios::out | std::ios::binary);
+    if (!out.is_open()) out.open(path, std::ios::out | std::ios::binary);
+    out << content;
+    if (!out) throw std::runtime_error("cannot write " + path);
+  }
+  fs::resize_file(path, content.size());
+}
+
+/// A message a user may see: non-empty, one line, no control bytes but tab.
+::testing::AssertionResult good_message(const std::string& m) {
+  if (m.empty()) return ::testing::AssertionFailure() << "empty message";
+  for (const char ch : m) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\t') || c == 0x7f)
+      return ::testing::AssertionFailure()
+             << "control byte " << static_cast<int>(c) << " in message " << c_literal(m);
+  }
+  return ::testing::AssertionSuccess();
+}
+
+/// Runs f() on a fuzzed input: true when it returns, false when it throws
+/// InvalidInput (whose message must be good); anything else fails the test.
+/// `input` describes the input for the failure message.
+template <class F> bool returns_or_refuses(const char* step, const std::string& input, F&& f) {
+  try {
+    f();
+    return true;
+  } catch (const InvalidInput& e) {
+    EXPECT_TRUE(good_message(e.what())) << step << " of " << input;
+    EXPECT_FALSE(e.option().empty()) << step << ": " << e.what() << "\n" << input;
+    return false;
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << step << " threw " << typeid(e).name() << " (not InvalidInput): " << e.what()
+                  << "\ninput: " << input;
+  } catch (...) {
+    ADD_FAILURE() << step << " threw a non-std exception\ninput: " << input;
+  }
+  return false;
+}
+
+/// Expanding more cases than this is skipped (case_count() tells first): a
+/// fuzzed grid may hold up to 1e9. big.ini has 20000.
+constexpr std::size_t kFuzzExpandLimit = 25000;
+
+/// The cases of a config that parsed: they expand (grids: always, their
+/// cases were checked at parse time; case lists: or InvalidInput), and each
+/// is finite and valid as the runner will run it. Returns the number of cases
+/// checked.
+std::size_t check_cases(const StudyConfig& c, const std::string& input) {
+  std::size_t count = 0;
+  if (!returns_or_refuses("case_count", input, [&] { count = case_count(c); })) {
+    EXPECT_EQ(c.kind, StudyConfig::Kind::Cases) << "a parsed grid's case_count threw\n" << input;
+    return 0;
+  }
+  if (count > kFuzzExpandLimit) return 0;
+  std::vector<Scene> cases;
+  if (!returns_or_refuses("expand_cases", input, [&] { cases = expand_cases(c); })) {
+    EXPECT_EQ(c.kind, StudyConfig::Kind::Cases)
+        << "a parsed grid refused to expand (a case the parse-time check missed)\n"
+        << input;
+    return 0;
+  }
+  EXPECT_EQ(cases.size(), count) << input;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Scene& s = cases[i];
+    bool finite = true;
+    for (const double x : {s.d, s.R, s.tau, s.v, s.v1, s.G})
+      finite = finite && std::isfinite(x);
+    EXPECT_TRUE(finite) << "case " << i + 1 << "\n" << input;
+    EXPECT_EQ(s.G, c.run.G) << input;
+    try {
+      mdrmap::validate(s);
+      mdrmap::validate(protocol_for(c, s));
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "expanded case " << i + 1 << " is invalid: " << e.what() << "\n" << input;
+    }
+    if (::testing::Test::HasFailure()) return 0;
+  }
+  std::string text;
+  if (returns_or_refuses("canonical", input, [&] { text = canonical(c); })) {
+    EXPECT_FALSE(text.empty()) << input;
+  }
+  return cases.size();
+}
+
+/// The repository's study configs and case lists: the fuzz seeds.
+struct FuzzCorpus {
+  std::vector<std::pair<std::string, std::string>> ini, csv; ///< file name, text
+};
+
+const FuzzCorpus& shipped_corpus() {
+  static const FuzzCorpus corpus = [] {
+    FuzzCorpus c;
+    const fs::path root = fs::path(__FILE__).parent_path().parent_path();
+    for (const fs::path& dir : {root / "jobs" / "examples", root / "tests" / "mpi"}) {
+      std::vector<fs::path> files;
+      for (const auto& entry : fs::directory_iterator(dir))
+        files.push_back(entry.path());
+      std::sort(files.begin(), files.end()); // directory order is not deterministic
+      for (const auto& p : files) {
+        const std::string ext = p.extension().string();
+        if (ext != ".ini" && ext != ".csv") continue;
+        std::ifstream in(p, std::ios::binary);
+        std::ostringstream text;
+        text << in.rdbuf();
+        (ext == ".ini" ? c.ini : c.csv).emplace_back(p.filename().string(), text.str());
+      }
+    }
+    return c;
+  }();
+  return corpus;
+}
+
+/// Tokens that mutations insert or substitute: numbers at and past the limits
+/// of double, the axis forms, INI and CSV syntax, keys, control and UTF-8
+/// bytes, and very long runs.
+const std::vector<std::string>& fuzz_tokens() {
+  static const std::vector<std::string> tokens = [] {
+    std::vector<std::string> t = {"nan",
+                                  "NaN",
+                                  "-nan",
+                                  "inf",
+                                  "-inf",
+                                  "infinity",
+                                  "-0",
+                                  "0",
+                                  "-1",
+                                  "1",
+                                  "+1",
+                                  "1e400",
+                                  "-1e400",
+                                  "1e-400",
+                                  "1e308",
+                                  "1.7976931348623157e308",
+                                  "4.9e-324",
+                                  "2.2250738585072014e-308",
+                                  "1e-310",
+                                  "0x1p3",
+                                  "0x1p-1074",
+                                  "0x1.fffffffffffffp1023",
+                                  "0x",
+                                  "1e",
+                                  "1.2.3",
+                                  ".",
+                                  "e5",
+                                  "99999999999999999999999",
+                                  "9223372036854775807",
+                                  "-9223372036854775808",
+                                  "linspace:",
+                                  "logspace:",
+                                  "linspace:1:2:",
+                                  "logspace:1e-3:1e3:",
+                                  "linspace:0:1:3",
+                                  "logspace:1e-300:1e300:4",
+                                  "linspace:1e308:-1e308:3",
+                                  ":",
+                                  "::",
+                                  ",",
+                                  ",,",
+                                  "=",
+                                  "==",
+                                  "[",
+                                  "]",
+                                  "[grid]",
+                                  "[cases]",
+                                  "[run]",
+                                  "[]",
+                                  ";",
+                                  "#",
+                                  " ; c",
+                                  " # c",
+                                  "\r",
+                                  "\n",
+                                  "\r\n",
+                                  std::string(1, '\0'),
+                                  "\t",
+                                  " ",
+                                  "\v",
+                                  "\f",
+                                  "\x7f",
+                                  "\x1b[31m",
+                                  "\xEF\xBB\xBF",
+                                  "\xC3\xA9",
+                                  "\xE2\x80\xA8",
+                                  "\xF0\x9F\x98\x80",
+                                  "\xC0\x80",
+                                  "\xFF\xFE",
+                                  "\x80",
+                                  "d",
+                                  "R",
+                                  "tau",
+                                  "v",
+                                  "v1",
+                                  "v1_over_v",
+                                  "file",
+                                  "t_end_over_tau",
+                                  "samples",
+                                  "rtol",
+                                  "solver",
+                                  "timeseries",
+                                  "G",
+                                  "true",
+                                  "false",
+                                  "yes",
+                                  "auto",
+                                  "exact",
+                                  "mdr",
+                                  "baseline",
+                                  "cases.csv",
+                                  "failing.csv",
+                                  "/",
+                                  "..",
+                                  "nope.csv",
+                                  "1000000",
+                                  "1000001",
+                                  "2",
+                                  "1e-4",
+                                  "0.1",
+                                  "1e10",
+                                  "1e-10",
+                                  "10000001",
+                                  "d,R,tau,v,v1"};
+    t.push_back(std::string(400, '9')); // very long numbers
+    t.push_back("0." + std::string(400, '0') + "1");
+    t.push_back("1" + std::string(330, '0')); // past the largest double
+    t.push_back(std::string(10000, 'x'));     // 10k-character runs
+    t.push_back(std::string(10000, '1'));
+    std::string list; // a 2000-value list
+    for (int i = 1; i <= 2000; ++i)
+      list += (i > 1 ? ", " : "") + std::to_string(i);
+    t.push_back(list);
+    return t;
+  }();
+  return tokens;
+}
+
+/// Mutates INI and CSV text: byte flips, token insertions and substitutions,
+/// values replaced by edge-case numbers and axis forms, lines duplicated,
+/// deleted, swapped, spliced in from other seeds and cut, the text truncated,
+/// line ends changed.
+class Mutator {
+public:
+  explicit Mutator(std::uint64_t seed) : rng_(seed) {}
+
+  std::size_t below(std::size_t n) {
+    return n == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, n - 1)(rng_);
+  }
+  bool chance(std::size_t one_in) { return below(one_in) == 0; }
+  template <class T> const T& pick(const std::vector<T>& v) { return v[below(v.size())]; }
+
+  std::string number() {
+    static const std::vector<std::string> n = {
+        "1",     "2",      "0",      "-0",     "1e-3",    "0.5",   "3",      "1e2",    "1e-300",
+        "1e300", "1e308",  "5e-324", "1e-310", "-1",      "1e-12", "1e12",   "0x1p-3", "1e-4",
+        "100",   "1e-200", "1e200",  "7e-155", "1.5e154", "0.9",   "1e-100", "1e100",  "6",
+        "1e-6",  "1e4",    "0.01",   "nan",    "inf",     "1e400", "1e-400", "+2",     "2.5"};
+    return chance(8) ? pick(fuzz_tokens()) : pick(n);
+  }
+
+  /// A value for "key = value": a number, a list, linspace or logspace.
+  std::string value() {
+    static const std::vector<std::string> counts = {
+        "0", "1", "2", "3", "5", "17", "1000", "100000", "-1", "2.5", "x", "", "10000001", "01"};
+    switch (below(6)) {
+    case 0:
+      return pick(fuzz_tokens());
+    case 1: {
+      std::string s = number();
+      for (std::size_t k = below(4); k > 0; --k)
+        s += (chance(2) ? ", " : ",") + number();
+      return s;
+    }
+    case 2:
+    case 3:
+      return std::string(chance(2) ? "linspace:" : "logspace:") + number() + ":" + number() + ":" +
+             pick(counts);
+    default:
+      return number();
+    }
+  }
+
+  std::string mutate(std::string s, const std::vector<std::string>& splice_from) {
+    for (std::size_t n = 1 + below(2) * below(5); n > 0; --n)
+      mutate_once(s, splice_from);
+    return s;
+  }
+
+private:
+  static std::vector<std::string> lines_of(const std::string& s) {
+    std::vector<std::string> lines;
+    std::size_t pos = 0;
+    while (pos < s.size()) {
+      std::size_t eol = s.find('\n', pos);
+      if (eol == std::string::npos) eol = s.size();
+      lines.push_back(s.substr(pos, eol - pos));
+      pos = eol + 1;
+    }
+    return lines;
+  }
+  static std::string join_lines(const std::vector<std::string>& lines) {
+    std::string s;
+    for (const auto& l : lines)
+      s += l + "\n";
+    return s;
+  }
+
+  void mutate_once(std::string& s, const std::vector<std::string>& splice_from) {
+    std::vector<std::string> lines = lines_of(s);
+    const auto at = [&](std::size_t size) { return static_cast<std::ptrdiff_t>(below(size)); };
+    switch (below(14)) {
+    case 0: // flip a bit
+      if (!s.empty()) s[below(s.size())] ^= static_cast<char>(1u << below(8));
+      return;
+    case 1: // any byte
+      if (!s.empty()) s[below(s.size())] = static_cast<char>(below(256));
+      return;
+    case 2:
+    case 3: // insert a token
+      s.insert(below(s.size() + 1), pick(fuzz_tokens()));
+      return;
+    case 4: { // replace a short span by a token
+      const std::size_t p = below(s.size() + 1);
+      s.replace(p, below(8), pick(fuzz_tokens()));
+      return;
+    }
+    case 5:
+    case 6: { // a new value for a key, or a new CSV cell
+      if (lines.empty()) return;
+      std::string& l = lines[below(lines.size())];
+      const std::size_t eq = l.find('=');
+      if (eq != std::string::npos) {
+        l = l.substr(0, eq + 1) + " " + value();
+      } else {
+        auto cells = split_cells(l);
+        cells[below(cells.size())] = number();
+        l.clear();
+        for (std::size_t i = 0; i < cells.size(); ++i)
+          l += (i > 0 ? "," : "") + cells[i];
+      }
+      s = join_lines(lines);
+      return;
+    }
+    case 7: // duplicate a line
+      if (lines.empty()) return;
+      lines.insert(lines.begin() + at(lines.size() + 1), lines[below(lines.size())]);
+      s = join_lines(lines);
+      return;
+    case 8: // delete a line
+      if (lines.empty()) return;
+      lines.erase(lines.begin() + at(lines.size()));
+      s = join_lines(lines);
+      return;
+    case 9: // swap two lines
+      if (lines.empty()) return;
+      std::swap(lines[below(lines.size())], lines[below(lines.size())]);
+      s = join_lines(lines);
+      return;
+    case 10: { // splice in a line from another seed
+      if (splice_from.empty()) return;
+      const auto other = lines_of(pick(splice_from));
+      if (other.empty()) return;
+      lines.insert(lines.begin() + at(lines.size() + 1), pick(other));
+      s = join_lines(lines);
+      return;
+    }
+    case 11: // cut a line short
+      if (lines.empty()) return;
+      {
+        std::string& l = lines[below(lines.size())];
+        l.resize(below(l.size() + 1));
+      }
+      s = join_lines(lines);
+      return;
+    case 12: // truncate the text
+      s.resize(below(s.size() + 1));
+      return;
+    default: { // line ends: CRLF, CR only, or none at the end
+      const std::size_t how = below(3);
+      if (how == 2) {
+        while (!s.empty() && s.back() == '\n')
+          s.pop_back();
+        return;
+      }
+      std::string out;
+      for (const char ch : s)
+        out +=
+            ch == '\n' ? (how == 0 ? std::string("\r\n") : std::string("\r")) : std::string(1, ch);
+      s = out;
+      return;
+    }
+    }
+  }
+
+  static std::vector<std::string> split_cells(const std::string& l) {
+    std::vector<std::string> cells;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t p = l.find(',', start);
+      cells.push_back(l.substr(start, p == std::string::npos ? std::string::npos : p - start));
+      if (p == std::string::npos) return cells;
+      start = p + 1;
+    }
+  }
+
+  std::mt19937_64 rng_;
+};
+
+/// Fuzzes parse_config -> case_count -> expand_cases -> canonical and a
+/// command-line override, seeded from every shipped config; [cases] studies
+/// read the shipped case lists, mutated half of the time.
+TEST(StudyFuzz, ShippedConfigsMutated) {
+  const FuzzCorpus& corpus = shipped_corpus();
+  ASSERT_GE(corpus.ini.size(), 8u) << "jobs/examples/*.ini and tests/mpi/*.ini";
+  ASSERT_GE(corpus.csv.size(), 2u) << "jobs/examples/cases.csv and tests/mpi/failing.csv";
+  std::vector<std::string> all;
+  for (const auto& f : corpus.ini)
+    all.push_back(f.second);
+  for (const auto& f : corpus.csv)
+    all.push_back(f.second);
+  const std::string dir = (fs::path(tmp().path()) / "fuzz_ini").string();
+  fs::create_directories(dir);
+  const std::vector<std::string> keys = {
+      "grid.d",      "grid.R",   "grid.tau", "grid.v",     "grid.v1",        "grid.v1_over_v",
+      "run.samples", "run.rtol", "run.G",    "run.solver", "run.timeseries", "run.t_end_over_tau",
+      "cases.file"};
+
+  const std::uint64_t seed = fuzz_seed(20250101);
+  const int iters = fuzz_iters(4000);
+  Mutator m(seed);
+  std::map<std::string, int> parsed;
+  int refused = 0, overridden = 0, expanded = 0;
+  std::size_t cases_checked = 0;
+  for (int iter = 0; iter < iters; ++iter) {
+    const auto& [name, seed_text] = corpus.ini[static_cast<std::size_t>(iter) % corpus.ini.size()];
+    const std::string text = m.chance(20) ? seed_text : m.mutate(seed_text, all);
+    std::string csv_note;
+    if (text.find("cases") != std::string::npos) {
+      for (const auto& [csv_name, csv_text] : corpus.csv) {
+        const std::string csv = m.chance(2) ? csv_text : m.mutate(csv_text, all);
+        write_fast((fs::path(dir) / csv_name).string(), csv);
+        csv_note += "\n" + csv_name + ": " + c_literal(csv);
+      }
+    }
+    const std::string input = "seed " + std::to_string(seed) + " iteration " +
+                              std::to_string(iter) + ", mutated " + name + ": " + c_literal(text) +
+                              csv_note;
+    StudyConfig c;
+    if (!returns_or_refuses("parse_config", input, [&] { c = parse_config(text, dir, name); })) {
+      ++refused;
+      continue;
+    }
+    ++parsed[name];
+    const std::size_t n = check_cases(c, input);
+    expanded += n > 0 ? 1 : 0;
+    cases_checked += n;
+    // A command-line override on top: applies or refuses, leaving c as it was.
+    const std::string key = m.pick(keys), value = m.chance(4) ? m.pick(fuzz_tokens()) : m.value();
+    const std::string with = input + "\noverride " + key + " = " + c_literal(value);
+    StudyConfig o = c;
+    std::string before, after;
+    returns_or_refuses("canonical", input, [&] { before = canonical(c); });
+    if (returns_or_refuses("apply_override", with, [&] { apply_override(o, key, value); })) {
+      ++overridden;
+      cases_checked += check_cases(o, with);
+    } else {
+      returns_or_refuses("canonical", with, [&] { after = canonical(o); });
+      EXPECT_EQ(after, before) << "a refused override changed the study\n" << with;
+    }
+    if (::testing::Test::HasFailure()) return; // the first input that fails is enough
+  }
+  std::string summary;
+  for (const auto& [name, n] : parsed)
+    summary += " " + name + ":" + std::to_string(n);
+  std::cout << "[ fuzz     ] " << iters << " inputs (seed " << seed << "): " << refused
+            << " refused; parsed" << summary << "; " << expanded << " expanded, " << cases_checked
+            << " cases checked; " << overridden << " overrides applied\n";
+  // Each seed yields configs that parse, and most mutations are refused.
+  if (iters >= 1000) {
+    for (const auto& f : corpus.ini)
+      EXPECT_GE(parsed[f.first], 10) << f.first;
+  }
+  EXPECT_GT(refused, iters / 3);
+}
+
+/// Fuzzes read_cases_csv with the shipped case lists, mutated, and G edge values.
+TEST(StudyFuzz, ShippedCsvsMutated) {
+  const FuzzCorpus& corpus = shipped_corpus();
+  ASSERT_GE(corpus.csv.size(), 2u);
+  std::vector<std::string> all;
+  for (const auto& f : corpus.csv)
+    all.push_back(f.second);
+  const std::string path = (fs::path(tmp().path()) / "fuzz_cases.csv").string();
+  const std::uint64_t seed = fuzz_seed(4242);
+  const int iters = fuzz_iters(4000);
+  Mutator m(seed);
+  int ok = 0, refused = 0;
+  for (int iter = 0; iter < iters; ++iter) {
+    const auto& [name, seed_text] = corpus.csv[static_cast<std::size_t>(iter) % corpus.csv.size()];
+    const std::string text = m.mutate(seed_text, all);
+    const double G = m.chance(8) ? m.pick(std::vector<double>{2.5, 1e-300, 1e300, 0.0}) : 1.0;
+    write_fast(path, text);
+    const std::string input = "seed " + std::to_string(seed) + " iteration " +
+                              std::to_string(iter) + ", G = " + mdrmap::format_number(G) +
+                              ", mutated " + name + ": " + c_literal(text);
+    std::vector<Scene> cases;
+    try {
+      cases = read_cases_csv(path, G);
+    } catch (const InvalidInput& e) {
+      ++refused;
+      ASSERT_TRUE(good_message(e.what())) << input;
+      ASSERT_TRUE(e.option().rfind("cases.", 0) == 0 || e.option() == "run.G") << e.option() << "\n"
+                                                                               << input;
+      continue;
+    } catch (const std::exception& e) {
+      FAIL() << "threw " << typeid(e).name() << " (not InvalidInput): " << e.what() << "\n"
+             << input;
+    }
+    ++ok;
+    ASSERT_FALSE(cases.empty()) << input;
+    for (const Scene& s : cases) {
+      for (const double x : {s.d, s.R, s.tau, s.v, s.v1})
+        ASSERT_TRUE(std::isfinite(x)) << input;
+      ASSERT_EQ(s.G, G) << input;
+      try {
+        mdrmap::validate(s);
+      } catch (const std::exception& e) {
+        FAIL() << "a case read is invalid: " << e.what() << "\n" << input;
+      }
+    }
+  }
+  std::cout << "[ fuzz     ] " << iters << " case lists (seed " << seed << "): " << ok << " read, "
+            << refused << " refused\n";
+  EXPECT_GT(ok, iters / 20);
+  EXPECT_GT(refused, iters / 3);
+}
+
+// The original fuzz tests: a hand-made config and case list, mutated with
+// single characters of a small alphabet.
 
 const char* const kFuzzIni = "; fuzz seed\n"
                              "[grid]\n"
@@ -818,9 +1418,10 @@ std::string mutate(std::string s, std::mt19937_64& rng) {
 }
 
 TEST(StudyFuzz, ParseConfigReturnsOrThrowsInvalidInput) {
-  std::mt19937_64 rng(20240611);
+  std::mt19937_64 rng(fuzz_seed(20240611));
+  const int iters = fuzz_iters(20000);
   int ok = 0, refused = 0;
-  for (int iter = 0; iter < 20000; ++iter) {
+  for (int iter = 0; iter < iters; ++iter) {
     const std::string text = mutate(kFuzzIni, rng);
     try {
       const StudyConfig c = parse(text);
@@ -835,20 +1436,20 @@ TEST(StudyFuzz, ParseConfigReturnsOrThrowsInvalidInput) {
       }
     } catch (const InvalidInput& e) {
       ++refused;
-      ASSERT_FALSE(e.option().empty()) << text;
-      ASSERT_TRUE(one_line(e.what())) << e.what();
+      ASSERT_FALSE(e.option().empty()) << c_literal(text);
+      ASSERT_TRUE(good_message(e.what())) << c_literal(text);
     } catch (const std::exception& e) {
-      FAIL() << "unexpected exception " << e.what() << " for:\n" << text;
+      FAIL() << "unexpected exception " << e.what() << " for:\n" << c_literal(text);
     } catch (...) {
-      FAIL() << "unexpected non-std exception for:\n" << text;
+      FAIL() << "unexpected non-std exception for:\n" << c_literal(text);
     }
   }
-  EXPECT_GT(ok, 1000);
-  EXPECT_GT(refused, 1000);
+  EXPECT_GT(ok, iters / 20);
+  EXPECT_GT(refused, iters / 20);
 }
 
 TEST(StudyFuzz, OverridesReturnOrThrowInvalidInput) {
-  std::mt19937_64 rng(7);
+  std::mt19937_64 rng(fuzz_seed(7));
   const StudyConfig base_config = parse(kFuzzIni);
   const std::vector<std::string> keys = {
       "grid.d",      "grid.R",   "grid.tau", "grid.v",     "grid.v1",        "grid.v1_over_v",
@@ -857,7 +1458,8 @@ TEST(StudyFuzz, OverridesReturnOrThrowInvalidInput) {
   const std::vector<std::string> values = {
       "1",     "0",   "linspace:0:1:3", "logspace:1:10:4", "1e-3, 2e-3", "true",
       "exact", "401", "0.01",           "1e300",           "-1",         ""};
-  for (int iter = 0; iter < 3000; ++iter) {
+  const int iters = fuzz_iters(3000);
+  for (int iter = 0; iter < iters; ++iter) {
     StudyConfig c = base_config;
     const std::string key = keys[rng() % keys.size()];
     const std::string value = mutate(values[rng() % values.size()], rng);
@@ -865,25 +1467,23 @@ TEST(StudyFuzz, OverridesReturnOrThrowInvalidInput) {
       apply_override(c, key, value);
       ASSERT_LE(case_count(c), 1'000'000'000u);
     } catch (const InvalidInput& e) {
-      ASSERT_TRUE(one_line(e.what())) << e.what();
+      ASSERT_TRUE(good_message(e.what())) << key << " = " << c_literal(value);
       ASSERT_EQ(std::string(e.what()).rfind("command line: ", 0), 0u) << e.what();
     } catch (const std::exception& e) {
-      FAIL() << "unexpected exception " << e.what() << " for " << key << " = " << value;
+      FAIL() << "unexpected exception " << e.what() << " for " << key << " = " << c_literal(value);
     }
   }
 }
 
 TEST(StudyFuzz, ReadCasesCsvReturnsOrThrowsInvalidInput) {
-  std::mt19937_64 rng(99);
+  std::mt19937_64 rng(fuzz_seed(99));
   const std::string csv = "d,R,tau,v,v1\n1e-3,1,1,1,0\n2e-3,1,0,1,0.5\n\n1e-3,2,1,3,9\n";
   const std::string path = (fs::path(tmp().path()) / "fuzz.csv").string();
+  const int iters = fuzz_iters(5000);
   int ok = 0, refused = 0;
-  for (int iter = 0; iter < 5000; ++iter) {
+  for (int iter = 0; iter < iters; ++iter) {
     const std::string text = mutate(csv, rng);
-    {
-      std::ofstream out(path, std::ios::binary | std::ios::trunc);
-      out << text;
-    }
+    write_fast(path, text);
     try {
       const auto cases = read_cases_csv(path, 1.0);
       ++ok;
@@ -892,14 +1492,14 @@ TEST(StudyFuzz, ReadCasesCsvReturnsOrThrowsInvalidInput) {
         mdrmap::validate(s);
     } catch (const InvalidInput& e) {
       ++refused;
-      ASSERT_TRUE(one_line(e.what())) << e.what();
+      ASSERT_TRUE(good_message(e.what())) << c_literal(text);
       ASSERT_EQ(e.option().rfind("cases.", 0), 0u) << e.option();
     } catch (const std::exception& e) {
-      FAIL() << "unexpected exception " << e.what() << " for:\n" << text;
+      FAIL() << "unexpected exception " << e.what() << " for:\n" << c_literal(text);
     }
   }
-  EXPECT_GT(ok, 200);
-  EXPECT_GT(refused, 200);
+  EXPECT_GT(ok, iters / 25);
+  EXPECT_GT(refused, iters / 25);
 }
 
 } // namespace
