@@ -492,6 +492,46 @@ TEST(cli, SimulateOtherSolversAreAcceptedAndNeverCrash) {
   }
 }
 
+// Valid but absurd scales (found by the sanitizer build: an out-of-range
+// float-to-integer conversion that hung mdr, a NaN element count in the
+// baseline): each solver either answers without NaN or fails with one line.
+TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
+  struct Row {
+    std::vector<std::string> scene;
+    const char* solver;
+    bool must_fail;
+  };
+  const std::vector<Row> rows = {
+      {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "mdr", true},
+      {{"--d", "1e-3", "--R", "1e-300", "--tau", "0", "--v", "1", "--v1", "1e300"}, "mdr", true},
+      {{"--d", "1e-3", "--R", "1", "--tau", "1e-300", "--v", "1e-300", "--v1", "1e300"},
+       "baseline",
+       true},
+      {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "auto", false},
+      {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "exact", false},
+  };
+  for (const Row& row : rows) {
+    std::vector<std::string> args = {"simulate"};
+    args.insert(args.end(), row.scene.begin(), row.scene.end());
+    args.insert(args.end(), {"--samples", "5", "--solver", row.solver});
+    SCOPED_TRACE(row.solver + std::string(" ") + row.scene[7] + " -> " + row.scene[9]);
+    const Outcome r = run_mdrmap(args);
+    if (row.must_fail) {
+      ASSERT_EQ(r.code, 1) << r.err;
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_TRUE(starts_with(r.err, std::string("mdrmap simulate: error: ") + row.solver + ":"))
+          << r.err;
+    } else {
+      ASSERT_EQ(r.code, 0) << r.err;
+      const Parsed p = parse_output(r.out);
+      EXPECT_EQ(p.rows.size(), 5U);
+      for (const auto& v : p.rows)
+        for (double x : v)
+          EXPECT_TRUE(std::isfinite(x));
+    }
+  }
+}
+
 // --- Bad input: exit 2, one line naming the option, no output touched ------
 
 constexpr const char* kDrop = "\x01drop";

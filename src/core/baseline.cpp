@@ -26,17 +26,21 @@ RunResult run_baseline_once(const Scene& s, const Protocol& p, const BaselineOpt
   const double a1 = analytic::a1(s);
   const double dx = a1 / opt.cells_per_a1;
   const double dt = dx / (opt.steps_per_cell * s.v);
-  const auto n_pre = static_cast<long>(std::ceil(opt.spinup_travel * a1 / (s.v * dt)));
+  const double n_pre_d = std::ceil(opt.spinup_travel * a1 / (s.v * dt));
   const double n_post_d = std::ceil(p.t_end / dt);
-  const double travel = s.v * dt * static_cast<double>(n_pre) + s.v1 * dt * n_post_d;
+  const double travel = s.v * dt * n_pre_d + s.v1 * dt * n_post_d;
   const double n_elem_d = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
-  if (n_elem_d > static_cast<double>(opt.max_elements) || n_post_d > 1e9 ||
-      n_elem_d * (n_post_d + static_cast<double>(n_pre)) > 1e12)
+  if (!std::isfinite(n_elem_d) || !std::isfinite(n_pre_d) || !std::isfinite(n_post_d))
+    throw std::runtime_error("baseline: the scene's length and time scales are too far apart "
+                             "for the fixed-step method (step counts not representable)");
+  if (!(n_elem_d <= static_cast<double>(opt.max_elements)) || !(n_post_d <= 1e9) ||
+      !(n_pre_d <= 1e9) || !(n_elem_d * (n_post_d + n_pre_d) <= 1e12))
     throw std::runtime_error("baseline: the scene needs " + format_number(n_elem_d) +
                              " elements and " + format_number(n_post_d) +
                              " steps after the step; too expensive for the fixed-step method");
   const auto n_elem = static_cast<std::size_t>(n_elem_d);
   const auto n_post = static_cast<long>(n_post_d);
+  const auto n_pre = static_cast<long>(n_pre_d);
 
   // Lab positions: x_i = x0 + i dx; the indenter coordinate is xi = x + s(t),
   // with s(0) = 0 at the velocity step.

@@ -395,9 +395,16 @@ struct SingleRun {
 };
 
 SingleRun run_once(const Scene& s, const Protocol& p, double cells, const MdrOptions& opt) {
-  MdrRow row(s, cells, opt.phase, opt.subgrid);
   const double a1 = analytic::a1(s);
   const double dx = a1 / cells;
+  // Element ids are 64-bit integers counted from the travel in cells: refuse
+  // travel they cannot index (absurd scenes, e.g. v1 tau / a1 = 1e300).
+  const double travel_cells = (s.v1 * p.t_end) / dx + 2.0 * cells + 4.0;
+  if (!(travel_cells < 1e18))
+    throw std::runtime_error("mdr: the indenter travels " + format_number(travel_cells) +
+                             " cells after the step, more than the element row can count "
+                             "(1e18); use the exact solver");
+  MdrRow row(s, cells, opt.phase, opt.subgrid);
   if (opt.spinup) {
     // Undeformed foundation, indenter pressed in, then sliding at v over
     // 2 a1 + 2 dx: every element in the window has then entered fresh at the

@@ -36,11 +36,20 @@ void validate(const Scene& s) {
   require_positive("v", s.v);
   require_non_negative("v1", s.v1);
   require_positive("G", s.G);
-  // Derived scales must be representable: a1 = sqrt(R d) and v tau / a1.
+  // Derived scales must be representable: a1 = sqrt(R d), the force scale
+  // 16 G d^2 and v tau / a1.
   const double a1 = std::sqrt(s.R) * std::sqrt(s.d);
-  if (!(a1 > 0.0) || !std::isfinite(a1) || !std::isfinite(s.d * s.d * s.G * 16.0))
+  if (!(a1 > 0.0) || !std::isfinite(a1))
     throw InvalidInput("d", "with R gives a contact radius sqrt(R d) = " + show(a1) +
                                 " that is not representable; rescale the units");
+  const double force_scale = s.d * s.d * s.G * 16.0;
+  if (!std::isfinite(force_scale))
+    throw InvalidInput("d", "with G gives a force scale 16 G d^2 = " + show(force_scale) +
+                                " that is not representable; rescale the units");
+  // forces far below it (mu F_N at small d/R) must not underflow to zero
+  if (force_scale < 1e-280)
+    throw InvalidInput("d", "with G gives a force scale 16 G d^2 = " + show(force_scale) +
+                                " that underflows (below 1e-280); rescale the units");
   if (!std::isfinite(s.v * s.tau / a1) || !std::isfinite(s.v1 * s.tau / a1))
     throw InvalidInput("tau", "makes v tau / sqrt(R d) overflow; rescale the units");
 }
