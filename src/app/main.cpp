@@ -1,5 +1,6 @@
 // mdrmap: command-line front end. Dispatches to the subcommands; only this
 // layer prints (the core library reports through exceptions).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -86,6 +87,9 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
+  // A write past the file-size limit (ulimit -f) must fail with EFBIG and be
+  // reported, not kill the process with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     return dispatch(std::vector<std::string>(argv + 1, argv + argc), argc, argv);
   } catch (const std::exception& e) {

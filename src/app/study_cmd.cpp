@@ -130,12 +130,20 @@ std::string default_output(const std::string& config) {
 StudyArgs parse(const std::vector<std::string>& args, bool& help) {
   po::variables_map vm;
   try {
-    po::store(
+    const po::options_description desc = options(); // parsed refers to it
+    const po::parsed_options parsed =
         po::command_line_parser(args)
-            .options(options())
+            .options(desc)
             .style(po::command_line_style::unix_style ^ po::command_line_style::allow_guessing)
-            .run(),
-        vm);
+            .run();
+    // a stray word (e.g. "--overwrite no") must not be dropped silently
+    const std::vector<std::string> stray =
+        po::collect_unrecognized(parsed.options, po::include_positional);
+    if (!stray.empty())
+      throw InvalidInput("config", "unexpected argument '" + stray.front() +
+                                       "'; switches take no value and every value follows its "
+                                       "option (see --help)");
+    po::store(parsed, vm);
   } catch (const po::error_with_option_name& e) {
     std::string opt = e.get_option_name();
     while (!opt.empty() && opt[0] == '-')
@@ -236,7 +244,20 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
   try {
     a = parse(args, help);
   } catch (const InvalidInput& e) {
-    if (first) print_error(e);
+    if (!env_rank) { // no launcher: no MPI needed to say so
+      print_error(e);
+      return kExitBadInput;
+    }
+    // Under a launcher, end the job together after rank 0 has printed: a
+    // rank that exits early with an error may make the launcher kill rank 0
+    // before its message is out.
+    MPI_Init(&argc, &argv);
+    if (first) {
+      print_error(e);
+      std::fflush(stderr);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Finalize();
     return kExitBadInput;
   }
   if (help) {
@@ -266,15 +287,22 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
     req.command_line = cl;
     StderrProgress progress(a.quiet);
     const auto sum = study::run_study(MPI_COMM_WORLD, req, rank == 0 ? &progress : nullptr);
+    const std::string resume_hint = "mpirun -np " + std::to_string(size) +
+                                    " mdrmap study --config " + shell_quote(a.config) +
+                                    " --output " + shell_quote(a.output) + " --resume";
     if (rank == 0) {
       const std::size_t ran = sum.done + sum.failed;
-      if (sum.interrupted) {
+      if (!sum.write_failure.empty()) {
+        std::fprintf(stderr,
+                     "mdrmap study: error: %s; %zu of %zu cases are marked done in the map, %zu "
+                     "pending; fix the cause, then resume with: %s\n",
+                     sum.write_failure.c_str(), sum.already_done + ran, sum.total, sum.pending,
+                     resume_hint.c_str());
+      } else if (sum.interrupted) {
         std::fprintf(stderr,
                      "mdrmap study: interrupted: %zu of %zu cases done (%zu this run), %zu "
-                     "pending; resume with: mpirun -np %d mdrmap study --config %s --output %s "
-                     "--resume\n",
-                     sum.already_done + ran, sum.total, ran, sum.pending, size,
-                     shell_quote(a.config).c_str(), shell_quote(a.output).c_str());
+                     "pending; resume with: %s\n",
+                     sum.already_done + ran, sum.total, ran, sum.pending, resume_hint.c_str());
       } else {
         std::fprintf(
             stderr,
@@ -285,7 +313,7 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
             sum.chunks, sum.messages);
       }
     }
-    code = sum.interrupted ? kExitInterrupted : kExitOk;
+    code = !sum.write_failure.empty() ? kExitRuntime : sum.interrupted ? kExitInterrupted : kExitOk;
   } catch (const InvalidInput& e) {
     // decided collectively (or identically on every rank): clean shutdown
     if (rank == 0) print_error(e);

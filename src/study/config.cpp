@@ -130,6 +130,11 @@ std::string shown(std::string_view s, std::size_t max_chars = 60) {
   return out + "'";
 }
 
+/// An integer's digits (already checked) for a message: long ones cut.
+std::string digits_shown(const std::string& digits) {
+  return digits.size() <= 30 ? digits : digits.substr(0, 30) + "...";
+}
+
 std::string shown_path(const std::string& p) {
   return shown(p, 4096);
 }
@@ -174,8 +179,9 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
     }
   }
   if (best.empty()) return best;
+  // Near enough: a few edits, and not a rewrite of the whole word ("G" is not "d").
   const std::size_t allowed = 2 * std::max<std::size_t>(2, best.size() / 3);
-  if (best_d <= allowed) return best;
+  if (best_d <= allowed && best_d < 2 * std::min(word.size(), best.size())) return best;
   // A known key that contains the word, or is contained in it ("end_over_tau", "run.samples").
   for (const auto& c : candidates)
     if (word.size() >= 2 &&
@@ -488,7 +494,8 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
         "samples must be an integer from 2 to " + std::to_string(kMaxRunSamples);
     if (!to_integer(text, n))
       throw ConfigError(option, shown(text) + " is not an integer; " + allowed);
-    if (n < 2 || n > kMaxRunSamples) throw ConfigError(option, allowed + ", got " + text);
+    if (n < 2 || n > kMaxRunSamples)
+      throw ConfigError(option, allowed + ", got " + digits_shown(text));
     r.samples = static_cast<long>(n);
   } else if (key == "rtol") {
     const Num n = to_number(text);
@@ -597,7 +604,7 @@ Axis parse_axis(const std::string& name, const std::string& spec_text) {
     if (!to_integer(n_text, n))
       throw ConfigError(option, "n: " + shown(n_text) + " is not an integer" + form_rule);
     if (n < 1 || n > kMaxAxisValues)
-      throw ConfigError(option, "n = " + n_text + " is out of range" + form_rule);
+      throw ConfigError(option, "n = " + digits_shown(n_text) + " is out of range" + form_rule);
     if (n == 1 && lo.x != hi.x)
       throw ConfigError(option, "n = 1 needs lo == hi, got lo = " + format_number(lo.x) +
                                     " and hi = " + format_number(hi.x) +
