@@ -1,8 +1,15 @@
 #include "io/map_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
+#include <utility>
 
 namespace mdrmap::io {
 namespace {
@@ -109,42 +116,30 @@ std::size_t field_index(const std::string& name) {
   return static_cast<std::size_t>(it - f.begin());
 }
 
-MapFile::~MapFile() = default;
-
-void MapFile::open_datasets() {
-  const hid_t f = file_.id();
-  fields_.clear();
-  for (const auto& name : row_fields())
-    fields_.push_back(make_dataset(H5Dopen2(f, name.c_str(), H5P_DEFAULT), "opening /" + name));
-  status_ = make_dataset(H5Dopen2(f, "results/status", H5P_DEFAULT), "opening /results/status");
-  message_ = make_dataset(H5Dopen2(f, "results/message", H5P_DEFAULT), "opening /results/message");
-  msg_type_ = message_type();
-  series_.clear();
-  if (timeseries_) {
-    for (const char* s : kSeriesNames) {
-      const std::string name = std::string("timeseries/") + s;
-      series_.push_back(make_dataset(H5Dopen2(f, name.c_str(), H5P_DEFAULT), "opening /" + name));
-    }
-  }
-  dxpl_ = make_plist(H5Pcreate(H5P_DATASET_XFER), "transfer property list");
-  check_status(H5Pset_dxpl_mpio(dxpl_.id(), H5FD_MPIO_INDEPENDENT), "independent transfer");
+std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
+  const std::uint64_t n = spec.n_cases;
+  std::uint64_t per_case = sizeof(kCaseColumns) / sizeof(kCaseColumns[0]) * 8 +
+                           row_fields().size() * 8 + 1 /* status */ + kMessageLen;
+  if (spec.timeseries)
+    per_case += sizeof(kSeriesNames) / sizeof(kSeriesNames[0]) * 8 *
+                static_cast<std::uint64_t>(spec.samples);
+  std::uint64_t grid = 0;
+  for (const auto& v : spec.grid.values)
+    grid += 8 * v.size();
+  // superblock, object headers, attributes and B-trees: about 32 KiB measured
+  return n * per_case + grid + 2 * static_cast<std::uint64_t>(text_bytes) + 64 * 1024;
 }
 
-MapFile MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                        const Provenance& prov, const std::vector<Scene>& cases) {
+void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
+                     const Provenance& prov, const std::vector<Scene>& cases) {
   if (cases.size() != spec.n_cases) throw std::invalid_argument("MapFile::create: case count");
+  if (spec.n_cases == 0) throw std::invalid_argument("MapFile::create: no cases");
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MapFile m;
-  m.comm_ = comm;
-  m.path_ = path;
-  m.n_ = spec.n_cases;
-  m.samples_ = spec.samples;
-  m.timeseries_ = spec.timeseries;
   Handle fapl = mpio_fapl(comm, "creating " + path);
-  m.file_ = make_file(H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.id()),
-                      "creating map file '" + path + "'");
-  const hid_t f = m.file_.id();
+  Handle file = make_file(H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.id()),
+                          "creating map file '" + path + "'");
+  const hid_t f = file.id();
   const hsize_t n = spec.n_cases;
 
   // Metadata (collective: identical calls on every rank).
@@ -166,25 +161,28 @@ MapFile MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& s
     Handle g = create_group(f, "provenance");
     write_text_dataset(f, "provenance/config_text", prov.config_text);
     write_text_dataset(f, "provenance/config_canonical", prov.config_canonical);
+    g.close("closing /provenance");
   }
-  Handle gcases = create_group(f, "cases");
+  // every object is closed before the file: a map is closed complete
+  for (const char* group : {"cases", "results", "analytic", "residuals"})
+    create_group(f, group).close(std::string("closing /") + group);
   std::vector<Handle> case_sets;
   for (const char* c : kCaseColumns)
     case_sets.push_back(create_dataset(f, std::string("cases/") + c, H5T_IEEE_F64LE, {n}));
-  Handle gres = create_group(f, "results"), gan = create_group(f, "analytic"),
-         gresid = create_group(f, "residuals");
   for (const auto& name : row_fields())
-    create_dataset(f, name, H5T_IEEE_F64LE, {n});
-  create_dataset(f, "results/status", H5T_STD_I8LE, {n});
+    create_dataset(f, name, H5T_IEEE_F64LE, {n}).close("closing /" + name);
+  create_dataset(f, "results/status", H5T_STD_I8LE, {n}).close("closing /results/status");
   {
     Handle t = message_type();
-    create_dataset(f, "results/message", t.id(), {n});
+    create_dataset(f, "results/message", t.id(), {n}).close("closing /results/message");
   }
   if (spec.timeseries) {
     Handle g = create_group(f, "timeseries");
     for (const char* s : kSeriesNames)
       create_dataset(f, std::string("timeseries/") + s, H5T_IEEE_F64LE,
-                     {n, static_cast<hsize_t>(spec.samples)});
+                     {n, static_cast<hsize_t>(spec.samples)})
+          .close(std::string("closing /timeseries/") + s);
+    g.close("closing /timeseries");
   }
   std::vector<Handle> grid_sets;
   if (!spec.grid.names.empty()) {
@@ -201,10 +199,11 @@ MapFile MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& s
     write_string_attr(g.id(), "axes", axes);
     write_int_array_attr(g.id(), "shape", shape);
     write_int_array_attr(g.id(), "log", logs);
+    g.close("closing /grid");
   }
-  m.open_datasets();
-
   // Raw data known up front: rank 0 writes it (independent I/O).
+  Handle dxpl = make_plist(H5Pcreate(H5P_DATASET_XFER), "transfer property list");
+  check_status(H5Pset_dxpl_mpio(dxpl.id(), H5FD_MPIO_INDEPENDENT), "independent transfer");
   if (rank == 0) {
     std::vector<double> col(cases.size());
     for (std::size_t c = 0; c < 6; ++c) {
@@ -213,36 +212,18 @@ MapFile MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& s
         const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
         col[i] = vals[c];
       }
-      write_block(case_sets[c].id(), H5T_NATIVE_DOUBLE, m.dxpl_.id(), 0, cases.size(), 1,
-                  col.data(), std::string("writing /cases/") + kCaseColumns[c]);
+      write_block(case_sets[c].id(), H5T_NATIVE_DOUBLE, dxpl.id(), 0, cases.size(), 1, col.data(),
+                  std::string("writing /cases/") + kCaseColumns[c]);
     }
     for (std::size_t i = 0; i < grid_sets.size(); ++i)
-      write_block(grid_sets[i].id(), H5T_NATIVE_DOUBLE, m.dxpl_.id(), 0, spec.grid.values[i].size(),
-                  1, spec.grid.values[i].data(), "writing /grid");
+      write_block(grid_sets[i].id(), H5T_NATIVE_DOUBLE, dxpl.id(), 0, spec.grid.values[i].size(), 1,
+                  spec.grid.values[i].data(), "writing /grid");
   }
   for (auto& h : case_sets)
     h.close("closing /cases");
   for (auto& h : grid_sets)
     h.close("closing /grid");
-  check_status(H5Fflush(f, H5F_SCOPE_GLOBAL), "flushing " + path);
-  return m;
-}
-
-MapFile MapFile::open(MPI_Comm comm, const std::string& path) {
-  MapFile m;
-  m.comm_ = comm;
-  m.path_ = path;
-  Handle fapl = mpio_fapl(comm, "opening " + path);
-  m.file_ =
-      make_file(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id()), "opening map file '" + path + "'");
-  const hid_t f = m.file_.id();
-  if (!has_attr(f, "mdrmap_schema") || read_string_attr(f, "mdrmap_schema") != kSchema)
-    throw H5Error("'" + path + "' is not an mdrmap map of schema " + kSchema);
-  m.n_ = static_cast<std::size_t>(read_ll_attr(f, "n_cases"));
-  m.samples_ = static_cast<long>(read_ll_attr(f, "samples"));
-  m.timeseries_ = read_ll_attr(f, "timeseries") != 0;
-  m.open_datasets();
-  return m;
+  file.close("closing " + path);
 }
 
 bool MapFile::is_map(const std::string& path, std::string* why) {
@@ -272,34 +253,183 @@ bool MapFile::is_map(const std::string& path, std::string* why) {
   return false;
 }
 
-std::string MapFile::config_canonical() const {
-  return read_text_dataset(file_.id(), "provenance/config_canonical");
+std::vector<std::uint64_t> MapLayout::pack() const {
+  std::vector<std::uint64_t> v{n_cases,
+                               static_cast<std::uint64_t>(samples),
+                               timeseries ? 1u : 0u,
+                               status,
+                               message,
+                               fields.size(),
+                               series.size()};
+  v.insert(v.end(), fields.begin(), fields.end());
+  v.insert(v.end(), series.begin(), series.end());
+  return v;
 }
 
-std::vector<std::int8_t> MapFile::read_status() const {
-  std::vector<std::int8_t> st(n_);
-  if (n_ > 0)
-    check_status(H5Dread(status_.id(), H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, dxpl_.id(), st.data()),
+MapLayout MapLayout::unpack(const std::vector<std::uint64_t>& v) {
+  if (v.size() < 7 || v.size() != 7 + v[5] + v[6])
+    throw std::invalid_argument("MapLayout::unpack: bad size");
+  MapLayout m;
+  m.n_cases = v[0];
+  m.samples = static_cast<long>(v[1]);
+  m.timeseries = v[2] != 0;
+  m.status = v[3];
+  m.message = v[4];
+  const auto nf = static_cast<long>(v[5]);
+  m.fields.assign(v.begin() + 7, v.begin() + 7 + nf);
+  m.series.assign(v.begin() + 7 + nf, v.end());
+  return m;
+}
+
+namespace {
+
+// Offset of a dataset that the row writer may write into directly: of the
+// expected type and shape, contiguous, allocated, inside the file.
+std::uint64_t raw_offset(hid_t file, const std::string& name, hid_t want_type,
+                         std::vector<hsize_t> want_dims, std::uint64_t file_size) {
+  const std::string what = "/" + name;
+  if (!has_link(file, name)) throw H5Error(what + " is missing");
+  Handle d = make_dataset(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "opening " + what);
+  Handle type = make_type(H5Dget_type(d.id()), what);
+  if (H5Tequal(type.id(), want_type) <= 0) {
+    H5Eclear2(H5E_DEFAULT);
+    throw H5Error(what + " has an unexpected type");
+  }
+  Handle space = make_space(H5Dget_space(d.id()), what);
+  const int rank = H5Sget_simple_extent_ndims(space.id());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 0)));
+  if (rank < 0 || H5Sget_simple_extent_dims(space.id(), dims.data(), nullptr) != rank ||
+      dims != want_dims)
+    throw H5Error(what + " has an unexpected shape");
+  Handle dcpl = make_plist(H5Dget_create_plist(d.id()), what);
+  if (H5Pget_layout(dcpl.id()) != H5D_CONTIGUOUS || H5Pget_nfilters(dcpl.id()) != 0)
+    throw H5Error(what + " is not stored contiguously");
+  const haddr_t off = H5Dget_offset(d.id());
+  const hsize_t bytes = H5Dget_storage_size(d.id());
+  hsize_t expect = H5Tget_size(type.id());
+  for (hsize_t x : want_dims)
+    expect *= x;
+  if (off == HADDR_UNDEF || bytes != expect || off + bytes > file_size) {
+    H5Eclear2(H5E_DEFAULT);
+    throw H5Error(what + " is not allocated inside the file (truncated?)");
+  }
+  d.close("closing " + what);
+  return off;
+}
+
+} // namespace
+
+MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>* status) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw H5Error("cannot stat '" + path + "': " + std::strerror(errno));
+  const auto file_size = static_cast<std::uint64_t>(st.st_size);
+  Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                          "opening map file '" + path + "'");
+  const hid_t f = file.id();
+  if (!has_attr(f, "mdrmap_schema") || read_string_attr(f, "mdrmap_schema") != kSchema)
+    throw H5Error("'" + path + "' is not an mdrmap map of schema " + kSchema);
+  {
+    Handle fcpl = make_plist(H5Fget_create_plist(f), "file creation properties");
+    hsize_t userblock = 0;
+    check_status(H5Pget_userblock(fcpl.id(), &userblock), "file creation properties");
+    if (userblock != 0) throw H5Error("'" + path + "' has a user block");
+  }
+  MapLayout m;
+  const long long n = read_ll_attr(f, "n_cases"), samples = read_ll_attr(f, "samples");
+  if (n < 1 || samples < 2) throw H5Error("attributes n_cases or samples out of range");
+  m.n_cases = static_cast<std::uint64_t>(n);
+  m.samples = static_cast<long>(samples);
+  m.timeseries = read_ll_attr(f, "timeseries") != 0;
+  const hsize_t N = m.n_cases;
+  for (const auto& name : row_fields())
+    m.fields.push_back(raw_offset(f, name, H5T_IEEE_F64LE, {N}, file_size));
+  m.status = raw_offset(f, "results/status", H5T_STD_I8LE, {N}, file_size);
+  {
+    Handle t = message_type();
+    m.message = raw_offset(f, "results/message", t.id(), {N}, file_size);
+  }
+  if (m.timeseries)
+    for (const char* s : kSeriesNames)
+      m.series.push_back(raw_offset(f, std::string("timeseries/") + s, H5T_IEEE_F64LE,
+                                    {N, static_cast<hsize_t>(m.samples)}, file_size));
+  if (status) {
+    status->assign(m.n_cases, 0);
+    Handle d = make_dataset(H5Dopen2(f, "results/status", H5P_DEFAULT), "opening /results/status");
+    check_status(H5Dread(d.id(), H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, status->data()),
                  "reading /results/status");
-  return st;
+    d.close("closing /results/status");
+  }
+  file.close("closing '" + path + "'");
+  return m;
 }
 
-void MapFile::write_rows(std::size_t first, const std::vector<CaseRow>& rows) {
+// ---- RowWriter ------------------------------------------------------------------
+
+RowWriter::RowWriter(const std::string& path, MapLayout layout)
+    : path_(path), layout_(std::move(layout)) {
+  // the file stores little-endian float64: raw rows are written as in memory
+  const std::uint16_t probe = 1;
+  unsigned char first_byte = 0;
+  std::memcpy(&first_byte, &probe, 1);
+  if (first_byte != 1) throw std::runtime_error("writing maps needs a little-endian host");
+  if (layout_.fields.size() != row_fields().size() ||
+      layout_.series.size() != (layout_.timeseries ? std::size(kSeriesNames) : 0))
+    throw std::invalid_argument("RowWriter: layout does not match this program's fields");
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd_ < 0)
+    throw std::runtime_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
+}
+
+bool RowWriter::lock(long* holder) {
+  struct flock fl {};
+  fl.l_type = F_WRLCK;
+  fl.l_whence = SEEK_SET; // l_start = l_len = 0: the whole file
+  if (::fcntl(fd_, F_SETLK, &fl) == 0) return true;
+  if (errno != EACCES && errno != EAGAIN) return true; // no locking here (ENOLCK, ...)
+  struct flock probe {};
+  probe.l_type = F_WRLCK;
+  probe.l_whence = SEEK_SET;
+  if (holder) *holder = ::fcntl(fd_, F_GETLK, &probe) == 0 ? static_cast<long>(probe.l_pid) : 0;
+  return false;
+}
+
+RowWriter::~RowWriter() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void RowWriter::pwrite_all(const void* data, std::size_t bytes, std::uint64_t offset,
+                           const std::string& what) {
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::pwrite(fd_, p, bytes, static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw std::runtime_error("writing " + what + ": " +
+                               (n < 0 ? std::strerror(errno) : "nothing written"));
+    p += n;
+    bytes -= static_cast<std::size_t>(n);
+    offset += static_cast<std::uint64_t>(n);
+  }
+}
+
+void RowWriter::write_rows(std::size_t first, const std::vector<CaseRow>& rows) {
   const std::size_t count = rows.size();
   if (count == 0) return;
-  if (first + count > n_) throw std::out_of_range("MapFile::write_rows beyond the case count");
+  if (fd_ < 0) throw std::logic_error("RowWriter::write_rows on a closed writer");
+  if (first + count > layout_.n_cases)
+    throw std::out_of_range("RowWriter::write_rows beyond the case count");
   std::vector<double> col(count);
   const auto& names = row_fields();
   for (std::size_t k = 0; k < names.size(); ++k) {
     for (std::size_t i = 0; i < count; ++i)
       col[i] = rows[i].values.at(k);
-    write_block(fields_[k].id(), H5T_NATIVE_DOUBLE, dxpl_.id(), first, count, 1, col.data(),
-                "writing /" + names[k]);
+    pwrite_all(col.data(), count * 8, layout_.fields[k] + 8 * first, "/" + names[k]);
   }
-  if (timeseries_) {
-    const auto S = static_cast<std::size_t>(samples_);
+  if (layout_.timeseries) {
+    const auto S = static_cast<std::size_t>(layout_.samples);
     std::vector<double> block(count * S);
-    for (std::size_t q = 0; q < 5; ++q) {
+    for (std::size_t q = 0; q < std::size(kSeriesNames); ++q) {
       for (std::size_t i = 0; i < count; ++i) {
         const std::vector<double>* src[] = {&rows[i].t, &rows[i].FN, &rows[i].Fx, &rows[i].mu,
                                             &rows[i].a2};
@@ -309,34 +439,33 @@ void MapFile::write_rows(std::size_t first, const std::vector<CaseRow>& rows) {
         else
           std::fill_n(block.begin() + static_cast<long>(i * S), S, 0.0); // failed case
       }
-      write_block(series_[q].id(), H5T_NATIVE_DOUBLE, dxpl_.id(), first, count, S, block.data(),
-                  std::string("writing /timeseries/") + kSeriesNames[q]);
+      pwrite_all(block.data(), block.size() * 8, layout_.series[q] + 8 * S * first,
+                 std::string("/timeseries/") + kSeriesNames[q]);
     }
   }
   std::vector<char> msgs(count * kMessageLen, '\0');
   for (std::size_t i = 0; i < count; ++i)
     std::memcpy(&msgs[i * kMessageLen], rows[i].message.data(),
                 std::min(rows[i].message.size(), kMessageLen - 1));
-  write_block(message_.id(), msg_type_.id(), dxpl_.id(), first, count, 1, msgs.data(),
-              "writing /results/message");
-  // status last: a case counts as done only once everything else is on disk
+  pwrite_all(msgs.data(), msgs.size(), layout_.message + kMessageLen * first, "/results/message");
+  // status last: a case counts as done only once everything else is written
   std::vector<std::int8_t> st(count);
   for (std::size_t i = 0; i < count; ++i)
     st[i] = rows[i].status;
-  write_block(status_.id(), H5T_NATIVE_INT8, dxpl_.id(), first, count, 1, st.data(),
-              "writing /results/status");
+  pwrite_all(st.data(), count, layout_.status + first, "/results/status");
 }
 
-void MapFile::close() {
-  if (!file_) return;
-  fields_.clear();
-  series_.clear();
-  status_.close("closing /results/status");
-  message_.close("closing /results/message");
-  msg_type_.reset();
-  dxpl_.reset();
-  check_status(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "flushing " + path_);
-  file_.close("closing " + path_);
+void RowWriter::close() {
+  if (fd_ < 0) return;
+  const int fd = std::exchange(fd_, -1);
+  // errors of earlier writes may only show here (NFS, delayed allocation)
+  if (::fsync(fd) != 0) {
+    const int e = errno;
+    ::close(fd);
+    throw std::runtime_error("flushing '" + path_ + "' to disk: " + std::strerror(e));
+  }
+  if (::close(fd) != 0)
+    throw std::runtime_error("closing '" + path_ + "': " + std::strerror(errno));
 }
 
 } // namespace mdrmap::io

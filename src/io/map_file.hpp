@@ -17,11 +17,14 @@
 //   root attributes: mdrmap_schema, program_version, git_commit, created_utc,
 //   command_line, mpi_size, units, config_text (when short), n_cases, samples
 //
-// Crash safety: every dataset is created and allocated (early, contiguous,
-// zero-filled) and the metadata flushed before any case runs; afterwards only
-// raw data is written, at fixed offsets, values first and status last. A
-// process killed at any moment leaves a file that opens, with every case
-// marked done intact.
+// Crash and fault safety: the file is created collectively with parallel
+// HDF5, every dataset allocated (early, contiguous, zero-filled) and the file
+// closed before any case runs: the whole map is on disk and valid from then
+// on. The run writes raw rows only, by plain positional writes at the offsets
+// of the datasets (RowWriter; no HDF5 state, nothing collective), values
+// first and status last. So a process killed at any moment, or a rank whose
+// write fails, leaves a file that opens, with every case marked done intact;
+// and a failing device cannot hang the job in a collective close.
 #include <mpi.h>
 
 #include <cstdint>
@@ -67,46 +70,73 @@ struct CaseRow {
   std::vector<double> t, FN, Fx, mu, a2; ///< time series (when the map stores them)
 };
 
+/// Bytes the map file of `spec` takes on disk (all datasets are allocated and
+/// zero-filled at creation), with `text_bytes` of provenance text; an upper
+/// bound within 64 KiB. The file is written in full before any case runs, so
+/// a map that fits at creation cannot run out of space later.
+std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes);
+
+/// Where the per-case datasets of a map lie in its file (byte offsets).
+struct MapLayout {
+  std::uint64_t n_cases = 0;
+  long samples = 0;
+  bool timeseries = false;
+  std::vector<std::uint64_t> fields; ///< row_fields() order, float64 [N]
+  std::uint64_t status = 0;          ///< int8 [N]
+  std::uint64_t message = 0;         ///< kMessageLen-byte strings [N]
+  std::vector<std::uint64_t> series; ///< t, FN, Fx, mu, a2: float64 [N, S] (timeseries only)
+
+  /// Flat form, to broadcast.
+  std::vector<std::uint64_t> pack() const;
+  static MapLayout unpack(const std::vector<std::uint64_t>& v);
+};
+
 class MapFile {
 public:
-  /// Collective. Creates `path` (which must not exist) with every dataset;
-  /// rank 0 writes /cases and /grid. Metadata is flushed before returning.
-  static MapFile create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                        const Provenance& prov, const std::vector<Scene>& cases);
-  /// Collective. Opens an existing map for writing (resume).
-  static MapFile open(MPI_Comm comm, const std::string& path);
+  /// Collective. Creates `path` (which must not exist) with every dataset
+  /// allocated and zero-filled; rank 0 writes /cases and /grid. The file is
+  /// closed (complete and valid) on return.
+  static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
+                     const Provenance& prov, const std::vector<Scene>& cases);
   /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema?
   /// On false, `why` says what it is instead.
   static bool is_map(const std::string& path, std::string* why);
+  /// Serial, read-only: the layout of a map, checked dataset by dataset
+  /// (type, shape, contiguous storage inside the file), and its status
+  /// column when `status` is given. Throws H5Error saying what is wrong.
+  static MapLayout read_layout(const std::string& path, std::vector<std::int8_t>* status);
+};
 
-  MapFile(MapFile&&) = default;
-  MapFile& operator=(MapFile&&) = default;
-  ~MapFile();
+/// Writes rows into a created map at the offsets of its layout (positional
+/// writes on a file descriptor; local to the calling process).
+class RowWriter {
+public:
+  RowWriter() = default;
+  /// Opens `path` for writing (never creates or truncates it).
+  RowWriter(const std::string& path, MapLayout layout);
+  RowWriter(const RowWriter&) = delete;
+  RowWriter& operator=(const RowWriter&) = delete;
+  ~RowWriter();
 
-  std::size_t n_cases() const { return n_; }
-  long samples() const { return samples_; }
-  bool timeseries() const { return timeseries_; }
-  std::string config_canonical() const;
-  std::vector<std::int8_t> read_status() const;
-
-  /// Independent I/O: writes rows for cases first .. first + rows.size() - 1,
-  /// every value first and the status last.
+  bool timeseries() const { return layout_.timeseries; }
+  /// Takes an exclusive POSIX record lock on the whole file (held until
+  /// close; HDF5 readers, which use flock, are not blocked). Returns false
+  /// when another process holds one, with its pid in `holder` (0 if remote);
+  /// true also where the file system has no locks.
+  bool lock(long* holder);
+  /// Writes rows for cases first .. first + rows.size() - 1, every value
+  /// first and the status last. Throws std::runtime_error naming the dataset
+  /// and the system error (e.g. "No space left on device").
   void write_rows(std::size_t first, const std::vector<CaseRow>& rows);
-  /// Collective: flush and close, reporting errors.
+  /// Flushes to stable storage (fsync) and closes; throws on error.
   void close();
 
 private:
-  MapFile() = default;
-  void open_datasets();
-  MPI_Comm comm_ = MPI_COMM_NULL;
-  Handle file_, dxpl_;
-  std::vector<Handle> fields_;
-  Handle status_, message_, msg_type_;
-  std::vector<Handle> series_;
-  std::size_t n_ = 0;
-  long samples_ = 0;
-  bool timeseries_ = false;
+  void pwrite_all(const void* data, std::size_t bytes, std::uint64_t offset,
+                  const std::string& what);
+  int fd_ = -1;
   std::string path_;
+  MapLayout layout_;
 };
 
 } // namespace mdrmap::io

@@ -11,7 +11,11 @@
 #include <functional>
 #include <optional>
 #include <stdexcept>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
+
+#include <fstream>
 
 #include "core/analytic.hpp"
 #include "mdrmap/version.hpp"
@@ -105,8 +109,10 @@ void check_output(const StudyRequest& req) {
     throw InvalidInput("output", "'" + out + "' is a directory; give a file name");
   const std::string dir = parent_dir(out);
   struct stat dst {};
-  if (::stat(dir.c_str(), &dst) != 0 || !S_ISDIR(dst.st_mode))
+  if (::stat(dir.c_str(), &dst) != 0)
     throw InvalidInput("output", "directory '" + dir + "' of '" + out + "' does not exist");
+  if (!S_ISDIR(dst.st_mode))
+    throw InvalidInput("output", "'" + dir + "' in '" + out + "' is not a directory");
   if (::access(dir.c_str(), W_OK) != 0)
     throw InvalidInput("output", "no permission to write in directory '" + dir + "'");
   if (req.resume && req.overwrite)
@@ -125,6 +131,94 @@ void check_output(const StudyRequest& req) {
                                      "replace it");
   if (!io::MapFile::is_map(out, &why))
     throw InvalidInput("overwrite", "'" + out + "' is " + why + "; refusing to replace it");
+}
+
+std::string format_bytes(double b) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int u = 0;
+  while (b >= 1024.0 && u < 5)
+    b /= 1024.0, ++u;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, u == 0 ? "%.0f %s" : "%.3g %s", b, units[u]);
+  return buf;
+}
+
+// Memory this machine can give without swapping (MemAvailable), 0 if unknown.
+double available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  std::string unit;
+  while (in >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024.0;
+  const long pages = ::sysconf(_SC_AVPHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
+}
+
+// Cases of the study and the memory one rank needs for them, without
+// building them: per case the scene (6 doubles), its place in the to-do list,
+// its status and rank 0's column buffer at creation; a case list's canonical
+// text besides. Counting a case list streams its file.
+std::pair<std::size_t, double> study_memory(const StudyConfig& cfg) {
+  if (cfg.kind == StudyConfig::Kind::Grid) {
+    const std::size_t n = case_count(cfg);
+    return {n, 72.0 * static_cast<double>(n)};
+  }
+  std::ifstream in(cfg.cases_file, std::ios::binary);
+  std::size_t lines = 0;
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    lines += static_cast<std::size_t>(
+        std::count(buf.begin(), buf.begin() + static_cast<long>(in.gcount()), '\n'));
+  }
+  return {lines, 200.0 * static_cast<double>(lines)}; // unreadable: 0, expand_cases says why
+}
+
+// Refuses, before anything is built or written, a study whose cases would
+// not fit in the memory of this node (ranks_here ranks each hold them all).
+void check_memory(const StudyConfig& cfg, int ranks_here) {
+  const auto [n_cases, per_rank] = study_memory(cfg);
+  const double need = per_rank * ranks_here;
+  const double have = available_memory_bytes();
+  if (have > 0.0 && need > 0.5 * have)
+    throw InvalidInput("config", "the study has " + std::to_string(n_cases) + " cases; its " +
+                                     std::to_string(ranks_here) +
+                                     " rank(s) on this node would need about " +
+                                     format_bytes(need) + " of memory, more than half of the " +
+                                     format_bytes(have) +
+                                     " available; split the study or run fewer ranks per node");
+}
+
+// Refuses a new map that would not fit on its file system or under the
+// file-size limit, before anything is written.
+void check_space(const std::string& out, std::uint64_t bytes) {
+  const std::string dir = parent_dir(out);
+  const std::string need = format_bytes(static_cast<double>(bytes));
+  struct rlimit lim {};
+  if (::getrlimit(RLIMIT_FSIZE, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY &&
+      bytes > static_cast<std::uint64_t>(lim.rlim_cur))
+    throw InvalidInput("output", "the map '" + out + "' needs " + need +
+                                     " but the file-size limit (ulimit -f) is " +
+                                     format_bytes(static_cast<double>(lim.rlim_cur)));
+  struct statvfs fs {};
+  if (::statvfs(dir.c_str(), &fs) == 0) {
+    const double avail = static_cast<double>(fs.f_bavail) * static_cast<double>(fs.f_frsize);
+    if (static_cast<double>(bytes) > avail)
+      throw InvalidInput("output", "the map '" + out + "' needs " + need +
+                                       " but the file system of '" + dir + "' has " +
+                                       format_bytes(avail) +
+                                       " free; free space, or write the map elsewhere");
+  }
+}
+
+// The message for a failed write: what HDF5 said, and whether the disk is full.
+std::string describe_write_failure(const std::string& out, const std::string& what) {
+  std::string msg = "writing '" + out + "' failed (" + what + ")";
+  struct statvfs fs {};
+  if (::statvfs(parent_dir(out).c_str(), &fs) == 0 && fs.f_bavail == 0)
+    msg += "; the file system of '" + parent_dir(out) + "' is full";
+  return msg;
 }
 
 // Compares the study in an existing map with the requested one (rank 0,
@@ -168,12 +262,14 @@ struct Worker {
   const StudyRequest& req;
   const std::vector<Scene>& cases;
   const std::vector<std::size_t>& todo;
-  io::MapFile& map;
+  io::RowWriter& map;
   SolverKind kind;
-  std::size_t done = 0, failed = 0;
+  std::size_t done = 0, failed = 0; ///< rows written by this rank
   double compute_seconds = 0.0;
+  std::string write_error; ///< why writing the map failed here ("" if it did not)
 
-  bool stop_requested() const { return req.stop && *req.stop != 0; }
+  // A stop signal, or a failed write: either way this rank takes no more work.
+  bool stop_requested() const { return (req.stop && *req.stop != 0) || !write_error.empty(); }
 
   // Computes todo[pos, pos+count) (stops early on a stop request) and writes
   // the finished rows; returns how many were finished.
@@ -189,13 +285,9 @@ struct Worker {
       rows.push_back(compute_case(s, protocol_for(req.config, s), kind, req.config.run.rtol,
                                   map.timeseries()));
       compute_seconds += seconds_since(t0);
-      if (rows.back().status == 1)
-        ++done;
-      else
-        ++failed;
       if (between_cases) between_cases();
     }
-    // write runs of consecutive case indices
+    // write runs of consecutive case indices; a row counts once it is written
     std::size_t i = 0;
     while (i < rows.size()) {
       std::size_t j = i + 1;
@@ -203,7 +295,16 @@ struct Worker {
         ++j;
       std::vector<io::CaseRow> run(std::make_move_iterator(rows.begin() + static_cast<long>(i)),
                                    std::make_move_iterator(rows.begin() + static_cast<long>(j)));
-      map.write_rows(todo[pos + i], run);
+      try {
+        map.write_rows(todo[pos + i], run);
+      } catch (const std::exception& e) {
+        // The rows of this run stay pending (their status is written last);
+        // this rank stops, the others finish their chunks, the study ends.
+        write_error = describe_write_failure(req.output, e.what());
+        return finished;
+      }
+      for (const auto& r : run)
+        ++(r.status == 1 ? done : failed);
       i = j;
     }
     return finished;
@@ -276,35 +377,22 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
   const StudyConfig& cfg = req.config;
+  // ranks sharing this node's memory
+  MPI_Comm node = MPI_COMM_NULL;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  int ranks_here = 1;
+  MPI_Comm_size(node, &ranks_here);
+  MPI_Comm_free(&node);
+
   SolverKind kind = SolverKind::Auto;
   std::vector<Scene> cases;
   std::string canon;
+  io::MapSpec spec;
   collectively(comm, [&] {
     kind = parse_solver(cfg.run.solver);
+    check_memory(cfg, ranks_here);
     cases = expand_cases(cfg);
     canon = canonical(cfg);
-    if (rank == 0) {
-      check_output(req);
-      if (req.resume) check_resume_matches(req, canon);
-    }
-  });
-
-  // Create (under a temporary name, renamed when complete) or open the map.
-  std::optional<io::MapFile> map;
-  if (req.resume) {
-    collectively(comm, [&] { map.emplace(io::MapFile::open(comm, req.output)); });
-  } else {
-    io::Provenance prov;
-    prov.program_version = kVersion;
-    prov.git_commit = kGitCommit;
-    prov.created_utc = bcast_from_root(comm, utc_now());
-    prov.command_line = bcast_from_root(comm, req.command_line);
-    prov.units = "consistent user units: d, R, a2 lengths; tau, t times; v, v1 length/time; G "
-                 "force/length^2; FN, Fx force = G * length^2; mu dimensionless";
-    prov.config_text = cfg.source_text;
-    prov.config_canonical = canon;
-    prov.mpi_size = size;
-    io::MapSpec spec;
     spec.n_cases = cases.size();
     spec.samples = cfg.run.samples;
     spec.timeseries = cfg.run.timeseries;
@@ -315,29 +403,77 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
         spec.grid.logarithmic.push_back(ax.logarithmic ? 1 : 0);
       }
     }
+    if (rank == 0) {
+      check_output(req);
+      if (req.resume)
+        check_resume_matches(req, canon);
+      else
+        check_space(req.output, io::map_file_bytes(spec, cfg.source_text.size() + canon.size() +
+                                                             req.command_line.size()));
+    }
+  });
+
+  // Create the map (under a temporary name, renamed when complete).
+  if (!req.resume) {
+    io::Provenance prov;
+    prov.program_version = kVersion;
+    prov.git_commit = kGitCommit;
+    prov.created_utc = bcast_from_root(comm, utc_now());
+    prov.command_line = bcast_from_root(comm, req.command_line);
+    prov.units = "consistent user units: d, R, a2 lengths; tau, t times; v, v1 length/time; G "
+                 "force/length^2; FN, Fx force = G * length^2; mu dimensionless";
+    prov.config_text = cfg.source_text;
+    prov.config_canonical = canon;
+    prov.mpi_size = size;
     const std::string tmp =
         bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));
     try {
-      collectively(comm, [&] { map.emplace(io::MapFile::create(comm, tmp, spec, prov, cases)); });
-      MPI_Barrier(comm);
+      collectively(comm, [&] { io::MapFile::create(comm, tmp, spec, prov, cases); });
       collectively(comm, [&] {
         if (rank == 0 && std::rename(tmp.c_str(), req.output.c_str()) != 0)
-          throw std::runtime_error("cannot rename '" + tmp + "' to '" + req.output + "'");
+          throw std::runtime_error("cannot rename '" + tmp + "' to '" + req.output +
+                                   "': " + std::strerror(errno));
       });
     } catch (...) {
-      map.reset();
       if (rank == 0) std::remove(tmp.c_str());
       throw;
     }
   }
 
-  // What is left to do: every rank derives the same list from rank 0's read.
+  // Where the rows go, and what is left to do: every rank gets rank 0's read.
   std::vector<std::int8_t> status;
+  std::vector<std::uint64_t> packed;
   collectively(comm, [&] {
-    if (rank == 0) status = map->read_status();
+    if (rank != 0) return;
+    try {
+      packed = io::MapFile::read_layout(req.output, &status).pack();
+    } catch (const io::H5Error& e) {
+      if (!req.resume) throw;
+      throw InvalidInput("resume", "'" + req.output + "' is damaged (" + e.what() +
+                                       "); refusing to touch it");
+    }
+    if (status.size() != cases.size())
+      throw InvalidInput("resume", "'" + req.output + "' holds " + std::to_string(status.size()) +
+                                       " cases, the study " + std::to_string(cases.size()) +
+                                       "; refusing to touch it");
   });
+  unsigned long long n_packed = packed.size();
+  MPI_Bcast(&n_packed, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
+  packed.resize(static_cast<std::size_t>(n_packed));
+  MPI_Bcast(packed.data(), static_cast<int>(n_packed), MPI_UINT64_T, 0, comm);
   status.resize(cases.size());
   MPI_Bcast(status.data(), static_cast<int>(status.size()), MPI_INT8_T, 0, comm);
+  std::optional<io::RowWriter> map;
+  collectively(comm, [&] {
+    map.emplace(req.output, io::MapLayout::unpack(packed));
+    // one job at a time: a second --resume of a map in use is refused
+    long holder = 0;
+    if (rank == 0 && !map->lock(&holder))
+      throw InvalidInput(req.resume ? "resume" : "output",
+                         "'" + req.output + "' is being written by another mdrmap job" +
+                             (holder > 0 ? " (process " + std::to_string(holder) + ")" : "") +
+                             "; refusing to touch it");
+  });
   std::vector<std::size_t> todo;
   std::size_t already_done = 0;
   for (std::size_t i = 0; i < status.size(); ++i) {
@@ -347,7 +483,7 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
       ++already_done;
   }
 
-  Worker w{comm, req, cases, todo, *map, kind};
+  Worker w{comm, req, cases, todo, *map, kind, 0, 0, 0.0, {}};
   const auto t_start = Clock::now();
   StudySummary sum;
   sum.total = cases.size();
@@ -482,7 +618,30 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   sum.pending = static_cast<std::size_t>(counts[2]);
   sum.interrupted = counts[3] != 0;
   MPI_Bcast(&sum.wall_seconds, 1, MPI_DOUBLE, 0, comm);
-  collectively(comm, [&] { map->close(); });
+  // A failed write anywhere fails the study (the lowest failing rank's
+  // message); the map is closed all the same, its written rows intact.
+  try {
+    collectively(comm, [&] {
+      if (!w.write_error.empty())
+        throw std::runtime_error("rank " + std::to_string(rank) + ": " + w.write_error);
+    });
+  } catch (const CollectiveFailure& e) {
+    sum.write_failure = e.what();
+  }
+  try {
+    collectively(comm, [&] {
+      try {
+        map->close();
+      } catch (const std::exception& e) {
+        throw std::runtime_error("rank " + std::to_string(rank) + ": " + e.what());
+      }
+    });
+  } catch (const CollectiveFailure& e) {
+    if (sum.write_failure.empty())
+      sum.write_failure = std::string(e.what()) +
+                          "; rows of this run may not have reached the disk: check the map "
+                          "(tools/maps/check_map.py)";
+  }
   return sum;
 }
 

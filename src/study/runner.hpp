@@ -59,11 +59,17 @@ struct StudySummary {
   std::size_t chunks = 0;   ///< chunks handed out (to workers and to rank 0 itself)
   std::size_t messages = 0; ///< request/assignment pairs rank 0 served
   double wall_seconds = 0.0;
+  /// Non-empty when writing the map failed on some rank (full disk, I/O
+  /// error): the study stopped, every row written before is intact, and the
+  /// pending cases can be run with --resume once the cause is fixed.
+  std::string write_failure;
 };
 
-/// Collective over comm. Bad input (existing output, mismatched resume, ...)
-/// throws InvalidInput on every rank alike; runtime failures throw
-/// std::runtime_error (io::H5Error) on the rank where they happen.
+/// Collective over comm. Bad input (existing output, mismatched resume, a
+/// study too large for memory or disk, ...) throws InvalidInput on every rank
+/// alike; a failure to create, open or close the map throws CollectiveFailure
+/// on every rank; a failed row write ends the study early with
+/// StudySummary::write_failure set. Anything else is local to one rank.
 StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sink);
 
 /// One case, as a map row (results, analytic estimates, residuals). Never
