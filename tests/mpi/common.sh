@@ -1,3 +1,4 @@
+# shellcheck shell=bash disable=SC2034  # sourced by the tests/mpi scripts, which use these
 # Shared by the MPI study tests. Arguments come from CTest:
 #   MPIEXEC MDRMAP PYRUN SRCDIR WORKDIR
 # Oversubscription and running as root are allowed here, for the tests only.
