@@ -56,6 +56,14 @@ def open_map(path, h5py, prog):
     return f
 
 
+def save_figure(fig, output, dpi):
+    """Writes a matplotlib figure; UserError (one line) if the file cannot be written."""
+    try:
+        fig.savefig(output, dpi=dpi)
+    except OSError as e:
+        raise UserError(f"cannot write {output}: {e.strerror or e}") from None
+
+
 def run_tool(main, prog):
     """Runs main(); a UserError becomes one line on stderr and exit code 2."""
     try:

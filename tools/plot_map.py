@@ -44,7 +44,7 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, text
+from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, save_figure, text
 
 PROG = "plot_map"
 GROUPS = ["results", "analytic", "residuals"]
@@ -685,10 +685,7 @@ def main(argv=None):
     fig.tight_layout(rect=(0, 0.02, 1, 0.97))
     for note in notes:
         print(f"{PROG}: {note}")
-    try:
-        fig.savefig(output, dpi=args.dpi)
-    except OSError as e:
-        raise UserError(f"cannot write {output}: {e.strerror or e}") from None
+    save_figure(fig, output, args.dpi)
     print(f"{PROG}: wrote {output}")
     return 0
 

@@ -48,7 +48,7 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, text
+from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, save_figure, text
 
 PROG = "plot_timeseries"
 QUANT = ["FN", "Fx", "mu", "a2"]
@@ -431,10 +431,7 @@ def main(argv=None):
     n_rows = max(min(len(cases), max_rows), len(style_handles)) + 1
     bottom = min(0.42, 0.004 + 0.019 * n_rows)
     fig.tight_layout(rect=(0, bottom, 1, 0.95))
-    try:
-        fig.savefig(output, dpi=args.dpi)
-    except OSError as e:
-        raise UserError(f"cannot write {output}: {e.strerror or e}") from None
+    save_figure(fig, output, args.dpi)
     print(f"{PROG}: wrote {output} ({len(cases)} case{'s' if len(cases) != 1 else ''})")
     return 0
 

@@ -67,17 +67,9 @@ Handle message_type() {
   return t;
 }
 
-// Writes rows [first, first+count) x [0, width) of a 1-D or 2-D dataset.
-void write_block(hid_t dset, hid_t mem_type, hid_t dxpl, std::size_t first, std::size_t count,
-                 std::size_t width, const void* data, const std::string& what) {
-  if (count == 0) return;
-  Handle fspace = make_space(H5Dget_space(dset), what);
-  const int rank = H5Sget_simple_extent_ndims(fspace.id());
-  hsize_t start[2] = {first, 0}, cnt[2] = {count, width};
-  check_status(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start, nullptr, cnt, nullptr),
-               what);
-  Handle mspace = make_space(H5Screate_simple(rank, cnt, nullptr), what);
-  check_status(H5Dwrite(dset, mem_type, mspace.id(), fspace.id(), dxpl, data), what);
+// Writes a whole float64 dataset (independent I/O: rank 0 alone).
+void write_doubles(hid_t dset, hid_t dxpl, const double* data, const std::string& what) {
+  check_status(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, dxpl, data), what);
 }
 
 void write_text_dataset(hid_t loc, const std::string& name, const std::string& text) {
@@ -212,12 +204,11 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
         const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
         col[i] = vals[c];
       }
-      write_block(case_sets[c].id(), H5T_NATIVE_DOUBLE, dxpl.id(), 0, cases.size(), 1, col.data(),
-                  std::string("writing /cases/") + kCaseColumns[c]);
+      write_doubles(case_sets[c].id(), dxpl.id(), col.data(),
+                    std::string("writing /cases/") + kCaseColumns[c]);
     }
     for (std::size_t i = 0; i < grid_sets.size(); ++i)
-      write_block(grid_sets[i].id(), H5T_NATIVE_DOUBLE, dxpl.id(), 0, spec.grid.values[i].size(), 1,
-                  spec.grid.values[i].data(), "writing /grid");
+      write_doubles(grid_sets[i].id(), dxpl.id(), spec.grid.values[i].data(), "writing /grid");
   }
   for (auto& h : case_sets)
     h.close("closing /cases");
