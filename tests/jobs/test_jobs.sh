@@ -41,6 +41,7 @@ mkdir -p "$3"
 WORK=$(cd "$3" && pwd)/jobs
 SBATCH=$SRCDIR/jobs/study.sbatch
 PBS=$SRCDIR/jobs/study.pbs
+LIB=$SRCDIR/jobs/lib/study_job.sh
 export OMPI_MCA_rmaps_base_oversubscribe=1
 unset OMPI_ALLOW_RUN_AS_ROOT OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
 # no scheduler, and none of the scripts' settings, from the caller
@@ -81,11 +82,11 @@ cleanup() {
 trap cleanup EXIT
 
 # ---- 1. static checks --------------------------------------------------------
-for s in "$SBATCH" "$PBS"; do
+for s in "$SBATCH" "$PBS" "$LIB"; do
   bash -n "$s" || fail "bash -n $s"
 done
 if command -v shellcheck >/dev/null 2>&1; then
-  shellcheck "$SBATCH" "$PBS" "$SELF" || fail "shellcheck"
+  shellcheck -x "$SBATCH" "$PBS" "$LIB" "$SELF" || fail "shellcheck"
   pass "bash -n, shellcheck"
 else
   echo "skip: shellcheck not installed (apt-get install shellcheck)"
@@ -296,6 +297,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 np=2
 while [[ $1 == -* ]]; do # the launcher's options: -n N, --ntasks N, --ntasks=N
   case $1 in
+    --mpi=list) printf 'MPI plugin types are...\n\tpmix\n\tnone\n' && exit 0 ;;
     -n | --ntasks) np=$2 && shift ;;
     --ntasks=*) np=${1#*=} ;;
   esac
@@ -307,6 +309,11 @@ sed 's/^echo "srun/echo "mpiexec/' bin/srun >bin/mpiexec
 cat >bin/scontrol <<'EOF'
 #!/bin/bash
 echo "scontrol $*" >>"$STUB_LOG"
+EOF
+cat >bin/squeue <<'EOF'
+#!/bin/bash
+echo "squeue $*" >>"$STUB_LOG"
+echo "${FAKE_TIMELIMIT:-4:00:00}"
 EOF
 cat >bin/qstat <<'EOF'
 #!/bin/bash
@@ -350,6 +357,7 @@ wait_for_work usr1_slurm "$map" "$before"
 kill -USR1 "$job"
 finish usr1_slurm
 expect usr1_slurm 3 "Slurm job 4242" "resuming the map" "SIGUSR1 to .*srun \(PID" \
+  "running: srun --mpi=pmix --ntasks 2 " \
   "requeueing job 4242 \(restart 2 of at most 2\)"
 grep -qx "scontrol requeue 4242" "$STUB_LOG" || fail "usr1_slurm: no 'scontrol requeue 4242'"
 grep -q "^srun .*OMPI_ALLOW_RUN_AS_ROOT=unset" "$STUB_LOG" ||
@@ -362,14 +370,25 @@ pass "study.sbatch, fake Slurm: srun, SIGUSR1 passed on, 'scontrol requeue 4242'
 
 before=$(stamp "$map")
 start max_slurm "$SBATCH" CONFIG=big.ini OUTPUT="$map" "$fake_path" SLURM_JOB_ID=4242 \
-  SLURM_RESTART_COUNT=2 MAX_REQUEUES=2
+  SLURM_RESTART_COUNT=2 MAX_REQUEUES=2 FAKE_TIMELIMIT=9:00
 wait_for_work max_slurm "$map" "$before"
 kill -USR1 "$job"
 finish max_slurm
-expect max_slurm 3 "requeued 2 times already \(MAX_REQUEUES=2\): not requeued"
-! grep -q scontrol "$STUB_LOG" || fail "max_slurm: requeued beyond MAX_REQUEUES"
+# 540 s with the header's --signal=B:USR1@300: at most 180 s of work per run
+expect max_slurm 3 "requeued 2 times already \(MAX_REQUEUES=2\): not requeued" \
+  "warning: time limit 540 s, stop signal 300 s before it .* after 180 s of work or less.* at least 720 s"
+! grep -q "scontrol requeue" "$STUB_LOG" || fail "max_slurm: requeued beyond MAX_REQUEUES"
 interrupted max_slurm "$map"
-pass "study.sbatch, fake Slurm: no requeue at MAX_REQUEUES"
+pass "study.sbatch, fake Slurm: no requeue at MAX_REQUEUES; a warning for a short time limit"
+
+: >"$STUB_LOG"
+sum=$(sha256sum <"$map")
+run np_slurm "$SBATCH" CONFIG=big.ini OUTPUT="$map" "$fake_path" SLURM_JOB_ID=4242 SLURM_NTASKS=1
+expect np_slurm 2 "NP=2 ranks exceed the 1 tasks \(--ntasks\) of this job"
+! grep -qE "^(srun .*mdrmap|scontrol requeue)" "$STUB_LOG" || fail "np_slurm: ran or requeued"
+[[ "$(sha256sum <"$map")" == "$sum" ]] || fail "np_slurm: the map changed"
+! grep -q "warning: time limit" usr1_slurm.log || fail "usr1_slurm: a time warning for 4 h"
+pass "study.sbatch, fake Slurm: more ranks than tasks refused (exit 2, not run, not requeued)"
 
 before=$(stamp "$map")
 start scancel_slurm "$SBATCH" CONFIG=big.ini OUTPUT="$map" "$fake_path" SLURM_JOB_ID=4242
@@ -377,7 +396,7 @@ wait_for_work scancel_slurm "$map" "$before"
 kill -TERM -- "-$job" # scancel: every process of the job
 finish scancel_slurm
 expect scancel_slurm 3 "SIGTERM received" "cancelled or at the time limit .*not requeued"
-! grep -q scontrol "$STUB_LOG" || fail "scancel_slurm: requeued a cancelled job"
+! grep -q "scontrol requeue" "$STUB_LOG" || fail "scancel_slurm: requeued a cancelled job"
 interrupted scancel_slurm "$map"
 : >"$STUB_LOG"
 pass "study.sbatch, fake Slurm: SIGTERM to the whole job (scancel): exit 3, not requeued"
@@ -405,8 +424,10 @@ for e in "CONFIG=big.ini" "OUTPUT=$tmap" "MDRMAP=$MDRMAP_EXE" "NP=2" "STOP_MARGI
   "JOB_SCRIPT=$PBS" "EXTRA_ARGS=$bigger" "RESUBMIT_COUNT=1"; do
   grep -qxF "qsub-env $e" "$STUB_LOG" || fail "timer_pbs: the resubmitted job lacks $e"
 done
-grep -q "^mpiexec .*OMPI_ALLOW_RUN_AS_ROOT=unset" "$STUB_LOG" ||
-  fail "timer_pbs: the script set Open MPI's run-as-root variables under PBS"
+# Open MPI's run-as-root variables: for a launcher that root runs, never else
+if [[ "$(id -u)" == 0 ]]; then root_vars=1; else root_vars="unset"; fi
+grep -q "^mpiexec .*OMPI_ALLOW_RUN_AS_ROOT=$root_vars\$" "$STUB_LOG" ||
+  fail "timer_pbs: mpiexec got OMPI_ALLOW_RUN_AS_ROOT=$(sed -n 's/^mpiexec .*OMPI_ALLOW_RUN_AS_ROOT=//p' "$STUB_LOG"), expected $root_vars (uid $(id -u))"
 progress=0
 interrupted timer_pbs "$tmap"
 : >"$STUB_LOG"
