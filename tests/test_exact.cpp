@@ -1,6 +1,6 @@
 // Tests of the continuum solution after the velocity step (src/core/exact.*)
-// against the definition of the model (DESIGN.md section 1), evaluated here
-// independently in long double:
+// against the definition of the model (docs/design.md, "The model"),
+// evaluated here independently in long double:
 //
 // - In the moving frame x, the free tail left by stationary sliding at v is
 //   h(a2v) exp(-(x - a2v)/(v tau)); after the step every free element relaxes
@@ -23,16 +23,15 @@
 #include <vector>
 
 #include "core/analytic.hpp"
+#include "core/case.hpp"
 #include "core/error_metric.hpp"
 #include "core/exact.hpp"
-#include "core/scene.hpp"
-#include "test_scene.hpp"
+#include "test_case.hpp"
 
 namespace {
 
+using mdrmap::Case;
 using mdrmap::ExactSolution;
-using mdrmap::Protocol;
-using mdrmap::Scene;
 using mdrmap::State;
 namespace analytic = mdrmap::analytic;
 using ld = long double;
@@ -40,15 +39,17 @@ using ld = long double;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr ld kEpsLd = std::numeric_limits<ld>::epsilon();
 
-using mdrmap::testing::make_scene;
+using mdrmap::testing::make_case;
+using mdrmap::testing::t_end_of;
+using mdrmap::testing::v1_of;
 
-// Scene with zeta = v tau / a1 and v1 = ratio * v.
-Scene scene_z(double zeta, double ratio, double d_over_R = 1e-3, double R = 0.05, double tau = 2e-3,
-              double G = 1e6) {
-  Scene s = make_scene(d_over_R * R, R, tau, 1.0, 0.0, G);
-  s.v = zeta * std::sqrt(s.R * s.d) / s.tau;
-  s.v1 = ratio * s.v;
-  return s;
+// One-step case with zeta = v tau / a1 and v1 = ratio * v, observed over the
+// default window 6 tau with `samples` linear samples.
+Case scene_z(double zeta, double ratio, double d_over_R = 1e-3, double R = 0.05, double tau = 2e-3,
+             double G = 1e6, long samples = 201) {
+  const double d = d_over_R * R;
+  const double v = zeta * std::sqrt(R * d) / tau;
+  return make_case(d, R, tau, v, ratio * v, G, 0.0, samples);
 }
 
 // ---------------------------------------------------------------------------
@@ -57,9 +58,10 @@ Scene scene_z(double zeta, double ratio, double d_over_R = 1e-3, double R = 0.05
 struct Ref {
   ld d, R, G, tau, v, v1, a1, L, L1, a2v, a2v1, ha2v;
 
-  explicit Ref(const Scene& s)
-      : d(s.d), R(s.R), G(s.G), tau(s.tau), v(s.v), v1(s.v1), a1(std::sqrt(R * d)), L(v * tau),
-        L1(v1 * tau), a2v(a2_of(L)), a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
+  explicit Ref(const Case& c)
+      : d(c.loading.d), R(c.indenter.R), G(c.material.G), tau(c.material.tau), v(c.history.v0),
+        v1(v1_of(c)), a1(std::sqrt(R * d)), L(v * tau), L1(v1 * tau), a2v(a2_of(L)),
+        a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
 
   // Eq. (7) rationalised (the naive difference loses all digits for L >> a1,
   // also in long double).
@@ -160,24 +162,24 @@ double rel(double got, ld want) {
 TEST(ExactBasics, JumpPreAndLateTime) {
   for (double zeta : {1e-3, 0.5, 2.0, 1e4})
     for (double ratio : {0.0, 0.2, 0.9, 1.0, 3.0}) {
-      const Scene s = scene_z(zeta, ratio);
-      const ExactSolution ex(s);
-      const State j = analytic::jump(s), a = ex.at(0.0);
+      const Case c = scene_z(zeta, ratio);
+      const ExactSolution ex(c);
+      const State j = analytic::jump(c, c.history.v0, v1_of(c)), a = ex.at(0.0);
       EXPECT_NEAR(a.FN, j.FN, 1e-15 * j.FN);
       EXPECT_NEAR(a.Fx, j.Fx, 1e-15 * j.Fx);
       EXPECT_NEAR(a.a2, j.a2, 1e-15 * j.a2);
-      const State p = ex.pre(), st = analytic::stationary(s, s.v);
+      const State p = ex.pre(), st = analytic::stationary(c, c.history.v0);
       EXPECT_EQ(p.FN, st.FN);
       EXPECT_EQ(p.Fx, st.Fx);
       EXPECT_EQ(p.a2, st.a2);
       // After 60 tau the free tail is down by e^{-60} ~ 1e-26: stationary at v1
       // (for v1 = 0 the edge approaches a1 only asymptotically; the remaining
       // F_x ~ (a1^2 - a2^2)^2 is compared on the scale of the jump).
-      const State late = ex.at(60.0 * s.tau), post = analytic::stationary(s, s.v1);
+      const State late = ex.at(60.0 * c.material.tau), post = analytic::stationary(c, v1_of(c));
       EXPECT_NEAR(late.FN, post.FN, 1e-14 * post.FN) << zeta << " " << ratio;
       EXPECT_NEAR(late.Fx, post.Fx, 1e-14 * std::max(j.Fx, post.Fx)) << zeta << " " << ratio;
       EXPECT_NEAR(late.mu, post.mu, 1e-14 * std::max(j.mu, post.mu)) << zeta << " " << ratio;
-      EXPECT_NEAR(late.a2, post.a2, 1e-15 * analytic::a1(s)) << zeta << " " << ratio;
+      EXPECT_NEAR(late.a2, post.a2, 1e-15 * analytic::a1(c)) << zeta << " " << ratio;
     }
 }
 
@@ -187,11 +189,11 @@ TEST(ExactBasics, JumpPreAndLateTime) {
 TEST(ExactBasics, ContinuousAtZeroPlus) {
   for (double zeta : {1e-3, 0.5, 2.0, 1e4})
     for (double ratio : {0.0, 0.5}) {
-      const Scene s = scene_z(zeta, ratio);
-      const ExactSolution ex(s, 52);
-      const double a1 = analytic::a1(s), a2v = analytic::a2_stationary(s, s.v);
+      const Case c = scene_z(zeta, ratio);
+      const ExactSolution ex(c, 52);
+      const double a1 = analytic::a1(c), a2v = analytic::a2_stationary(c, c.history.v0);
       for (double tt : {1e-14, 1e-10, 1e-6, 1e-3}) {
-        const State st = ex.at(tt * s.tau);
+        const State st = ex.at(tt * c.material.tau);
         const double bound = std::sqrt(tt) * std::min(1.0, std::sqrt(2.0) * zeta);
         EXPECT_LE(std::fabs(st.a2 - a2v) / a1, bound * (1 + 1e-9) + 4 * kEps) << zeta << " " << tt;
         EXPECT_GE(st.a2, a2v);
@@ -210,27 +212,27 @@ TEST(ExactBasics, ContinuousAtZeroPlus) {
 // F_N and to the start-stop maximum 2 G a1^4/R^2: tolerance 2/zeta + 1e-14.
 TEST(ExactStartStop, MatchesA1SqrtOneMinusExp) {
   const double zeta = 1e8;
-  const Scene s = scene_z(zeta, 0.0);
-  const ExactSolution ex(s);
-  const double a1 = analytic::a1(s);
-  const double Fx_scale = 2.0 * s.G * std::pow(a1, 4) / (s.R * s.R);
+  const Case cs = scene_z(zeta, 0.0);
+  const ExactSolution ex(cs);
+  const double a1 = analytic::a1(cs);
+  const double Fx_scale = 2.0 * cs.material.G * std::pow(a1, 4) / (cs.indenter.R * cs.indenter.R);
   for (double tt : {0.01, 0.1, 0.5, 1.0, 2.0, 4.0, 6.0, 12.0}) {
-    const double t = tt * s.tau;
+    const double t = tt * cs.material.tau;
     const State st = ex.at(t);
-    const double a2ss = analytic::a2_start_stop(s, t);
+    const double a2ss = analytic::a2_start_stop(cs, t);
     EXPECT_LE(std::fabs(st.a2 - a2ss) / a1, 1.0 / zeta + 4 * kEps) << tt;
     // a1 - a2ss = a1 c / (1 + sqrt(1 - c)), free of cancellation.
     const double c = std::exp(-tt);
-    const State want = analytic::contact_forces(s, a2ss, a1 * c / (1 + std::sqrt(1 - c)), 0.0);
+    const State want = analytic::contact_forces(cs, a2ss, a1 * c / (1 + std::sqrt(1 - c)), 0.0);
     EXPECT_NEAR(st.FN, want.FN, (2.0 / zeta + 1e-14) * want.FN) << tt;
     EXPECT_NEAR(st.Fx, want.Fx, (2.0 / zeta + 1e-14) * Fx_scale) << tt;
   }
   for (double z : {1e4, 1e6}) {
-    const Scene sz = scene_z(z, 0.0);
-    const ExactSolution exz(sz, 52);
+    const Case cz = scene_z(z, 0.0);
+    const ExactSolution exz(cz, 52);
     for (double tt : {0.1, 1.0, 3.0}) {
-      const double t = tt * sz.tau;
-      const double dev = (exz.at(t).a2 - analytic::a2_start_stop(sz, t)) / analytic::a1(sz);
+      const double t = tt * cz.material.tau;
+      const double dev = (exz.at(t).a2 - analytic::a2_start_stop(cz, t)) / analytic::a1(cz);
       const double c = std::exp(-tt);
       EXPECT_NEAR(dev * z / (c / 2), 1.0, 1.0 / z + 8 * kEps / dev) << z << " " << tt;
     }
@@ -248,12 +250,12 @@ TEST(ExactTransient, EdgeSatisfiesTheDefinition) {
   int capped_seen = 0, root_seen = 0;
   for (double zeta : {0.1, 1.0, 10.0, 1e3})
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
-      const Scene s = scene_z(zeta, ratio);
-      const ExactSolution ex(s);
-      const Ref ref(s);
+      const Case c = scene_z(zeta, ratio);
+      const ExactSolution ex(c);
+      const Ref ref(c);
       const ld a1 = ref.a1, delta = 1e-13L * a1;
       for (double tt : tts) {
-        const double t = tt * s.tau;
+        const double t = tt * c.material.tau;
         const ld tl = t;
         const ld x = ex.at(t).a2;
         // (b) never beyond the stationary edge at v1
@@ -294,19 +296,19 @@ TEST(ExactTransient, EdgeSatisfiesTheDefinition) {
 TEST(ExactTransient, MonotoneAndReachesStationary) {
   for (double zeta : {0.1, 1.0, 10.0, 1e3})
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
-      const Scene s = scene_z(zeta, ratio);
-      const ExactSolution ex(s);
+      const Case c = scene_z(zeta, ratio);
+      const ExactSolution ex(c);
       State prev = ex.at(0.0);
       const State j = prev;
       for (int k = 1; k <= 400; ++k) {
-        const State st = ex.at(8.0 * s.tau * k / 400.0);
+        const State st = ex.at(8.0 * c.material.tau * k / 400.0);
         EXPECT_GE(st.a2, prev.a2 - 4 * kEps * prev.a2) << zeta << " " << ratio << " " << k;
         EXPECT_GE(st.FN, prev.FN * (1 - 8 * kEps)) << zeta << " " << ratio << " " << k;
         EXPECT_LE(st.Fx, prev.Fx + 8 * kEps * j.Fx) << zeta << " " << ratio << " " << k;
         EXPECT_LE(st.mu, prev.mu + 8 * kEps * j.mu) << zeta << " " << ratio << " " << k;
         prev = st;
       }
-      const State post = analytic::stationary(s, s.v1), late = ex.at(60.0 * s.tau);
+      const State post = analytic::stationary(c, v1_of(c)), late = ex.at(60.0 * c.material.tau);
       EXPECT_NEAR(late.mu, post.mu, 1e-14 * j.mu) << zeta << " " << ratio;
       EXPECT_LT(post.mu, j.mu);
     }
@@ -316,20 +318,20 @@ TEST(ExactTransient, MonotoneAndReachesStationary) {
 // v1 over [-a1, a2(t)]. F_N: integrand >= 0 on the contact (kappa = 1), the
 // code's closed form is a sum of non-negative terms: 1e-13 relative. F_x: its
 // integrand changes sign at x = 0; error measured on the scale of the jump
-// value (the largest F_x of the transient, DESIGN.md section 2) plus the
-// quadrature's rounding bound 64 eps_ld int|f|.
+// value (the largest F_x of the transient, docs/design.md, "Error metric")
+// plus the quadrature's rounding bound 64 eps_ld int|f|.
 TEST(ExactTransient, ForcesEqualQuadratureOverContactSet) {
   for (double zeta : {0.1, 1.0, 10.0, 1e3})
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
-      const Scene s = scene_z(zeta, ratio);
-      const ExactSolution ex(s);
-      const ld a1 = analytic::a1(s), d = s.d, R = s.R, G = s.G;
-      const ld L1 = static_cast<ld>(s.v1) * static_cast<ld>(s.tau);
+      const Case c = scene_z(zeta, ratio);
+      const ExactSolution ex(c);
+      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.R, G = c.material.G;
+      const ld L1 = static_cast<ld>(v1_of(c)) * static_cast<ld>(c.material.tau);
       auto p = [&](ld x) { return d - x * x / R - 2.0L * L1 * x / R; };
       auto px = [&](ld x) { return p(x) * (-2.0L * x / R); };
       const double Fx_scale = ex.at(0.0).Fx;
       for (double tt : {0.0, 0.01, 0.3, 1.0, 3.0, 8.0}) {
-        const State st = ex.at(tt * s.tau);
+        const State st = ex.at(tt * c.material.tau);
         const Quad qn = integrate(p, -a1, static_cast<ld>(st.a2));
         const Quad qx = integrate(px, -a1, static_cast<ld>(st.a2));
         EXPECT_LT(rel(st.FN, 4 * G * qn.value), 1e-13) << zeta << " " << ratio << " " << tt;
@@ -342,11 +344,11 @@ TEST(ExactTransient, ForcesEqualQuadratureOverContactSet) {
 }
 
 // ---------------------------------------------------------------------------
-// Similarity (DESIGN.md): mu/sqrt(d/R), F_N/(G a1 d), F_x/(G d^2), a2/a1 are
-// functions of (zeta, zeta1, t/tau) only. Random scalings of d/R (1e-12..0.3),
-// R, G, tau, at fixed zeta, zeta1, must give the same curves to 1e-12 on the
-// contract's scale (max over the series; a2 on a1): the only differences are
-// roundings and root brackets, both ~1e-15.
+// Similarity (docs/design.md, "Similarity"): mu/sqrt(d/R), F_N/(G a1 d),
+// F_x/(G d^2), a2/a1 are functions of (zeta, zeta1, t/tau) only. Random
+// scalings of d/R (1e-12..0.3), R, G, tau, at fixed zeta, zeta1, must give the
+// same curves to 1e-12 on the contract's scale (max over the series; a2 on
+// a1): the only differences are roundings and root brackets, both ~1e-15.
 TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
   struct Base {
     double zeta, zeta1;
@@ -356,38 +358,33 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
   auto logu = [&](double lo, double hi) {
     return std::pow(10.0, std::uniform_real_distribution<double>(lo, hi)(rng));
   };
-  const Protocol p{6.0, 61}; // t_end in units of tau, rescaled per scene below
   for (const Base& b : bases) {
-    auto dimless = [&](const Scene& s) {
-      Protocol q = p;
-      q.t_end = 6.0 * s.tau;
-      const auto r = mdrmap::run_exact(s, q, 1e-12);
-      const double a1 = analytic::a1(s), sdr = std::sqrt(s.d / s.R);
+    auto dimless = [&](const Case& c) {
+      const auto r = mdrmap::run_exact(c, 1e-12);
+      const double a1 = analytic::a1(c), sdr = std::sqrt(c.loading.d / c.indenter.R);
       std::vector<std::vector<double>> out(4);
       for (std::size_t k = 0; k < r.series.size(); ++k) {
         out[0].push_back(r.series.mu[k] / sdr);
-        out[1].push_back(r.series.FN[k] / (s.G * a1 * s.d));
-        out[2].push_back(r.series.Fx[k] / (s.G * s.d * s.d));
+        out[1].push_back(r.series.FN[k] / (c.material.G * a1 * c.loading.d));
+        out[2].push_back(r.series.Fx[k] / (c.material.G * c.loading.d * c.loading.d));
         out[3].push_back(r.series.a2[k] / a1);
       }
       out[0].push_back(r.series.pre.mu / sdr);
-      out[1].push_back(r.series.pre.FN / (s.G * a1 * s.d));
-      out[2].push_back(r.series.pre.Fx / (s.G * s.d * s.d));
+      out[1].push_back(r.series.pre.FN / (c.material.G * a1 * c.loading.d));
+      out[2].push_back(r.series.pre.Fx / (c.material.G * c.loading.d * c.loading.d));
       out[3].push_back(r.series.pre.a2 / a1);
       return out;
     };
+    // 61 samples over 6 tau: the same instants in units of tau for every scaling
     auto scene = [&](double dr, double R, double tau, double G) {
-      Scene s = make_scene(dr * R, R, tau, 1.0, 0.0, G);
-      const double a1 = std::sqrt(s.R * s.d);
-      s.v = b.zeta * a1 / tau;
-      s.v1 = b.zeta1 * a1 / tau;
-      return s;
+      const double d = dr * R, a1 = std::sqrt(R * d);
+      return make_case(d, R, tau, b.zeta * a1 / tau, b.zeta1 * a1 / tau, G, 6.0 * tau, 61);
     };
     const auto ref = dimless(scene(1e-3, 1.0, 1.0, 1.0));
     for (int trial = 0; trial < 6; ++trial) {
       const double dr = trial == 0 ? 1e-12 : (trial == 1 ? 0.3 : logu(-12.0, -0.5));
-      const Scene s = scene(dr, logu(-6, 3), logu(-6, 3), logu(-3, 9));
-      const auto got = dimless(s);
+      const Case c = scene(dr, logu(-6, 3), logu(-6, 3), logu(-3, 9));
+      const auto got = dimless(c);
       for (std::size_t q = 0; q < 4; ++q) {
         double scale = 0.0;
         for (double x : ref[q])
@@ -407,23 +404,22 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
 // (nothing remembers), v1 = v. The state is the stationary state at v1 for
 // every t >= 0.
 TEST(ExactConstant, RiseElasticAndNoChange) {
-  std::vector<Scene> scenes;
+  std::vector<Case> scenes;
   for (double zeta : {1e-3, 1.0, 1e3}) {
     scenes.push_back(scene_z(zeta, 2.0));
     scenes.push_back(scene_z(zeta, 1.0));
     scenes.push_back(scene_z(zeta, 1e6));
   }
   for (double ratio : {0.0, 0.3, 1.0, 5.0}) {
-    Scene s = make_scene(1e-4, 0.02, 0.0, 3.0, 3.0 * ratio, 1e6);
-    scenes.push_back(s);
+    scenes.push_back(make_case(1e-4, 0.02, 0.0, 3.0, 3.0 * ratio, 1e6));
   }
-  for (const Scene& s : scenes) {
-    const ExactSolution ex(s);
-    const State post = analytic::stationary(s, s.v1);
-    const double T = s.tau > 0 ? s.tau : analytic::a1(s) / s.v;
+  for (const Case& c : scenes) {
+    const ExactSolution ex(c);
+    const State post = analytic::stationary(c, v1_of(c));
+    const double T = c.material.tau > 0 ? c.material.tau : analytic::a1(c) / c.history.v0;
     for (double tt : {0.0, 1e-9, 1e-3, 0.5, 1.0, 10.0, 100.0}) {
       const State st = ex.at(tt * T);
-      EXPECT_EQ(st.FN, post.FN) << s.tau << " " << s.v1 / s.v << " " << tt;
+      EXPECT_EQ(st.FN, post.FN) << c.material.tau << " " << v1_of(c) / c.history.v0 << " " << tt;
       EXPECT_EQ(st.Fx, post.Fx);
       EXPECT_EQ(st.mu, post.mu);
       EXPECT_EQ(st.a2, post.a2);
@@ -444,12 +440,12 @@ TEST(ExactPrecision, AgreesWithLongDoubleBisection) {
   for (double zeta : {1e-4, 1e-2, 1.0, 1e2, 1e4, 1e8})
     for (double ratio : {0.0, 0.01, 0.5, 0.99})
       for (double dr : {1e-12, 1e-4, 0.3}) {
-        const Scene s = scene_z(zeta, ratio, dr, 0.7, 3e-3, 2e6);
-        const ExactSolution ex(s, 52);
-        const Ref ref(s);
+        const Case c = scene_z(zeta, ratio, dr, 0.7, 3e-3, 2e6);
+        const ExactSolution ex(c, 52);
+        const Ref ref(c);
         const auto r0 = ref.forces(ref.a2v);
         for (double tt : tts) {
-          const double t = tt * s.tau;
+          const double t = tt * c.material.tau;
           const State st = ex.at(t);
           const auto r = ref.at(t);
           const double e[4] = {rel(st.FN, r.FN),
@@ -478,14 +474,15 @@ struct Regime {
 const Regime kRegimes[] = {{1e-4, 0.0}, {1e-3, 0.9}, {1e-2, 0.0}, {1e-2, 0.5}, {0.1, 0.0},
                            {1.0, 0.0},  {1.0, 0.3},  {1e2, 0.0},  {1e8, 0.0},  {10.0, 0.99}};
 
-mdrmap::Series reference_series(const Scene& s, const Protocol& p) {
-  const Ref ref(s);
+// The long double reference at the case's sample instants (one segment).
+mdrmap::Series reference_series(const Case& c) {
+  const Ref ref(c);
   mdrmap::Series out;
-  out.resize(static_cast<std::size_t>(p.samples));
+  out.resize(c.total_samples());
   for (std::size_t k = 0; k < out.size(); ++k) {
-    const double t = p.time(static_cast<long>(k));
+    const double t = c.sampling.offset(static_cast<long>(k), t_end_of(c));
     const auto r = ref.at(t);
-    out.set(k, t,
+    out.set(k, t, 0,
             State{static_cast<double>(r.FN), static_cast<double>(r.Fx), static_cast<double>(r.mu),
                   static_cast<double>(r.a2)});
   }
@@ -497,18 +494,20 @@ mdrmap::Series reference_series(const Scene& s, const Protocol& p) {
 // rtol = 1e-3: within 1e-3 of the tight run (and of the reference).
 TEST(ExactRunExact, ErrorEstimateAndLooseTolerance) {
   for (const Regime& g : kRegimes) {
-    const Scene s = scene_z(g.zeta, g.ratio);
-    const Protocol p{6.0 * s.tau, 201};
-    const auto tight = mdrmap::run_exact(s, p, 1e-12);
+    const Case c = scene_z(g.zeta, g.ratio); // 201 samples over 6 tau
+    const auto tight = mdrmap::run_exact(c, 1e-12);
     EXPECT_LT(tight.info.error_estimate, 1e-10) << g.zeta << " " << g.ratio;
     EXPECT_EQ(tight.info.solver, "exact");
     ASSERT_EQ(tight.series.size(), 201u);
-    for (std::size_t k = 0; k < tight.series.size(); ++k)
-      EXPECT_EQ(tight.series.t[k], p.time(static_cast<long>(k)));
-    const double a1 = analytic::a1(s);
-    const auto ref = reference_series(s, p);
+    for (std::size_t k = 0; k < tight.series.size(); ++k) {
+      EXPECT_EQ(tight.series.t[k], c.sampling.offset(static_cast<long>(k), t_end_of(c)));
+      EXPECT_EQ(tight.series.segment[k], 0);
+    }
+    EXPECT_EQ(tight.series.t.back(), 6.0 * c.material.tau);
+    const double a1 = analytic::a1(c);
+    const auto ref = reference_series(c);
     EXPECT_LT(mdrmap::case_error(tight.series, ref, a1).max(), 1e-12) << g.zeta << " " << g.ratio;
-    const auto loose = mdrmap::run_exact(s, p, 1e-3);
+    const auto loose = mdrmap::run_exact(c, 1e-3);
     EXPECT_LT(mdrmap::case_error(loose.series, tight.series, a1).max(), 1e-3)
         << g.zeta << " " << g.ratio;
     EXPECT_LT(mdrmap::case_error(loose.series, ref, a1).max(), 1e-3) << g.zeta << " " << g.ratio;
@@ -523,10 +522,9 @@ TEST(ExactRunExact, ErrorEstimateAndLooseTolerance) {
 TEST(ExactRunExact, ErrorEstimateBoundsActualError) {
   for (const Regime& g : kRegimes)
     for (double rtol : {1e-3, 1e-6, 1e-9}) {
-      const Scene s = scene_z(g.zeta, g.ratio);
-      const Protocol p{6.0 * s.tau, 201};
-      const auto run = mdrmap::run_exact(s, p, rtol);
-      const auto err = mdrmap::case_error(run.series, reference_series(s, p), analytic::a1(s));
+      const Case c = scene_z(g.zeta, g.ratio); // 201 samples over 6 tau
+      const auto run = mdrmap::run_exact(c, rtol);
+      const auto err = mdrmap::case_error(run.series, reference_series(c), analytic::a1(c));
       EXPECT_LE(err.max(), run.info.error_estimate + 1e-14)
           << "zeta=" << g.zeta << " v1/v=" << g.ratio << " rtol=" << rtol << ": FN " << err.FN
           << " Fx " << err.Fx << " mu " << err.mu << " a2 " << err.a2 << " estimate "
@@ -537,15 +535,14 @@ TEST(ExactRunExact, ErrorEstimateBoundsActualError) {
 // Informative: cost per sample (no assertion on time).
 TEST(ExactRunExact, TimePerSample) {
   for (const Regime& g : kRegimes) {
-    const Scene s = scene_z(g.zeta, g.ratio);
-    const Protocol p{6.0 * s.tau, 20001};
+    const Case c = scene_z(g.zeta, g.ratio, 1e-3, 0.05, 2e-3, 1e6, 20001);
     const auto t0 = std::chrono::steady_clock::now();
-    const auto r = mdrmap::run_exact(s, p, 1e-12);
+    const auto r = mdrmap::run_exact(c, 1e-12);
     const auto t1 = std::chrono::steady_clock::now();
     const double us = std::chrono::duration<double, std::micro>(t1 - t0).count();
     std::cout << "[ info ] run_exact zeta=" << g.zeta << " v1/v=" << g.ratio << ": "
-              << us / static_cast<double>(p.samples) << " us/sample, " << r.info.root_solves
-              << " root solves\n";
-    EXPECT_EQ(r.series.size(), static_cast<std::size_t>(p.samples));
+              << us / static_cast<double>(c.sampling.samples) << " us/sample, "
+              << r.info.root_solves << " root solves\n";
+    EXPECT_EQ(r.series.size(), static_cast<std::size_t>(c.sampling.samples));
   }
 }

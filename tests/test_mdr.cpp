@@ -11,15 +11,25 @@
 #include "core/error_metric.hpp"
 #include "core/exact.hpp"
 #include "core/mdr.hpp"
+#include "test_case.hpp"
 
 namespace mdrmap {
 namespace {
 
-Protocol default_protocol(const Scene& s, long samples = 201) {
-  Protocol p;
-  p.t_end = default_t_end(s);
-  p.samples = samples;
-  return p;
+using testing::v1_of;
+
+// The case with `samples` linear samples over its window (the one-step cases
+// here keep the default window: 6 tau; 6 a1 / min(v, v1) for tau = 0).
+Case sampled(Case c, long samples) {
+  c.sampling.samples = samples;
+  return c;
+}
+
+double zeta0(const Case& c) {
+  return zeta(c, c.history.v0);
+}
+double zeta1(const Case& c) {
+  return zeta(c, v1_of(c));
 }
 
 bool all_finite(const Series& x) {
@@ -30,14 +40,12 @@ bool all_finite(const Series& x) {
   return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
 }
 
-Scene scene(double zeta, double ratio, double d_over_r = 1e-3) {
-  Scene s;
-  s.R = 1.0;
-  s.d = d_over_r;
-  s.tau = 1.0;
-  s.v = zeta * std::sqrt(s.R * s.d) / s.tau;
-  s.v1 = ratio * s.v;
-  return s;
+// One step v -> v1 = ratio v with zeta = v tau / a1 (R = 1, tau = 1, G = 1),
+// default window, 201 samples.
+Case scene(double zeta, double ratio, double d_over_r = 1e-3) {
+  const double R = 1.0, d = d_over_r, tau = 1.0;
+  const double v = zeta * std::sqrt(R * d) / tau;
+  return step_case(d, R, tau, v, ratio * v);
 }
 
 // Least-squares slope of log(err) against log(1/dx).
@@ -56,16 +64,19 @@ TEST(MdrCaseSet, SetSpansTheHardRanges) {
   ASSERT_GE(set.size(), 30u);
   double zmin = 1e300, zmax = 0, qmax = 0, drmin = 1e300, drmax = 0, mu_drop = 1.0;
   bool tau0 = false, v1zero = false;
-  for (const auto& c : set) {
-    const Scene& s = c.scene;
-    if (s.tau == 0)
+  for (const auto& nc : set) {
+    const Case& c = nc.c;
+    ASSERT_EQ(c.history.size(), 1u) << nc.name;
+    ASSERT_EQ(c.sampling.samples, 201) << nc.name; // the default protocol
+    const double dr = c.loading.d / c.indenter.R;
+    if (c.material.tau == 0)
       tau0 = true;
     else
-      zmin = std::min(zmin, zeta(s)), zmax = std::max(zmax, zeta(s));
-    if (s.v1 == 0) v1zero = true;
-    qmax = std::max(qmax, s.v1 / s.v);
-    drmin = std::min(drmin, s.d / s.R), drmax = std::max(drmax, s.d / s.R);
-    const auto ex = run_exact(s, default_protocol(s));
+      zmin = std::min(zmin, zeta0(c)), zmax = std::max(zmax, zeta0(c));
+    if (v1_of(c) == 0) v1zero = true;
+    qmax = std::max(qmax, v1_of(c) / c.history.v0);
+    drmin = std::min(drmin, dr), drmax = std::max(drmax, dr);
+    const auto ex = run_exact(c);
     if (ex.series.pre.mu > 0) mu_drop = std::min(mu_drop, ex.series.mu.back() / ex.series.pre.mu);
   }
   EXPECT_LE(zmin, 1e-4);
@@ -83,19 +94,18 @@ TEST(MdrCaseSet, SetSpansTheHardRanges) {
 // solution on every scene of the set; the error estimate is honest (never
 // below the true error by more than a factor 3).
 TEST(MdrCaseSet, MeetsTolerancesOnTheHardSet) {
-  for (const auto& c : hard_case_set()) {
-    SCOPED_TRACE(c.name);
-    const Scene& s = c.scene;
-    const Protocol p = default_protocol(s);
-    const auto ref = run_exact(s, p, 1e-12);
-    const auto def = run_case(s, p, SolverKind::Auto, 1e-4);
-    EXPECT_LE(case_error(def.series, ref.series, s).max(), 1e-4);
+  for (const auto& nc : hard_case_set()) {
+    SCOPED_TRACE(nc.name);
+    const Case& c = nc.c;
+    const auto ref = run_exact(c, 1e-12);
+    const auto def = run_case(c, SolverKind::Auto, 1e-4);
+    EXPECT_LE(case_error(def.series, ref.series, c).max(), 1e-4);
     for (double rtol : {1e-2, 1e-3, 1e-4}) {
       MdrOptions o;
       o.rtol = rtol;
-      const auto r = run_mdr(s, p, o);
+      const auto r = run_mdr(c, o);
       ASSERT_TRUE(all_finite(r.series));
-      const double err = case_error(r.series, ref.series, s).max();
+      const double err = case_error(r.series, ref.series, c).max();
       EXPECT_LE(err, rtol) << "rtol " << rtol << " cells " << r.info.cells_per_a1;
       EXPECT_GE(3.0 * r.info.error_estimate, err - 1e-13) << "rtol " << rtol;
     }
@@ -109,11 +119,10 @@ TEST(MdrCaseSet, MeetsTolerancesOnTheHardSet) {
 // for the step protocol, so its error must stay at rounding level.
 TEST(MdrConvergence, ObservedOrderInDx) {
   const std::vector<double> cells = {50, 100, 200, 400, 800, 1600};
-  const Scene scenes[] = {scene(1.0, 0.01), scene(1e4, 0.0), scene(0.5, 0.4, 0.3),
-                          scene(3.0, 1e-3, 1e-6)};
-  for (const Scene& s : scenes) {
-    const Protocol p = default_protocol(s);
-    const auto ref = run_exact(s, p, 1e-12);
+  const Case scenes[] = {scene(1.0, 0.01), scene(1e4, 0.0), scene(0.5, 0.4, 0.3),
+                         scene(3.0, 1e-3, 1e-6)};
+  for (const Case& c : scenes) {
+    const auto ref = run_exact(c, 1e-12);
     for (MdrSubgrid mode : {MdrSubgrid::None, MdrSubgrid::Linear, MdrSubgrid::Exponential}) {
       std::vector<double> err;
       for (double n : cells) {
@@ -121,12 +130,12 @@ TEST(MdrConvergence, ObservedOrderInDx) {
         o.cells_per_a1 = n;
         o.subgrid = mode;
         o.estimate_error = false;
-        err.push_back(case_error(run_mdr(s, p, o).series, ref.series, s).max());
+        err.push_back(case_error(run_mdr(c, o).series, ref.series, c).max());
       }
       const char* name = mode == MdrSubgrid::None     ? "paper raw sums"
                          : mode == MdrSubgrid::Linear ? "linear edge"
                                                       : "log-linear edge";
-      std::printf("zeta=%-6g v1/v=%-6g %-16s errors:", zeta(s), s.v1 / s.v, name);
+      std::printf("zeta=%-6g v1/v=%-6g %-16s errors:", zeta0(c), v1_of(c) / c.history.v0, name);
       for (double e : err)
         std::printf(" %.2e", e);
       if (mode == MdrSubgrid::Exponential) {
@@ -154,22 +163,21 @@ TEST(MdrConvergence, ObservedOrderInDx) {
 // converge to it at first order.
 TEST(MdrStationary, DiscreteRunMatchesEquations7To10) {
   for (double z : {1e-3, 0.1, 1.0, 10.0, 1e5}) {
-    const Scene s = scene(z, 0.5);
-    const Protocol p = default_protocol(s, 3);
-    const State an = analytic::stationary(s, s.v);
+    const Case c = sampled(scene(z, 0.5), 3);
+    const State an = analytic::stationary(c, c.history.v0);
     MdrOptions o;
     o.cells_per_a1 = 64;
     o.estimate_error = false;
-    const State pre = run_mdr(s, p, o).series.pre;
+    const State pre = run_mdr(c, o).series.pre;
     EXPECT_NEAR(pre.FN / an.FN, 1.0, 1e-12) << z;
     EXPECT_NEAR(pre.Fx / an.Fx, 1.0, 1e-9) << z;
-    EXPECT_NEAR(pre.a2 / analytic::a1(s), an.a2 / analytic::a1(s), 1e-14) << z;
+    EXPECT_NEAR(pre.a2 / analytic::a1(c), an.a2 / analytic::a1(c), 1e-14) << z;
     o.subgrid = MdrSubgrid::None;
     o.phase = 0.2137; // not aligned with the cells: the generic first-order case
     std::vector<double> ns, es;
     for (double n : {100.0, 200.0, 400.0, 800.0, 1600.0}) {
       o.cells_per_a1 = n;
-      const State raw = run_mdr(s, p, o).series.pre;
+      const State raw = run_mdr(c, o).series.pre;
       const double e = std::abs(raw.FN / an.FN - 1.0);
       EXPECT_LT(e, 4.0 / n) << "first-order raw sum, z=" << z;
       ns.push_back(n), es.push_back(e);
@@ -181,33 +189,34 @@ TEST(MdrStationary, DiscreteRunMatchesEquations7To10) {
 // Starting from an undeformed foundation and sliding 2 a1 must reproduce
 // the stationary start exactly (every element then entered fresh).
 TEST(MdrSpinup, ReproducesTheStationaryStart) {
-  for (const Scene& s : {scene(1.0, 0.01), scene(1e3, 0.0), scene(0.01, 2.0), scene(1e-4, 0.5)}) {
-    const Protocol p = default_protocol(s, 41);
+  for (const Case& c0 : {scene(1.0, 0.01), scene(1e3, 0.0), scene(0.01, 2.0), scene(1e-4, 0.5)}) {
+    const Case c = sampled(c0, 41);
     MdrOptions o;
     o.cells_per_a1 = 100;
     o.estimate_error = false;
-    const auto direct = run_mdr(s, p, o);
+    const auto direct = run_mdr(c, o);
     o.spinup = true;
-    const auto spun = run_mdr(s, p, o);
+    const auto spun = run_mdr(c, o);
     // Same state up to rounding: the spun-up tail is built by stepping
     // (products of exp(-dt/tau)), the direct one from the closed form.
     EXPECT_NEAR(spun.series.pre.FN / direct.series.pre.FN, 1.0, 1e-12);
-    EXPECT_LE(case_error(spun.series, direct.series, s).max(), 1e-10);
+    EXPECT_LE(case_error(spun.series, direct.series, c).max(), 1e-10);
   }
 }
 
 // The state reported at t = 0+ is the jump of eqs. (15)/(16) for a drop, the
 // stationary state at v1 for a rise.
 TEST(MdrStep, StateJustAfterTheStep) {
-  for (const Scene& s : {scene(1.0, 0.1), scene(50.0, 0.0), scene(1.0, 3.0), scene(1e-2, 1e-3)}) {
+  for (const Case& c0 : {scene(1.0, 0.1), scene(50.0, 0.0), scene(1.0, 3.0), scene(1e-2, 1e-3)}) {
+    const Case c = sampled(c0, 5);
     MdrOptions o;
     o.cells_per_a1 = 40;
     o.estimate_error = false;
-    const auto r = run_mdr(s, default_protocol(s, 5), o);
-    const State j = analytic::jump(s);
+    const auto r = run_mdr(c, o);
+    const State j = analytic::jump(c, c.history.v0, v1_of(c));
     EXPECT_NEAR(r.series.FN[0] / j.FN, 1.0, 1e-12);
     EXPECT_NEAR(r.series.Fx[0] / j.Fx, 1.0, 1e-9);
-    EXPECT_NEAR(r.series.a2[0] / analytic::a1(s), j.a2 / analytic::a1(s), 1e-13);
+    EXPECT_NEAR(r.series.a2[0] / analytic::a1(c), j.a2 / analytic::a1(c), 1e-13);
   }
 }
 
@@ -218,8 +227,8 @@ TEST(MdrMemory, IndependentOfTravelAndVelocityRatio) {
   o.cells_per_a1 = 200;
   o.estimate_error = false;
   long elements = -1;
-  for (const Scene& s : {scene(1e8, 1.0), scene(1e-6, 1.0), scene(1e3, 1e-8), scene(1.0, 100.0)}) {
-    const auto r = run_mdr(s, default_protocol(s), o);
+  for (const Case& c : {scene(1e8, 1.0), scene(1e-6, 1.0), scene(1e3, 1e-8), scene(1.0, 100.0)}) {
+    const auto r = run_mdr(c, o);
     ASSERT_TRUE(all_finite(r.series));
     if (elements < 0) elements = r.info.elements;
     EXPECT_EQ(r.info.elements, elements);
@@ -231,27 +240,29 @@ TEST(MdrMemory, IndependentOfTravelAndVelocityRatio) {
 // (zeta, zeta1, t/tau) only. The discrete run at the same a1/dx and phase is
 // a function of the same variables.
 TEST(MdrSimilarity, DimensionlessResultsDependOnZetaOnly) {
-  const Scene base = scene(2.0, 0.05);
+  const Case base = scene(2.0, 0.05);
   MdrOptions o;
   o.cells_per_a1 = 60;
   o.estimate_error = false;
-  const auto r0 = run_mdr(base, default_protocol(base), o);
+  const auto r0 = run_mdr(base, o);
+  const double d0 = base.loading.d, R0 = base.indenter.R, G0 = base.material.G;
+  const double tau0 = base.material.tau, a10 = analytic::a1(base);
   const double scales[][4] = {{1e-4, 3.0, 7.0, 1e3}, {1e3, 1e-2, 1e6, 1e-3}, {0.3, 20.0, 2.0, 5.0}};
   for (const auto& k : scales) {
-    Scene s = base; // d scaled by k0, R by k1, G by k2, tau by k3, velocities keep zeta
-    s.d *= k[0], s.R *= k[1], s.G *= k[2], s.tau *= k[3];
-    const double a1 = analytic::a1(s), a10 = analytic::a1(base);
-    s.v = zeta(base) * a1 / s.tau;
-    s.v1 = zeta1(base) * a1 / s.tau;
-    const auto r = run_mdr(s, default_protocol(s), o);
+    // d scaled by k0, R by k1, G by k2, tau by k3 (the window stays 6 tau),
+    // velocities keep zeta and zeta1
+    const double d = d0 * k[0], R = R0 * k[1], G = G0 * k[2], tau = tau0 * k[3];
+    Case c = step_case(d, R, tau, 1.0, 1.0, G);
+    const double a1 = analytic::a1(c);
+    testing::set_velocities(c, zeta0(base) * a1 / tau, zeta1(base) * a1 / tau);
+    const auto r = run_mdr(c, o);
     for (std::size_t i = 0; i < r.series.size(); ++i) {
-      EXPECT_NEAR(r.series.t[i] / s.tau, r0.series.t[i] / base.tau, 1e-12);
-      EXPECT_NEAR(r.series.FN[i] / (s.G * a1 * s.d), r0.series.FN[i] / (base.G * a10 * base.d),
-                  1e-10 * r0.series.FN[0] / (base.G * a10 * base.d));
-      EXPECT_NEAR(r.series.Fx[i] / (s.G * s.d * s.d), r0.series.Fx[i] / (base.G * base.d * base.d),
-                  1e-10 * r0.series.Fx[0] / (base.G * base.d * base.d));
-      EXPECT_NEAR(r.series.mu[i] / std::sqrt(s.d / s.R),
-                  r0.series.mu[i] / std::sqrt(base.d / base.R), 1e-10);
+      EXPECT_NEAR(r.series.t[i] / tau, r0.series.t[i] / tau0, 1e-12);
+      EXPECT_NEAR(r.series.FN[i] / (G * a1 * d), r0.series.FN[i] / (G0 * a10 * d0),
+                  1e-10 * r0.series.FN[0] / (G0 * a10 * d0));
+      EXPECT_NEAR(r.series.Fx[i] / (G * d * d), r0.series.Fx[i] / (G0 * d0 * d0),
+                  1e-10 * r0.series.Fx[0] / (G0 * d0 * d0));
+      EXPECT_NEAR(r.series.mu[i] / std::sqrt(d / R), r0.series.mu[i] / std::sqrt(d0 / R0), 1e-10);
       EXPECT_NEAR(r.series.a2[i] / a1, r0.series.a2[i] / a10, 1e-12);
     }
   }
@@ -262,26 +273,28 @@ TEST(MdrHardCases, NoNaNNoBlowUp) {
   for (double z : {1e-4, 1e-3, 1e-1, 1.0, 1e2, 1e4, 1e6, 1e8}) {
     for (double q : {0.0, 1e-8, 1e-4, 0.3, 1.0, 2.0, 1e2}) {
       for (double dr : {1e-12, 1e-3, 0.3}) {
-        const Scene s = scene(z, q, dr);
+        const Case c = sampled(scene(z, q, dr), 51);
         MdrOptions o;
         o.rtol = 1e-3;
-        const auto r = run_mdr(s, default_protocol(s, 51), o);
+        const auto r = run_mdr(c, o);
         ASSERT_TRUE(all_finite(r.series)) << z << " " << q << " " << dr;
         for (std::size_t k = 0; k < r.series.size(); ++k) {
           EXPECT_GT(r.series.FN[k], 0.0);
           EXPECT_GE(r.series.a2[k], 0.0);
-          EXPECT_LE(r.series.a2[k], analytic::a1(s) * (1 + 1e-15));
+          EXPECT_LE(r.series.a2[k], analytic::a1(c) * (1 + 1e-15));
         }
       }
     }
   }
-  Scene s = scene(1.0, 0.5);
-  s.tau = 0.0; // elastic limit: valid, Hertz
+  const Case base = scene(1.0, 0.5);
   for (double v1 : {0.0, 0.01, 10.0}) {
-    s.v1 = v1;
-    const auto r = run_mdr(s, default_protocol(s, 11), MdrOptions{});
+    // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
+    const Case c = step_case(base.loading.d, base.indenter.R, 0.0, base.history.v0, v1,
+                             base.material.G, 0.0, 11);
+    const auto r = run_mdr(c, MdrOptions{});
     ASSERT_TRUE(all_finite(r.series));
-    const double hertz = 16.0 / 3.0 * s.G * std::sqrt(s.R) * std::pow(s.d, 1.5);
+    const double hertz =
+        16.0 / 3.0 * c.material.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
     for (std::size_t k = 0; k < r.series.size(); ++k) {
       EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
       EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);
@@ -295,21 +308,21 @@ TEST(MdrHardCases, NoNaNNoBlowUp) {
 // own accuracy at N cells is about |b(N/4) - b(N)| / 3; the continuum
 // solution must agree with b(N) to within that, and b must approach it.
 TEST(MdrBruteForce, ContinuumSolutionWithinTheDiscreteRunsOwnAccuracy) {
-  const Scene scenes[] = {scene(0.5, 0.1), scene(2.0, 0.0), scene(1.0, 3.0), scene(0.2, 0.5, 0.1),
-                          scene(1.0, 1e-3, 1e-6)};
-  for (const Scene& s : scenes) {
-    const Protocol p = default_protocol(s, 61);
-    const auto ex = run_exact(s, p, 1e-12);
+  const Case scenes[] = {scene(0.5, 0.1), scene(2.0, 0.0), scene(1.0, 3.0), scene(0.2, 0.5, 0.1),
+                         scene(1.0, 1e-3, 1e-6)};
+  for (const Case& c0 : scenes) {
+    const Case c = sampled(c0, 61);
+    const auto ex = run_exact(c, 1e-12);
     BaselineOptions b;
     b.cells_per_a1 = 400;
-    const auto coarse = run_baseline(s, p, b);
+    const auto coarse = run_baseline(c, b);
     b.cells_per_a1 = 1600;
-    const auto fine = run_baseline(s, p, b);
-    const double own = case_error(coarse.series, fine.series, s).max();
-    const double e_fine = case_error(fine.series, ex.series, s).max();
-    const double e_coarse = case_error(coarse.series, ex.series, s).max();
+    const auto fine = run_baseline(c, b);
+    const double own = case_error(coarse.series, fine.series, c).max();
+    const double e_fine = case_error(fine.series, ex.series, c).max();
+    const double e_coarse = case_error(coarse.series, ex.series, c).max();
     std::printf("zeta=%-5g v1/v=%-6g brute force: err(400)=%.2e err(1600)=%.2e |b400-b1600|=%.2e\n",
-                zeta(s), s.v1 / s.v, e_coarse, e_fine, own);
+                zeta0(c), v1_of(c) / c.history.v0, e_coarse, e_fine, own);
     // first order: err(1600) ~ |b400 - b1600| / 3; allow the phase noise of
     // raw sums a factor 3 on top of that
     EXPECT_LE(e_fine, own);

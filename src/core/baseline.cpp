@@ -19,111 +19,161 @@ namespace mdrmap {
 
 namespace {
 
-RunResult run_baseline_once(const Scene& s, const Protocol& p, const BaselineOptions& opt) {
-  validate(p);
+/// Step counts of the fixed-step run: dt = dx / (steps_per_cell * the
+/// largest velocity of the history), each segment cut into whole steps.
+struct Grid {
+  double dt = 0.0;
+  long n_pre = 0;
+  std::vector<long> n_seg;
+  double travel = 0.0; ///< over the spin-up and the history
+  std::size_t n_elem = 0;
+};
+
+Grid make_grid(const Case& c, const BaselineOptions& opt) {
   if (!(opt.cells_per_a1 >= 2.0) || !(opt.spinup_travel >= 2.0) || !(opt.steps_per_cell > 0.0))
     throw InvalidInput("cells-per-a1", "baseline needs cells_per_a1 >= 2, spin-up >= 2 a1");
-  const double a1 = analytic::a1(s);
-  const double dx = a1 / opt.cells_per_a1;
-  const double dt = dx / (opt.steps_per_cell * s.v);
-  const double n_pre_d = std::ceil(opt.spinup_travel * a1 / (s.v * dt));
-  const double n_post_d = std::ceil(p.t_end / dt);
-  const double travel = s.v * dt * n_pre_d + s.v1 * dt * n_post_d;
-  const double n_elem_d = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
-  if (!std::isfinite(n_elem_d) || !std::isfinite(n_pre_d) || !std::isfinite(n_post_d))
-    throw std::runtime_error("baseline: the scene's length and time scales are too far apart "
+  const double a1 = c.a1(), dx = a1 / opt.cells_per_a1, v0 = c.history.v0;
+  double wmax = v0;
+  for (const auto& seg : c.history.segments)
+    wmax = std::max(wmax, seg.w);
+  Grid g;
+  g.dt = dx / (opt.steps_per_cell * wmax);
+  const double n_pre = std::ceil(opt.spinup_travel * a1 / (v0 * g.dt));
+  double steps = n_pre, travel = v0 * g.dt * n_pre;
+  std::vector<double> n_seg;
+  for (const auto& seg : c.history.segments) {
+    n_seg.push_back(std::max(1.0, std::ceil(seg.T / g.dt)));
+    steps += n_seg.back();
+    travel += seg.w * seg.T;
+  }
+  const double n_elem = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
+  if (!std::isfinite(n_elem) || !std::isfinite(steps))
+    throw std::runtime_error("baseline: the case's length and time scales are too far apart "
                              "for the fixed-step method (step counts not representable)");
-  if (!(n_elem_d <= static_cast<double>(opt.max_elements)) || !(n_post_d <= 1e9) ||
-      !(n_pre_d <= 1e9) || !(n_elem_d * (n_post_d + n_pre_d) <= 1e12))
-    throw std::runtime_error("baseline: the scene needs " + format_number(n_elem_d) +
-                             " elements and " + format_number(n_post_d) +
-                             " steps after the step; too expensive for the fixed-step method");
-  const auto n_elem = static_cast<std::size_t>(n_elem_d);
-  const auto n_post = static_cast<long>(n_post_d);
-  const auto n_pre = static_cast<long>(n_pre_d);
+  if (!(n_elem <= static_cast<double>(opt.max_elements)) || !(steps <= 1e9) ||
+      !(n_elem * steps <= 1e12))
+    throw std::runtime_error("baseline: the case needs " + format_number(n_elem) +
+                             " elements and " + format_number(steps) +
+                             " steps; too expensive for the fixed-step method");
+  g.n_pre = static_cast<long>(n_pre);
+  for (double n : n_seg)
+    g.n_seg.push_back(static_cast<long>(n));
+  g.travel = travel;
+  g.n_elem = static_cast<std::size_t>(n_elem);
+  return g;
+}
 
-  // Lab positions: x_i = x0 + i dx; the indenter coordinate is xi = x + s(t),
-  // with s(0) = 0 at the velocity step.
-  const double s_start = -s.v * dt * static_cast<double>(n_pre);
-  const double x0 = -a1 - s.v1 * dt * n_post_d - 2.0 * dx;
-  std::vector<double> u(n_elem, 0.0);
-  std::vector<unsigned char> contact(n_elem, 0);
-  const double dec = s.tau > 0.0 ? std::exp(-dt / s.tau) : 0.0;
-  auto h = [&](double x) { return (a1 - x) * (a1 + x) / s.R; };
+/// The element row over the whole travel path.
+struct Row {
+  const Case& c;
+  double a1, dx, x0;
+  std::vector<double> u;
+  std::vector<unsigned char> contact;
 
-  auto step = [&](double sp, double w) {
-    for (std::size_t i = 0; i < n_elem; ++i) {
-      const double xi = x0 + static_cast<double>(i) * dx + sp;
-      const double hi = h(xi);
+  double h(double x) const { return (a1 - x) * (a1 + x) / c.indenter.R; }
+  double force(double xi, double w) const { // per element / dx
+    return 4.0 * c.material.G * (h(xi) - c.material.tau * w * c.indenter.slope(xi));
+  }
+  double xi(std::size_t i, double sp) const { return x0 + static_cast<double>(i) * dx + sp; }
+
+  void step(double sp, double w, double dec) {
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      const double x = xi(i, sp), hi = h(x);
       if (contact[i]) {
-        if (hi - s.tau * w * 2.0 * xi / s.R < 0.0 || xi > a1) contact[i] = 0; // force < 0
+        if (force(x, w) < 0.0 || x > a1) contact[i] = 0;
         u[i] = hi;
       } else {
         u[i] *= dec;
-        if (hi >= u[i] && xi >= -a1 && xi <= a1) {
+        if (hi >= u[i] && x >= -a1 && x <= a1) {
           contact[i] = 1;
           u[i] = hi;
         }
       }
     }
-  };
-  auto measure = [&](double sp, double w) {
-    State st;
+  }
+  /// A velocity change takes no time: elements whose force turns negative let go.
+  void change(double sp, double w) {
+    for (std::size_t i = 0; i < u.size(); ++i)
+      if (contact[i] && force(xi(i, sp), w) < 0.0) contact[i] = 0;
+  }
+  State measure(double sp, double w) const {
     double sN = 0.0, sX = 0.0, a2 = -a1;
-    for (std::size_t i = 0; i < n_elem; ++i) {
+    for (std::size_t i = 0; i < u.size(); ++i) {
       if (!contact[i]) continue;
-      const double xi = x0 + static_cast<double>(i) * dx + sp;
-      const double f = 4.0 * s.G * (h(xi) - s.tau * w * 2.0 * xi / s.R);
+      const double x = xi(i, sp), f = force(x, w);
       sN += f;
-      sX += f * (-2.0 * xi / s.R);
-      a2 = std::max(a2, xi);
+      sX += f * (-c.indenter.slope(x));
+      a2 = std::max(a2, x);
     }
+    State st;
     st.FN = sN * dx;
     st.Fx = sX * dx;
     st.mu = st.Fx / st.FN;
     st.a2 = a2;
     return st;
-  };
+  }
+};
 
+RunResult run_baseline_once(const Case& c, const BaselineOptions& opt) {
+  const Grid g = make_grid(c, opt);
+  const double a1 = c.a1(), dx = a1 / opt.cells_per_a1, v0 = c.history.v0;
+  // Lab positions x_i = x0 + i dx; the indenter coordinate is xi = x + s(t),
+  // with s = 0 at the first change.
+  Row row{c,
+          a1,
+          dx,
+          -a1 - (g.travel - v0 * g.dt * static_cast<double>(g.n_pre)) - 2.0 * dx,
+          std::vector<double>(g.n_elem, 0.0),
+          std::vector<unsigned char>(g.n_elem, 0)};
+  auto decay = [&](double dt) {
+    return c.material.tau > 0.0 ? std::exp(-dt / c.material.tau) : 0.0;
+  };
   RunResult res;
   res.info.solver = "baseline";
   res.info.cells_per_a1 = opt.cells_per_a1;
-  res.info.elements = static_cast<long>(n_elem);
-  for (long k = 1; k <= n_pre; ++k)
-    step(s_start + s.v * dt * static_cast<double>(k), s.v);
-  res.series.pre = measure(0.0, s.v);
-  // The step itself takes no time: elements whose force turns negative at v1
-  // let go, nothing relaxes.
-  for (std::size_t i = 0; i < n_elem; ++i) {
-    const double xi = x0 + static_cast<double>(i) * dx;
-    if (contact[i] && h(xi) - s.tau * s.v1 * 2.0 * xi / s.R < 0.0) contact[i] = 0;
+  res.info.elements = static_cast<long>(g.n_elem);
+  const double s_start = -v0 * g.dt * static_cast<double>(g.n_pre);
+  for (long k = 1; k <= g.n_pre; ++k)
+    row.step(s_start + v0 * g.dt * static_cast<double>(k), v0, decay(g.dt));
+  res.series.pre = row.measure(0.0, v0);
+  res.series.resize(c.total_samples());
+  double sp = 0.0;
+  long steps = g.n_pre;
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double dt = seg.T / static_cast<double>(g.n_seg[k]), dec = decay(dt);
+    const double t0 = c.history.start(k), sp0 = sp;
+    row.change(sp, seg.w);
+    long done = 0;
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      const long target = std::min(g.n_seg[k], static_cast<long>(std::llround(off / dt)));
+      for (; done < target; ++done)
+        row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);
+      sp = sp0 + seg.w * dt * static_cast<double>(done);
+      res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
+    }
+    for (; done < g.n_seg[k]; ++done) // (the last sample ends the segment already)
+      row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);
+    sp = sp0 + seg.w * seg.T;
+    steps += done;
   }
-  const auto n = static_cast<std::size_t>(p.samples);
-  res.series.resize(n);
-  long done = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = p.time(static_cast<long>(k));
-    const auto target = static_cast<long>(std::llround(t / dt)); // nearest step
-    for (; done < std::min(target, n_post); ++done)
-      step(s.v1 * dt * static_cast<double>(done + 1), s.v1);
-    res.series.set(k, t, measure(s.v1 * dt * static_cast<double>(done), s.v1));
-  }
-  res.info.steps = n_pre + done;
-  res.info.element_updates = static_cast<long>(n_elem) * (n_pre + done + 1);
+  res.info.steps = steps;
+  res.info.element_updates = static_cast<long>(g.n_elem) * (steps + 1);
   return res;
 }
 
 } // namespace
 
-RunResult run_baseline(const Scene& s, const Protocol& p, const BaselineOptions& opt) {
+RunResult run_baseline(const Case& s, const BaselineOptions& opt) {
   validate(s);
-  validate(p);
-  RunResult res = run_baseline_once(s, p, opt);
+  RunResult res = run_baseline_once(s, opt);
   if (opt.estimate_error) {
     // First order: the difference to a half-resolution run is about the error.
     BaselineOptions half = opt;
     half.cells_per_a1 = std::max(2.0, 0.5 * opt.cells_per_a1);
-    const RunResult coarse = run_baseline_once(s, p, half);
+    const RunResult coarse = run_baseline_once(s, half);
     res.info.error_estimate = case_error(coarse.series, res.series, s, 1e-12).max();
     res.info.steps += coarse.info.steps;
     res.info.element_updates += coarse.info.element_updates;

@@ -6,15 +6,22 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "core/case.hpp"
 
 namespace mdrmap {
 
-struct NamedScene {
+struct NamedCase {
   std::string name;
-  Scene scene;
+  Case c;
 };
 
-std::vector<NamedScene> hard_case_set();
+/// The seed's one-step experiment over the hard ranges (42 cases).
+std::vector<NamedCase> hard_case_set();
+
+/// Velocity histories over the hard ranges (docs/design.md, "Case sets"):
+/// two and three drops, drop-rise-drop, holds from 1e-6 to 1e6 tau and
+/// reslides, holds inside transients, 20 alternating segments, velocity
+/// ratios 1e-8 to 1e8, tau = 0, d/R from 1e-12 to 0.3. `samples` per segment.
+std::vector<NamedCase> history_case_set(long samples = 61);
 
 } // namespace mdrmap

@@ -36,9 +36,9 @@ CaseError case_error(const Series& run, const Series& ref, double a1) {
   return e;
 }
 
-CaseError case_error(const Series& run, const Series& ref, const Scene& s, double floor_rel) {
-  CaseError e = case_error(run, ref, contact_radius(s));
-  const double mu_scale = std::sqrt(s.d / s.R);
+CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel) {
+  CaseError e = case_error(run, ref, c.a1());
+  const double mu_scale = std::sqrt(c.loading.d / c.indenter.R);
   double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     fn_max = std::max(fn_max, std::abs(ref.FN[k]));

@@ -1,5 +1,5 @@
 #pragma once
-// The error contract of DESIGN.md section 2.
+// The error contract (docs/design.md, "Error metric").
 #include "core/solver.hpp"
 
 namespace mdrmap {
@@ -19,6 +19,6 @@ CaseError case_error(const Series& run, const Series& ref, double a1);
 /// F_x and mu denominators are also at least floor_rel times those scales:
 /// comparing two runs whose F_x is rounding noise over zero then stays
 /// meaningful (each element term carries ~1e-16 of the scale).
-CaseError case_error(const Series& run, const Series& ref, const Scene& s, double floor_rel = 0.0);
+CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel = 0.0);
 
 } // namespace mdrmap

@@ -1,44 +1,98 @@
 #pragma once
-// Continuum (dx -> 0) solution of the MDR model for the velocity step.
+// Continuum (dx -> 0) solution of the MDR model at fixed depth, for any
+// piecewise-constant velocity history (docs/design.md, "The exact solution").
 //
-// After a drop v -> v1 < v the contact set is [-a1, a2(t)], every element in it
-// follows the indenter at v1, and a2(t) = min(a2(v1), a2v + y(t)), where y is
-// the root of a scalar equation: in the moving frame the free tail left behind
-// by stationary sliding is h(a2v) exp(-(x - a2v)/(v tau)) scaled by
-// c(t) = exp(-(1 - v1/v) t / tau), and material touches the indenter again
-// where that falls below the indenter's depth h(x) = d - x^2/R. The set where
-// it does is an interval (log h is concave, log of the tail is linear), so the
-// trailing edge is its right end. The forces are the closed-form integrals
-// analytic::contact_forces. A rise (v1 > v) or tau = 0 reaches the stationary
-// state at v1 at once.
+// Every element in contact follows the indenter, so its force per unit length
+// p = 4G/R (a1^2 - x^2 - 2 w tau x) depends on its position x in the frame of
+// the indenter and on the current velocity w only. The contact set is one
+// interval [-a1, e(t)], so the forces are the closed-form integrals
+// analytic::contact_forces(e, w) and the whole problem is the trailing edge
+// e(t) = min(cap(w), front), cap(w) = a2(w) (a1 during a hold). The front is
+// where the free material behind the contact touches the indenter again. The
+// free material is held as a list of pieces, each in closed form:
+//  - Exp:  material that left contact at the cap while sliding at w_c: a free
+//          depression A exp(-(x - xa)/lambda), lambda = w_c tau;
+//  - Quad: material that let go at once at a velocity rise (or a restart after
+//          a hold): u = C h(x - D), the indenter depth where it let go, decayed
+//          by C and carried a distance D.
+// On each piece the gap function psi = h - u is concave, so the front is
+// found by walking the pieces and solving one scalar root (closed form on a
+// Quad piece). Segment boundaries are processed once; samples are then
+// independent evaluations.
+#include <vector>
+
 #include "core/solver.hpp"
 
 namespace mdrmap {
 
+/// One piece of free material behind the trailing edge, at a segment start.
+struct TailPiece {
+  enum class Kind { Exp, Quad } kind = Kind::Exp;
+  double lo = 0.0, hi = 0.0; ///< extent in the frame of the indenter (hi may be +inf)
+  // Exp: u(x) = A exp(-(x - xa)/lam); psi(xa + y) = c0 - c1 y - y^2 (1/R + A phi2(y/lam)/lam^2)
+  // with c0 = h(xa) - A and c1 = g'(xa) - A/lam carried along without cancellation.
+  double xa = 0.0, A = 0.0, lam = 0.0, c0 = 0.0, c1 = 0.0;
+  double a1_minus_xa = 0.0; ///< a1 - xa without cancellation (edges near a1 at small zeta)
+  // Quad: u(x) = C h(x - D); one_minus_C = 1 - C without cancellation.
+  double C = 1.0, one_minus_C = 0.0, D = 0.0;
+};
+
+/// The state at the start of a segment: its velocity, its cap, the free
+/// material behind the edge (sorted outward, contiguous, starting at the edge).
+struct SegmentStart {
+  double w = 0.0;
+  double cap = 0.0;          ///< a2(w), the force-zero point; a1 for a hold
+  double a1_minus_cap = 0.0; ///< a1 - cap without cancellation
+  State at_cap;              ///< the stationary state at w: the state while the edge is at the cap
+  std::vector<TailPiece> tail;
+};
+
 class ExactSolution {
 public:
-  /// `bits`: binary digits the trailing-edge root is solved to (<= 52).
-  explicit ExactSolution(const Scene& s, int bits = 50);
+  /// `bits`: binary digits the trailing-edge roots are solved to (<= 52).
+  explicit ExactSolution(const Case& c, int bits = 50);
 
+  /// Stationary state at v0 before t = 0.
   State pre() const { return pre_; }
-  /// State at time t >= 0 after the step (t = 0 is just after it).
+  /// State in segment k at time `offset` after its start (0: just after the
+  /// change). The last segment continues past its end.
+  State at(std::size_t k, double offset) const;
+  /// State at time t >= 0 since the first change; at a change, just after it.
   State at(double t) const;
-  /// Bound on |a2 error| / a1 of the last call to at() (root bracket width).
+  /// Bound on |e error| (length) of the last call to at(): root bracket width.
   double last_bracket() const { return last_bracket_; }
   long root_solves() const { return root_solves_; }
+  /// Pieces of free material at the start of segment k (for tests).
+  const SegmentStart& segment_start(std::size_t k) const { return starts_[k]; }
+  /// Trailing edge (front) in segment k at `offset`, the cap included.
+  double edge(std::size_t k, double offset) const;
+  /// Largest gap h - u of the free material beyond the edge, over `points`
+  /// instants per piece up to min(a1, its end), relative to h(0) = d. Negative
+  /// means the contact is one interval: nothing behind the edge touches.
+  double max_gap_beyond_edge(std::size_t k, double offset, int points) const;
 
 private:
-  Scene s_;
+  struct Edge {
+    double e, a1_minus_e;
+    bool at_cap;
+  };
+  Edge front(const SegmentStart& seg, double offset) const;
+  double cap_time(const SegmentStart& seg, double T) const;
+  SegmentStart next_start(const SegmentStart& seg, double T, double w_next) const;
+  SegmentStart make_start(double w, std::vector<TailPiece> tail, double edge) const;
+
+  Case c_;
   int bits_;
-  State pre_, post_;
-  double a1_ = 0, a2v_ = 0, a2v1_ = 0, a1_minus_a2v_ = 0, a1_minus_a2v1_ = 0, h_a2v_ = 0, L_ = 0;
-  bool transient_ = false;
+  double a1_ = 0.0;
+  State pre_;
+  std::vector<SegmentStart> starts_;
+  std::vector<double> t_start_;
   mutable double last_bracket_ = 0.0;
   mutable long root_solves_ = 0;
 };
 
-/// Samples the continuum solution at the protocol's instants. rtol sets the
-/// root tolerance; info.error_estimate bounds the case error.
-RunResult run_exact(const Scene& s, const Protocol& p, double rtol = 1e-12);
+/// Samples the continuum solution at the case's instants. rtol sets the root
+/// tolerance; info.error_estimate bounds the case error.
+RunResult run_exact(const Case& c, double rtol = 1e-12);
 
 } // namespace mdrmap

@@ -49,7 +49,7 @@ struct Sample {
 
 class MdrRow {
 public:
-  MdrRow(const Scene& s, double cells_per_a1, double phase, MdrSubgrid subgrid)
+  MdrRow(const Case& s, double cells_per_a1, double phase, MdrSubgrid subgrid)
       : s_(s), a1_(analytic::a1(s)), dx_(a1_ / cells_per_a1), phase_(phase), subgrid_(subgrid) {
     cap_ = static_cast<std::size_t>(std::floor(2.0 * cells_per_a1)) + 5;
     uf_.assign(cap_, 0.0);
@@ -66,8 +66,8 @@ public:
     w_ = w;
     set_position(P);
     const double a2w = analytic::a2_stationary(s_, w);
-    const double L = w * s_.tau;
-    const double h_a2 = 2.0 * a2w * L / s_.R; // h(a2w) by the force-zero condition
+    const double L = w * s_.material.tau;
+    const double h_a2 = 2.0 * a2w * L / s_.indenter.R; // h(a2w) by the force-zero condition
     for (long long j = jlo_; j <= jhi_; ++j) {
       const double x = xi(j);
       const std::size_t k = slot(j);
@@ -179,7 +179,8 @@ public:
     }
     const double xr = trailing_edge_between(jb, a2w);
     st.FN = integrate(ja, jb, xr, [&](double x) { return pressure(x); });
-    st.Fx = integrate(ja, jb, xr, [&](double x) { return pressure(x) * (-2.0 * x / s_.R); });
+    st.Fx =
+        integrate(ja, jb, xr, [&](double x) { return pressure(x) * (-2.0 * x / s_.indenter.R); });
     st.mu = st.Fx / st.FN;
     st.a2 = xr;
     return st;
@@ -265,13 +266,13 @@ private:
   }
 
   double decay(double dt) const {
-    if (s_.tau > 0.0) return std::exp(-dt / s_.tau);
+    if (s_.material.tau > 0.0) return std::exp(-dt / s_.material.tau);
     return dt > 0.0 ? 0.0 : 1.0;
   }
 
-  double h(double x) const { return (a1_ - x) * (a1_ + x) / s_.R; }
+  double h(double x) const { return (a1_ - x) * (a1_ + x) / s_.indenter.R; }
   double pressure(double x) const { // contact force per unit length
-    return 4.0 * s_.G * (h(x) - s_.tau * w_ * 2.0 * x / s_.R);
+    return 4.0 * s_.material.G * (h(x) - s_.material.tau * w_ * 2.0 * x / s_.indenter.R);
   }
 
   void set_position(long double P) {
@@ -370,7 +371,7 @@ private:
     return 0.5 * (r.first + r.second);
   }
 
-  Scene s_;
+  Case s_;
   double a1_, dx_, phase_;
   MdrSubgrid subgrid_;
   std::size_t cap_;
@@ -394,47 +395,60 @@ struct SingleRun {
   long elements = 0, steps = 0, updates = 0;
 };
 
-SingleRun run_once(const Scene& s, const Protocol& p, double cells, const MdrOptions& opt) {
-  const double a1 = analytic::a1(s);
-  const double dx = a1 / cells;
-  // Element ids are 64-bit integers counted from the travel in cells: refuse
-  // travel they cannot index (absurd scenes, e.g. v1 tau / a1 = 1e300).
-  const double travel_cells = (s.v1 * p.t_end) / dx + 2.0 * cells + 4.0;
-  if (!(travel_cells < 1e18))
-    throw std::runtime_error("mdr: the indenter travels " + format_number(travel_cells) +
-                             " cells after the step, more than the element row can count "
+/// Travel over the whole history, in cells: element ids are 64-bit integers
+/// counted from it, so absurd scenes (e.g. w tau / a1 = 1e300) are refused.
+void check_travel(const Case& c, double cells) {
+  const double dx = c.a1() / cells;
+  double travel = 2.0 * cells + 4.0;
+  for (const auto& seg : c.history.segments)
+    travel += seg.w * seg.T / dx;
+  if (!(travel < 1e18))
+    throw std::runtime_error("mdr: the indenter travels " + format_number(travel) +
+                             " cells over the history, more than the element row can count "
                              "(1e18); use the exact solver");
-  MdrRow row(s, cells, opt.phase, opt.subgrid);
-  if (opt.spinup) {
-    // Undeformed foundation, indenter pressed in, then sliding at v over
-    // 2 a1 + 2 dx: every element in the window has then entered fresh at the
-    // leading edge, so the stationary state must be reproduced. Several
-    // uneven steps exercise the event handling.
-    const double travel = 2.0 * a1 + 2.0 * dx;
-    row.init_undeformed(static_cast<long double>(-travel / dx));
-    row.change_velocity(s.v);
-    const int nsteps = 7;
-    const double T = travel / s.v;
-    double done = 0.0;
-    for (int i = 1; i <= nsteps; ++i) {
-      const double target = T * (static_cast<double>(i * i) / (nsteps * nsteps));
-      row.advance(target - done);
-      done = target;
-    }
-  } else {
-    row.init_stationary(s.v, 0.0L);
+}
+
+// Undeformed foundation, indenter pressed in, then sliding at v0 over
+// 2 a1 + 2 dx: every element in the window has then entered fresh at the
+// leading edge, so the stationary state must be reproduced. Several uneven
+// steps exercise the event handling.
+void spin_up(MdrRow& row, const Case& c, double cells) {
+  const double a1 = c.a1(), dx = a1 / cells;
+  const double travel = 2.0 * a1 + 2.0 * dx;
+  row.init_undeformed(static_cast<long double>(-travel / dx));
+  row.change_velocity(c.history.v0);
+  const int nsteps = 7;
+  const double T = travel / c.history.v0;
+  double done = 0.0;
+  for (int i = 1; i <= nsteps; ++i) {
+    const double target = T * (static_cast<double>(i * i) / (nsteps * nsteps));
+    row.advance(target - done);
+    done = target;
   }
+}
+
+SingleRun run_once(const Case& c, double cells, const MdrOptions& opt) {
+  check_travel(c, cells);
+  MdrRow row(c, cells, opt.phase, opt.subgrid);
+  if (opt.spinup)
+    spin_up(row, c, cells);
+  else
+    row.init_stationary(c.history.v0, 0.0L);
   SingleRun out;
-  const auto n = static_cast<std::size_t>(p.samples);
-  out.series.resize(n);
+  out.series.resize(c.total_samples());
   out.series.pre = row.measure();
-  row.change_velocity(s.v1);
-  double t_prev = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = p.time(static_cast<long>(k));
-    row.advance(t - t_prev); // exact: no steps needed between samples
-    t_prev = t;
-    out.series.set(k, t, row.measure());
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double t0 = c.history.start(k);
+    row.change_velocity(seg.w);
+    double prev = 0.0;
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      row.advance(off - prev); // exact: no steps needed between samples
+      prev = off;
+      out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
+    }
   }
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
@@ -455,9 +469,8 @@ double initial_cells(const MdrOptions& o) {
 
 } // namespace
 
-RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt) {
+RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   validate(s);
-  validate(p);
   RunResult res;
   res.info.solver = "mdr";
   res.info.rtol = opt.rtol;
@@ -467,7 +480,7 @@ RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt) {
   const bool adaptive = opt.cells_per_a1 <= 0.0;
   double prev_est = 0.0;
   for (int attempt = 0;; ++attempt) {
-    SingleRun fine = run_once(s, p, cells, opt);
+    SingleRun fine = run_once(s, cells, opt);
     res.info.steps += fine.steps;
     res.info.element_updates += fine.updates;
     res.info.refinements = attempt + 1;
@@ -475,7 +488,7 @@ RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt) {
     if (opt.estimate_error || adaptive) {
       // Companion run at half the resolution: with second-order convergence
       // the difference is ~3x the error of the fine run; report it whole.
-      SingleRun coarse = run_once(s, p, 0.5 * cells, opt);
+      SingleRun coarse = run_once(s, 0.5 * cells, opt);
       res.info.steps += coarse.steps;
       res.info.element_updates += coarse.updates;
       est = case_error(coarse.series, fine.series, s, 1e-12).max();

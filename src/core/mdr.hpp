@@ -23,6 +23,6 @@ struct MdrOptions {
 
 /// Runs the discrete model. With cells_per_a1 == 0 it picks dx from rtol and
 /// refines until its error estimate is below rtol.
-RunResult run_mdr(const Scene& s, const Protocol& p, const MdrOptions& opt);
+RunResult run_mdr(const Case& c, const MdrOptions& opt);
 
 } // namespace mdrmap

@@ -11,14 +11,16 @@ namespace mdrmap {
 
 void Series::resize(std::size_t n) {
   t.assign(n, 0.0);
+  segment.assign(n, 0);
   FN.assign(n, 0.0);
   Fx.assign(n, 0.0);
   mu.assign(n, 0.0);
   a2.assign(n, 0.0);
 }
 
-void Series::set(std::size_t k, double time, const State& st) {
+void Series::set(std::size_t k, double time, int seg, const State& st) {
   t[k] = time;
+  segment[k] = seg;
   FN[k] = st.FN;
   Fx[k] = st.Fx;
   mu[k] = st.mu;
@@ -52,26 +54,25 @@ void validate_rtol(double rtol) {
     throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
 }
 
-RunResult run_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol) {
-  validate(s);
-  validate(p);
+RunResult run_case(const Case& c, SolverKind kind, double rtol) {
+  validate(c);
   validate_rtol(rtol);
   switch (kind) {
   case SolverKind::Auto:
   case SolverKind::Exact:
-    return run_exact(s, p, rtol);
+    return run_exact(c, rtol);
   case SolverKind::Mdr: {
     MdrOptions o;
     o.rtol = rtol;
-    return run_mdr(s, p, o);
+    return run_mdr(c, o);
   }
   case SolverKind::Baseline: {
     BaselineOptions o; // first order: a1/dx ~ 1/rtol, within what a fixed-step run can afford
     o.cells_per_a1 = std::clamp(std::ceil(0.7 / rtol), 16.0, 4000.0);
-    return run_baseline(s, p, o);
+    return run_baseline(c, o);
   }
   }
-  return run_exact(s, p, rtol);
+  return run_exact(c, rtol);
 }
 
 } // namespace mdrmap

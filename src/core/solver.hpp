@@ -4,26 +4,16 @@
 #include <vector>
 
 #include "core/analytic.hpp"
-#include "core/scene.hpp"
+#include "core/case.hpp"
+#include "core/state.hpp"
 
 namespace mdrmap {
-
-/// Time series at the protocol's sample instants, and the stationary state
-/// before the step.
-struct Series {
-  State pre;
-  std::vector<double> t, FN, Fx, mu, a2;
-  void resize(std::size_t n);
-  void set(std::size_t k, double time, const State& st);
-  State at(std::size_t k) const { return State{FN[k], Fx[k], mu[k], a2[k]}; }
-  std::size_t size() const { return t.size(); }
-};
 
 /// What a run cost and how accurate it believes it is.
 struct RunInfo {
   std::string solver;          ///< "exact", "mdr" or "baseline"
   double rtol = 0.0;           ///< requested tolerance
-  double error_estimate = 0.0; ///< estimated case error (DESIGN.md section 2 metric)
+  double error_estimate = 0.0; ///< estimated case error (docs/design.md, "Error metric")
   double cells_per_a1 = 0.0;   ///< resolution a1/dx of the final run (0 for exact)
   long elements = 0;           ///< elements held in memory at once (peak, final run)
   long steps = 0;              ///< time steps taken, all runs included
@@ -46,8 +36,8 @@ const char* solver_name(SolverKind k);
 /// Throws InvalidInput("rtol") unless 0 < rtol <= 0.1.
 void validate_rtol(double rtol);
 
-/// Runs one case. `Auto` picks the cheapest solver that meets rtol: for the
-/// step protocol that is always the continuum solver.
-RunResult run_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol);
+/// Runs one case. `Auto` picks the cheapest solver that meets rtol: at fixed
+/// depth that is always the continuum solver.
+RunResult run_case(const Case& c, SolverKind kind, double rtol);
 
 } // namespace mdrmap

@@ -1,10 +1,10 @@
 // mdrmap_bench: work-precision benchmark of the solvers (issue 3).
 //
 // Runs each solver at a ladder of accuracy settings over the fixed hard case
-// set (core/case_set.hpp, 42 scenes, default protocol: t_end = default_t_end,
-// 201 samples), measures for every (setting, scene) the wall time of one call
-// (median of repeats) and the case error against the continuum solution at
-// rtol 1e-12, and writes
+// set (core/case_set.hpp, 42 one-step scenes, each as step_case builds it:
+// the default window 6 tau, 201 samples), measures for every (setting, scene) the wall time of one
+// call (median of repeats) and the case error against the continuum solution at rtol 1e-12, and
+// writes
 //   - a summary CSV (one row per setting and case subset),
 //   - a per-case CSV (one row per setting and scene),
 //   - a Markdown report: machine, tables, the cost targets, peak RSS.
@@ -81,49 +81,45 @@ Options:
 // ---------------------------------------------------------------------------
 // Case set and the baseline subset
 
-struct Case {
+struct BenchCase {
   std::string name;
-  Scene scene;
-  Protocol protocol;
+  Case input; ///< the scene: one step, its window and samples
   RunResult ref;
   bool baseline_ok = false;      ///< in the baseline subset
   double baseline_updates = 0.0; ///< element updates of the baseline at a1/dx = 500
 };
 
-Protocol default_protocol(const Scene& s) {
-  Protocol p;
-  p.t_end = default_t_end(s);
-  p.samples = 201;
-  return p;
-}
-
 constexpr double kBaselineTopCells = 500.0;     // the costliest baseline rung
 constexpr double kBaselineUpdateBudget = 2.0e8; // element updates allowed at that rung
 
 // Element updates of run_baseline at `cells` = a1/dx with default options
-// (BaselineOptions: spin-up 4 a1, dt = dx / v): elements over the whole travel
-// path, each visited at every step.
-double baseline_updates(const Scene& s, const Protocol& p, double cells) {
-  const double a1 = contact_radius(s);
-  const double dx = a1 / cells;
-  const double dt = dx / s.v;
-  const double n_pre = std::ceil(4.0 * a1 / (s.v * dt));
-  const double n_post = std::ceil(p.t_end / dt);
-  const double travel = s.v * dt * n_pre + s.v1 * dt * n_post;
+// (BaselineOptions: spin-up 4 a1, dt = dx / max(v, v1), each segment cut into
+// whole steps): elements over the whole travel path, each visited at every step.
+double baseline_updates(const Case& c, double cells) {
+  const double a1 = c.a1(), dx = a1 / cells, v = c.history.v0;
+  double wmax = v;
+  for (const Segment& seg : c.history.segments)
+    wmax = std::max(wmax, seg.w);
+  const double dt = dx / wmax;
+  const double n_pre = std::ceil(4.0 * a1 / (v * dt));
+  double steps = n_pre, travel = v * dt * n_pre;
+  for (const Segment& seg : c.history.segments) {
+    steps += std::max(1.0, std::ceil(seg.T / dt));
+    travel += seg.w * seg.T;
+  }
   const double n_elem = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
-  return n_elem * (n_pre + n_post);
+  return n_elem * steps;
 }
 
-std::vector<Case> make_cases(bool with_reference) {
-  std::vector<Case> out;
+std::vector<BenchCase> make_cases(bool with_reference) {
+  std::vector<BenchCase> out;
   const auto set = hard_case_set();
   for (std::size_t i = 0; i < set.size(); ++i) {
-    Case c;
+    BenchCase c;
     c.name = set[i].name;
-    c.scene = set[i].scene;
-    c.protocol = default_protocol(c.scene);
-    if (with_reference) c.ref = run_exact(c.scene, c.protocol, 1e-12);
-    c.baseline_updates = baseline_updates(c.scene, c.protocol, kBaselineTopCells);
+    c.input = set[i].c;
+    if (with_reference) c.ref = run_exact(c.input, 1e-12);
+    c.baseline_updates = baseline_updates(c.input, kBaselineTopCells);
     c.baseline_ok = c.baseline_updates <= kBaselineUpdateBudget;
     out.push_back(std::move(c));
   }
@@ -133,7 +129,7 @@ std::vector<Case> make_cases(bool with_reference) {
 // ---------------------------------------------------------------------------
 // Settings: one solver at one accuracy setting
 
-using Runner = std::function<RunResult(const Scene&, const Protocol&)>;
+using Runner = std::function<RunResult(const Case&)>;
 
 struct Setting {
   std::string solver; ///< family: exact, auto, mdr, mdr-linear, mdr-none, baseline
@@ -153,58 +149,39 @@ std::string fmt(const char* f, double x) {
 Setting exact_setting(double rtol) {
   return {"exact", "rtol=" + fmt("%.0e", rtol),
           rtol,    rtol,
-          false,   [rtol](const Scene& s, const Protocol& p) { return run_exact(s, p, rtol); }};
+          false,   [rtol](const Case& c) { return run_exact(c, rtol); }};
 }
 
 Setting auto_setting(double rtol) {
-  return {
-      "auto",
-      "rtol=" + fmt("%.0e", rtol),
-      rtol,
-      rtol,
-      false,
-      [rtol](const Scene& s, const Protocol& p) { return run_case(s, p, SolverKind::Auto, rtol); }};
+  return {"auto", "rtol=" + fmt("%.0e", rtol),
+          rtol,   rtol,
+          false,  [rtol](const Case& c) { return run_case(c, SolverKind::Auto, rtol); }};
 }
 
 Setting mdr_setting(double rtol) {
-  return {"mdr",
-          "rtol=" + fmt("%.0e", rtol),
-          rtol,
-          rtol,
-          false,
-          [rtol](const Scene& s, const Protocol& p) {
+  return {"mdr", "rtol=" + fmt("%.0e", rtol), rtol, rtol, false, [rtol](const Case& c) {
             MdrOptions o;
             o.rtol = rtol;
-            return run_mdr(s, p, o);
+            return run_mdr(c, o);
           }};
 }
 
 Setting mdr_fixed_setting(MdrSubgrid mode, double cells) {
   const char* family = mode == MdrSubgrid::Linear ? "mdr-linear" : "mdr-none";
-  return {family,
-          "a1/dx=" + fmt("%g", cells),
-          cells,
-          0.0,
-          false,
-          [mode, cells](const Scene& s, const Protocol& p) {
+  return {family, "a1/dx=" + fmt("%g", cells), cells, 0.0, false, [mode, cells](const Case& c) {
             MdrOptions o;
             o.cells_per_a1 = cells;
             o.subgrid = mode; // error estimate on (the default): its companion run is timed too
-            return run_mdr(s, p, o);
+            return run_mdr(c, o);
           }};
 }
 
 Setting baseline_setting(double cells) {
-  return {"baseline",
-          "a1/dx=" + fmt("%g", cells),
-          cells,
-          0.0,
-          true,
-          [cells](const Scene& s, const Protocol& p) {
+  return {"baseline", "a1/dx=" + fmt("%g", cells), cells, 0.0, true, [cells](const Case& c) {
             BaselineOptions o; // the method alone: no half-resolution companion
             o.cells_per_a1 = cells;
             o.estimate_error = false;
-            return run_baseline(s, p, o);
+            return run_baseline(c, o);
           }};
 }
 
@@ -261,7 +238,7 @@ double median(std::vector<double> x) {
   return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
 }
 
-CaseResult measure(const Setting& st, const Case& c, const TimingPolicy& pol) {
+CaseResult measure(const Setting& st, const BenchCase& c, const TimingPolicy& pol) {
   CaseResult r;
   std::vector<double> times;
   RunResult last;
@@ -269,7 +246,7 @@ CaseResult measure(const Setting& st, const Case& c, const TimingPolicy& pol) {
   try {
     do {
       const auto t0 = Clock::now();
-      RunResult run = st.run(c.scene, c.protocol);
+      RunResult run = st.run(c.input);
       const auto t1 = Clock::now();
       const double dt = std::chrono::duration<double>(t1 - t0).count();
       times.push_back(dt);
@@ -284,7 +261,7 @@ CaseResult measure(const Setting& st, const Case& c, const TimingPolicy& pol) {
   r.covered = true;
   r.seconds = median(times);
   r.reps = static_cast<int>(times.size());
-  r.error = case_error(last.series, c.ref.series, c.scene).max();
+  r.error = case_error(last.series, c.ref.series, c.input).max();
   r.estimate = last.info.error_estimate;
   r.cells = last.info.cells_per_a1;
   r.elements = last.info.elements;
@@ -310,8 +287,8 @@ struct Row {
   bool has_estimate = false; ///< some run reported a non-zero error estimate
 };
 
-Row summarize(const Setting& st, const std::vector<Case>& cases, const std::vector<CaseResult>& res,
-              bool subset) {
+Row summarize(const Setting& st, const std::vector<BenchCase>& cases,
+              const std::vector<CaseResult>& res, bool subset) {
   Row row;
   row.setting = &st;
   row.subset = subset ? "baseline-subset" : "all";
@@ -353,17 +330,15 @@ struct Probe {
   std::function<RunResult()> run; ///< empty: the idle floor
 };
 
-Scene probe_scene(double zeta_, double v1_over_v) {
-  Scene s;
-  s.d = 1e-3;
-  s.R = 1.0;
-  s.tau = 1.0;
-  s.v = zeta_ * std::sqrt(s.R * s.d) / s.tau;
-  s.v1 = v1_over_v * s.v;
-  return s;
+// d = 1e-3, R = 1, tau = 1: the step zeta_ -> v1_over_v zeta_, default window
+// (6 tau) and samples (201).
+Case probe_case(double zeta_, double v1_over_v) {
+  const double d = 1e-3, R = 1.0, tau = 1.0;
+  const double v = zeta_ * std::sqrt(R * d) / tau;
+  return step_case(d, R, tau, v, v1_over_v * v);
 }
 
-RunResult probe_mdr(const Scene& s, double cells) {
+RunResult probe_mdr(const Case& c, double cells) {
   MdrOptions o;
   o.rtol = 1e-3;
   if (cells > 0) {
@@ -371,22 +346,25 @@ RunResult probe_mdr(const Scene& s, double cells) {
     o.subgrid = MdrSubgrid::Linear;
     o.estimate_error = false;
   }
-  return run_mdr(s, default_protocol(s), o);
+  return run_mdr(c, o);
 }
 
-RunResult probe_baseline(const Scene& s) {
+// steps_per_cell < 1: a coarser time step than the baseline's dx / max(v, v1),
+// for a memory probe whose run at the proper step would take minutes.
+RunResult probe_baseline(const Case& c, double steps_per_cell = 1.0) {
   BaselineOptions o;
   o.cells_per_a1 = kBaselineTopCells;
   o.estimate_error = false;
-  return run_baseline(s, default_protocol(s), o);
+  o.steps_per_cell = steps_per_cell;
+  return run_baseline(c, o);
 }
 
 std::vector<Probe> make_probes() {
   // Reference scene: zeta = v tau / a1 = 1, drop to v1/v = 0.1: the indenter
   // travels 0.6 a1 after the step. v1/v = 1e-8: 6e-8 a1. Long travel:
   // v1 tau / a1 = 1e8 (zeta = 1e9, v1/v = 0.1): 6e8 a1.
-  const Scene shrt = probe_scene(1.0, 0.1), slow = probe_scene(1.0, 1e-8),
-              lng = probe_scene(1e9, 0.1), b600 = probe_scene(1.0, 100.0);
+  const Case shrt = probe_case(1.0, 0.1), slow = probe_case(1.0, 1e-8), lng = probe_case(1e9, 0.1),
+             b600 = probe_case(1.0, 100.0);
   std::vector<Probe> p;
   p.push_back({"idle", "no run: the process floor", {}});
   p.push_back({"mdr-short", "mdr rtol 1e-3, zeta 1, v1/v 0.1 (travel 0.6 a1)",
@@ -403,8 +381,11 @@ std::vector<Probe> make_probes() {
                [=] { return probe_mdr(lng, 1e5); }});
   p.push_back({"baseline-short", "baseline a1/dx 500, zeta 1, v1/v 0.1 (travel 4.6 a1)",
                [=] { return probe_baseline(shrt); }});
-  p.push_back({"baseline-travel600", "baseline a1/dx 500, zeta 1, v1/v 100 (travel 604 a1)",
-               [=] { return probe_baseline(b600); }});
+  // memory only: at the baseline's dt = dx / v1 this run needs ~1.5e11 element
+  // updates; dt = dx / v (steps_per_cell = v/v1) holds the same elements
+  p.push_back({"baseline-travel600",
+               "baseline a1/dx 500, zeta 1, v1/v 100 (travel 604 a1; dt = dx/v, memory only)",
+               [=] { return probe_baseline(b600, 0.01); }});
   p.push_back(
       {"baseline-long", "baseline a1/dx 500, v1 tau/a1 1e8", [=] { return probe_baseline(lng); }});
   return p;
@@ -553,7 +534,7 @@ void write_summary_csv(const std::string& path, const std::vector<Row>& rows) {
 }
 
 void write_cases_csv(const std::string& path, const std::vector<Setting>& settings,
-                     const std::vector<Case>& cases,
+                     const std::vector<BenchCase>& cases,
                      const std::vector<std::vector<CaseResult>>& res) {
   std::ofstream f(path);
   f << "solver,setting,case,name,baseline_subset,covered,time_s,reps,error,error_estimate,"
@@ -613,9 +594,9 @@ int run_profile(const std::string& which, int repeat) {
   double checksum = 0.0;
   int runs = 0;
   for (int k = 0; k < repeat; ++k)
-    for (const Case& c : cases) {
+    for (const BenchCase& c : cases) {
       if (st.subset_only && !c.baseline_ok) continue;
-      const RunResult r = st.run(c.scene, c.protocol);
+      const RunResult r = st.run(c.input);
       checksum += r.series.FN.back();
       ++runs;
     }
@@ -636,7 +617,7 @@ struct Honesty {
 };
 
 std::vector<Honesty> honesty_by_family(const std::vector<Setting>& settings,
-                                       const std::vector<Case>& cases,
+                                       const std::vector<BenchCase>& cases,
                                        const std::vector<std::vector<CaseResult>>& res) {
   std::vector<Honesty> out;
   for (std::size_t s = 0; s < settings.size(); ++s) {
@@ -669,7 +650,7 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   TimingPolicy pol;
   if (quick) pol.min_reps = 1, pol.min_total = 0.0;
   int n_subset = 0;
-  for (const Case& c : cases)
+  for (const BenchCase& c : cases)
     n_subset += c.baseline_ok ? 1 : 0;
 
   std::vector<std::vector<CaseResult>> res(settings.size());
@@ -770,8 +751,9 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   md << "### Case set and method\n\n";
   md << cases.size() << " scenes of `hard_case_set()` (src/core/case_set.cpp), default protocol ("
      << "t_end = 6 tau, or 6 a1 / min(v, v1) for tau = 0; 201 samples). Error: the case error of "
-        "DESIGN.md section 2 (largest relative deviation of F_N, F_x, mu; a2 in units of a1) "
-        "against `run_exact` at rtol 1e-12 (so the exact row at 1e-12 is the reference itself). "
+        "docs/design.md, \"Error metric\" (largest relative deviation of F_N, F_x, mu; a2 in units "
+        "of a1) against `run_exact` at rtol 1e-12 (so the exact row at 1e-12 is the reference "
+        "itself). "
         "Time: wall time of one solver call (std::chrono::steady_clock), the median of "
      << (quick ? "1 call" : "at least 3 calls (repeated until 2 ms, at most until 0.5 s)")
      << " per scene, then the median over scenes. `min estimate/error` is the smallest ratio of "
@@ -779,10 +761,10 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
         "the solver reports no estimate). `auto` is `mdrmap simulate` at its defaults "
         "(`run_case(SolverKind::Auto, 1e-4)`). mdr at fixed a1/dx runs with the error estimate "
         "on, so its time includes the half-resolution companion run.\n\n";
-  md << "The fixed-step baseline (`run_baseline`: elements over the whole travel path, dt = dx/v, "
-        "spin-up of 4 a1 from an undeformed foundation) costs about (a1/dx)^2 (6 + 6 zeta1) (4 + "
-        "6 zeta) element updates (zeta = v tau/a1, zeta1 = v1 tau/a1; for tau = 0 the window is "
-        "6 a1/min(v, v1)); it is run on the "
+  md << "The fixed-step baseline (`run_baseline`: elements over the whole travel path, dt = "
+        "dx/max(v, v1), spin-up of 4 a1 from an undeformed foundation) costs about (a1/dx)^2 (6 + "
+        "6 zeta1) (4 + 6 zeta) max(1, v1/v) element updates (zeta = v tau/a1, zeta1 = v1 tau/a1; "
+        "for tau = 0 the window is 6 a1/min(v, v1)); it is run on the "
      << n_subset << " scenes where it needs at most " << fmt("%.0e", kBaselineUpdateBudget)
      << " updates at a1/dx = " << kBaselineTopCells
      << " (the baseline subset). Every solver is reported on that subset too.\n\n";
@@ -793,7 +775,7 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   md_table(md, rows, "baseline-subset");
   md << "\nScenes of the baseline subset: ";
   bool first = true;
-  for (const Case& c : cases)
+  for (const BenchCase& c : cases)
     if (c.baseline_ok) md << (first ? "`" : ", `") << c.name << "`", first = false;
   md << ".\n\n";
 

@@ -1,0 +1,123 @@
+#pragma once
+// The case model: one computation of mdrmap, made of parts that are each
+// validated once (docs/design.md, "The case model").
+//
+//   indenter  the rigid profile and its MDR image g(x); today the parabola
+//   material  the Kelvin foundation: shear modulus G, relaxation time tau
+//   loading   what holds the indenter in the foundation: today a fixed depth d
+//   history   stationary sliding at v0 > 0 before t = 0, then segments of
+//             constant velocity w_k >= 0 (0 is a hold) lasting T_k > 0
+//   sampling  output instants per segment, linear or logarithmic in the time
+//             since the segment's start
+//
+// Units are the user's (any consistent set); forces come out in units of
+// G * length^2. Time t is measured from the first velocity change.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mdrmap {
+
+/// Bad input: names the option (as the CLI spells it, without dashes) and
+/// says what is allowed. The app layer turns it into a one-line error.
+class InvalidInput : public std::invalid_argument {
+public:
+  InvalidInput(std::string option, const std::string& message)
+      : std::invalid_argument(message), option_(std::move(option)) {}
+  const std::string& option() const noexcept { return option_; }
+
+private:
+  std::string option_;
+};
+
+/// A number with 17 significant digits, as error messages quote it.
+std::string format_number(double x);
+
+/// Rigid indenter. Today the parabola f(r) = r^2/2R, MDR image g(x) = x^2/R.
+/// A cone or power law would be one more profile here; the solvers ask the
+/// indenter for g, g' and the contact radius, their callers never do.
+struct Indenter {
+  double R = 0.0; ///< radius of curvature, > 0
+  double g(double x) const { return x * x / R; }
+  double slope(double x) const { return 2.0 * x / R; }
+  /// Half-width a of the MDR contact at depth d: g(a) = d.
+  double contact_radius(double d) const;
+};
+
+/// Kelvin foundation: spring 4 G dx parallel to a dashpot 4 eta dx.
+struct Material {
+  double G = 1.0;   ///< shear modulus, > 0
+  double tau = 0.0; ///< relaxation time eta/G, >= 0 (0: elastic)
+};
+
+/// How the indenter is held: at a fixed depth d.
+struct Loading {
+  double d = 0.0; ///< indentation depth, > 0
+};
+
+/// One segment of the velocity history: constant velocity w for a time T.
+struct Segment {
+  double w = 0.0; ///< sliding velocity, >= 0 (0 is a hold)
+  double T = 0.0; ///< duration, > 0
+};
+
+/// Stationary sliding at v0 for t < 0, then the segments one after another;
+/// segment k starts at start(k) = T_0 + ... + T_(k-1).
+struct History {
+  double v0 = 0.0; ///< velocity of the stationary sliding before t = 0, > 0
+  std::vector<Segment> segments;
+  std::size_t size() const { return segments.size(); }
+  double start(std::size_t k) const;
+  double end() const { return start(segments.size()); }
+  /// Velocity before segment k (v0 for k = 0).
+  double before(std::size_t k) const { return k == 0 ? v0 : segments[k - 1].w; }
+};
+
+enum class Spacing { Linear, Log };
+
+/// Output instants of a segment of duration T: `samples` instants, j = 0 the
+/// state just after the change at its start, j = samples - 1 the state at its
+/// end. Linear: offset j T / (samples - 1). Log: offset 0, then
+/// T 10^(-decades (samples - 1 - j) / (samples - 2)) for j >= 1.
+struct Sampling {
+  long samples = 201;
+  Spacing spacing = Spacing::Linear;
+  double decades = 4.0; ///< log spacing: the first offset after 0 is T 10^-decades
+  /// Time since the segment's start of sample j.
+  double offset(long j, double T) const;
+};
+
+inline constexpr long kMaxSamples = 100'000'000;
+inline constexpr std::size_t kMaxSegments = 10'000;
+
+struct Case {
+  Indenter indenter;
+  Material material;
+  Loading loading;
+  History history;
+  Sampling sampling;
+
+  /// Leading edge a1 = contact radius at depth d.
+  double a1() const { return indenter.contact_radius(loading.d); }
+  /// Output samples of the whole history: samples per segment times segments.
+  std::size_t total_samples() const;
+};
+
+/// Throws InvalidInput naming the first offending parameter (as the CLI
+/// spells it). Checks every part and that the derived scales are representable.
+void validate(const Case& c);
+
+/// The seed's experiment: one step v -> v1 at t = 0, observed over t_end
+/// (0: default_step_duration), `samples` linear samples.
+Case step_case(double d, double R, double tau, double v, double v1, double G = 1.0,
+               double t_end = 0.0, long samples = 201);
+
+/// Default observation window of the one-step history: 6 tau; for tau = 0
+/// (nothing relaxes) the time the indenter needs to travel six contact
+/// half-widths at the slower speed.
+double default_step_duration(double d, double R, double tau, double v, double v1);
+
+/// Similarity variable zeta = w tau / a1 at velocity w.
+double zeta(const Case& c, double w);
+
+} // namespace mdrmap
