@@ -11,6 +11,12 @@
 # Environment:
 #   MDRMAP_SKIP_SETUP=1   skip the check entirely (non-Debian systems, modules,
 #                         Spack, ... : then CMake finds the dependencies itself)
+#   MDRMAP_SLURM=1        also Slurm (slurmctld slurmd slurm-client munge) and its
+#                         PBS wrappers (slurm-wlm-torque), for the tests that run
+#                         the job scripts under a real one-node Slurm (label
+#                         slurm; skipped without them). Default: 1 when CI=true.
+#                         The daemons are not started here (the tests start
+#                         their own); mpirun/mpiexec stay Open MPI's.
 set -euo pipefail
 
 PACKAGES=(
@@ -25,6 +31,10 @@ PACKAGES=(
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
 )
+SLURM_PACKAGES=(slurmctld slurmd slurm-client munge slurm-wlm-torque)
+if [[ "${MDRMAP_SLURM:-}" == 1 || ( -z "${MDRMAP_SLURM:-}" && "${CI:-}" == true ) ]]; then
+  PACKAGES+=("${SLURM_PACKAGES[@]}")
+fi
 
 log() { printf 'setup: %s\n' "$*" >&2; }
 
@@ -48,7 +58,21 @@ for pkg in "${PACKAGES[@]}"; do
   fi
 done
 
+# slurm-wlm-torque registers Slurm's mpiexec.slurm as an alternative for
+# mpirun and mpiexec (below Open MPI's priority, but a manual choice or an
+# install order may still pick it): pin them to Open MPI's launcher.
+pin_mpirun() {
+  [[ "$(id -u)" == 0 && -x /usr/bin/mpirun.openmpi ]] || return 0
+  [[ "$(dpkg-query -W -f='${Status}' slurm-wlm-torque 2>/dev/null)" == "install ok installed" ]] ||
+    return 0
+  [[ "$(readlink -f /usr/bin/mpirun)" == "$(readlink -f /usr/bin/mpirun.openmpi)" &&
+    "$(readlink -f /usr/bin/mpiexec)" == "$(readlink -f /usr/bin/mpiexec.openmpi)" ]] && return 0
+  log "pinning mpirun/mpiexec to Open MPI's (slurm-wlm-torque offers mpiexec.slurm)"
+  update-alternatives --set mpirun /usr/bin/mpirun.openmpi >&2 || true
+}
+
 if ((${#missing[@]} == 0)); then
+  pin_mpirun
   log "all ${#PACKAGES[@]} required packages are installed"
   exit 0
 fi
@@ -73,4 +97,5 @@ log "running apt-get update"
 ${sudo_cmd[@]+"${sudo_cmd[@]}"} apt-get -o DPkg::Lock::Timeout=600 update </dev/null
 log "running ${apt_install[*]}"
 ${sudo_cmd[@]+"${sudo_cmd[@]}"} env DEBIAN_FRONTEND=noninteractive "${apt_install[@]}" </dev/null
+pin_mpirun
 log "done"

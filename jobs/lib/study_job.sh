@@ -452,6 +452,10 @@ study_job_main() { # study_job_main slurm|pbs
   trap 'on_signal USR1' USR1
   trap 'on_signal TERM' TERM
   trap 'on_signal INT' INT
+  # A job started with an empty environment (qsub -v under Slurm's PBS
+  # wrappers is sbatch --export=none) has no PATH: bash makes one up but does
+  # not export it, and mpiexec then finds no ssh or srun to start its daemons.
+  export PATH
   # Lustre and GPFS mounts often lack the flock() that HDF5 uses to lock files;
   # opening the map then fails. Only one study writes a map at a time anyway.
   export HDF5_USE_FILE_LOCKING=${HDF5_USE_FILE_LOCKING:-FALSE}

@@ -61,16 +61,7 @@ pass() { echo "ok ($((SECONDS - t_start)) s): $*"; }
 PYRUN=$SRCDIR/tools/pyrun
 check_map() { "$PYRUN" "$SRCDIR/tools/maps/check_map.py" --quiet "$@" >/dev/null; }
 compare_maps() { "$PYRUN" "$SRCDIR/tools/maps/compare_maps.py" "$@" >/dev/null; }
-cat >status.py <<'EOF'
-# pyrun-needs: numpy h5py
-"""status.py MAP: prints the numbers of done, pending and failed cases."""
-import sys
-import h5py
-with h5py.File(sys.argv[1], "r") as f:
-    s = f["results/status"][()]
-print(int((s == 1).sum()), int((s == 0).sum()), int((s == -1).sum()))
-EOF
-status() { "$PYRUN" status.py "$1"; }
+status() { "$PYRUN" "$(dirname "$SELF")/map_status.py" "$1"; }
 
 # Background jobs of this test run in their own process groups; kill what is
 # left on the way out.
@@ -168,19 +159,7 @@ v1_over_v = 0.01, 2
 [run]
 samples = 21
 EOF
-cat >big.ini <<'EOF'
-; 32000 cases with the discrete solver: about 3 s at 2 ranks, to be interrupted
-[grid]
-d = logspace:1e-4:1e-2:8
-R = 1, 3
-tau = linspace:0.5:2:8
-v = logspace:1e-3:1e3:10
-v1_over_v = logspace:1e-4:0.9:25
-[run]
-samples = 101
-solver = mdr
-rtol = 1e-3
-EOF
+cp "$(dirname "$SELF")/big.ini" big.ini # 32000 cases, about 3 s at 2 ranks, to be interrupted
 
 # start NAME SCRIPT [VAR=VALUE...]: starts the job script in the background in
 # its own process group (a job), log NAME.log; sets $job
