@@ -299,10 +299,19 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
                      sum.write_failure.c_str(), sum.already_done + ran, sum.total, sum.pending,
                      resume_hint.c_str());
       } else if (sum.interrupted) {
+        // Inside a batch job the job script resumes the map (it requeues or
+        // resubmits itself): say so rather than suggest an mpirun of its own.
+        const char* slurm = std::getenv("SLURM_JOB_ID");
+        const char* pbs = std::getenv("PBS_JOBID");
+        std::string next = "resume with: " + resume_hint;
+        if (pbs != nullptr && *pbs != '\0') // (also under Slurm's PBS wrappers)
+          next = std::string("PBS job ") + pbs + ": the job resumes the map when it runs again";
+        else if (slurm != nullptr && *slurm != '\0')
+          next = std::string("Slurm job ") + slurm + ": the job resumes the map when it runs again";
         std::fprintf(stderr,
                      "mdrmap study: interrupted: %zu of %zu cases done (%zu this run), %zu "
-                     "pending; resume with: %s\n",
-                     sum.already_done + ran, sum.total, ran, sum.pending, resume_hint.c_str());
+                     "pending; %s\n",
+                     sum.already_done + ran, sum.total, ran, sum.pending, next.c_str());
       } else {
         std::fprintf(
             stderr,
