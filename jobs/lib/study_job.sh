@@ -249,6 +249,10 @@ stamp() { stat -c %y "$1" 2>/dev/null || echo none; }
 job_outcome() {
   case $rc in
     0)
+      # (srun may exit 0 when it could not launch the tasks at all; a
+      # resumed map that was complete already is not written again)
+      [[ -e "$OUTPUT" ]] ||
+        die 1 "the launcher exited 0, but there is no map $OUTPUT (the ranks did not start?); not $1"
       say "$(now) the map is complete: $OUTPUT"
       exit 0
       ;;
@@ -379,9 +383,11 @@ pbs_main() {
   fi
   job_start
   if [[ -n "$timer_pid" ]]; then # stop the timer: its sleep first, so it never fires
-    pkill -P "$timer_pid" 2>/dev/null
-    kill "$timer_pid" 2>/dev/null
-    wait "$timer_pid" 2>/dev/null
+    {
+      pkill -P "$timer_pid"
+      kill "$timer_pid"
+      wait "$timer_pid"
+    } 2>/dev/null
   fi
   job_outcome resubmitted
 

@@ -33,8 +33,13 @@ skip() {
 log() { echo "cluster: $*" >&2; }
 
 # ---- stop -----------------------------------------------------------------
-# alive PID NAME: PID runs a program called NAME (never a reused PID)
-alive() { [[ -n "$1" && "$(ps -o comm= -p "$1" 2>/dev/null)" == "$2" ]]; }
+# alive PID NAME: PID runs a program called NAME (never a reused PID; a
+# zombie that init has not reaped yet is dead)
+alive() {
+  local stat comm
+  read -r stat comm < <(ps -o stat=,comm= -p "$1" 2>/dev/null) || return 1
+  [[ $comm == "$2" && $stat != Z* ]]
+}
 stop_one() { # stop_one PIDFILE NAME
   local pid i
   [[ -s "$1" ]] || return 0
@@ -57,15 +62,15 @@ if [[ $action == stop ]]; then
   # job steps outlive slurmd (slurmstepd): end every process whose environment
   # names this cluster's config, by PID
   if [[ -s "$DIR/slurm.conf" ]]; then
-    for p in /proc/[0-9]*; do
-      pid=${p#/proc/}
-      [[ $pid != "$$" ]] || continue
-      if { tr '\0' '\n' <"$p/environ"; } 2>/dev/null | grep -qxF "SLURM_CONF=$DIR/slurm.conf"; then
-        case "$(ps -o comm= -p "$pid" 2>/dev/null)" in
-          slurmstepd | mdrmap | srun | mpirun | orted | bash | sleep) kill -KILL "$pid" 2>/dev/null || true ;;
-        esac
-      fi
-    done
+    while read -r pid comm; do
+      case $comm in
+        slurmstepd | mdrmap | srun | mpirun | mpiexec | orterun | orted | bash | sleep)
+          [[ $pid != "$$" ]] &&
+            grep -qzxF "SLURM_CONF=$DIR/slurm.conf" "/proc/$pid/environ" 2>/dev/null &&
+            kill -KILL "$pid" 2>/dev/null
+          ;;
+      esac
+    done < <(ps -eo pid=,comm=)
   fi
   stop_one "$DIR/slurmd.pid" slurmd
   stop_one "$DIR/slurmctld.pid" slurmctld
@@ -87,7 +92,8 @@ DIR=$(cd "$DIR" && pwd)
 # munged refuses a socket path that is not short enough, or directories that
 # others can write
 ((${#DIR} < 80)) || skip "cluster directory path too long for the munge socket: $DIR"
-mkdir -p "$DIR/munge" "$DIR/state" "$DIR/spool"
+mkdir -p "$DIR/munge" "$DIR/state" "$DIR/spool" "$DIR/tmp"
+chmod 1777 "$DIR/tmp"
 # users reach munged's socket; its key file is root's alone
 chmod 700 "$DIR/state"
 chmod 755 "$DIR" "$DIR/spool" "$DIR/munge"
@@ -122,6 +128,10 @@ CredType=cred/munge
 AuthInfo=socket=$DIR/munge/munge.sock,cred_expire=10
 StateSaveLocation=$DIR/state
 SlurmdSpoolDir=$DIR/spool
+# the PMIx plugin's directories (named by job and step IDs) go under TmpFS, and
+# job IDs start at the port: several clusters at once never share a name
+TmpFS=$DIR/tmp
+FirstJobId=$port
 SlurmctldPidFile=$DIR/slurmctld.pid
 SlurmdPidFile=$DIR/slurmd.pid
 SlurmctldLogFile=$DIR/slurmctld.log

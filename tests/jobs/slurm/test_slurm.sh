@@ -34,56 +34,18 @@ HERE=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 MDRMAP_EXE=$(realpath "$1")
 SRCDIR=$(cd "$2" && pwd)
 MPI_DEFAULT=$4
+# shellcheck source-path=SCRIPTDIR source=common.sh
+source "$HERE/common.sh"
 mkdir -p "$3"
 WORK=$(cd "$3" && pwd)/slurm_$MPI_DEFAULT
 SBATCH=$SRCDIR/jobs/study.sbatch
-PYRUN=$SRCDIR/tools/pyrun
-t_start=$SECONDS
-
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-pass() { echo "ok ($((SECONDS - t_start)) s): $*"; }
-[[ "$(id -u)" == 0 ]] || {
-  echo "SKIP: a Slurm cluster of one's own needs root (slurmd runs jobs as their users)"
-  exit 77
-}
-
-# nothing of the caller's scheduler, settings or Open MPI permissions: the job
-# script must set what it needs itself (sbatch passes the environment on)
-while read -r v; do unset "$v"; done < <(compgen -e | grep -E '^(SLURM_|SBATCH_|PBS_)' || true)
-unset CONFIG OUTPUT MDRMAP EXTRA_ARGS NP LAUNCHER MAX_REQUEUES STOP_MARGIN WALLTIME \
-  JOB_SCRIPT RESUBMIT_COUNT OMPI_ALLOW_RUN_AS_ROOT OMPI_ALLOW_RUN_AS_ROOT_CONFIRM
-
 rm -rf "$WORK"
 mkdir -p "$WORK"
 cd "$WORK"
-# the cluster's directory: short (munge's socket path), removed at the end
-CL=$(mktemp -d /tmp/mdrmap-slurm.XXXXXX)
-cleanup() {
-  local rc=$?
-  # the ranks of a paused job must not stay stopped
-  # shellcheck disable=SC2086
-  [[ -z "${paused:-}" ]] || kill -CONT $paused 2>/dev/null || true
-  bash "$HERE/cluster.sh" stop "$CL" || true
-  if ((rc != 0 && rc != 77)); then
-    echo "--- the end of slurmctld.log" >&2
-    tail -n 15 "$CL/slurmctld.log" >&2 2>/dev/null || true
-  fi
-  rm -rf "$CL"
-  exit "$rc"
-}
-trap cleanup EXIT
-bash "$HERE/cluster.sh" start "$CL" "$MPI_DEFAULT" || exit $?
-# shellcheck source=/dev/null
-source "$CL/env"
+start_cluster "$MPI_DEFAULT"
 pass "one-node Slurm started (MpiDefault=$MPI_DEFAULT)"
-
-check_map() { "$PYRUN" "$SRCDIR/tools/maps/check_map.py" --quiet "$@" >/dev/null; }
-compare_maps() { "$PYRUN" "$SRCDIR/tools/maps/compare_maps.py" "$@" >/dev/null; }
-status() { "$PYRUN" "$HERE/../map_status.py" "$1"; }
-cp "$HERE/../big.ini" study.ini # 32000 cases, about 3-5 s at 2 ranks
+cp "$SRCDIR/tests/jobs/small.ini" small.ini # 15360 cases, about 2 s at 2 ranks
+cp "$SRCDIR/tests/jobs/big.ini" big.ini     # 32000 cases, about 3-5 s at 2 ranks
 
 # submit NAME [VAR=VALUE...] -- [SBATCH OPTIONS...]: sbatch jobs/study.sbatch
 # from WORK with the settings in its environment; log NAME.log; sets $jid
@@ -95,7 +57,7 @@ submit() {
     shift
   done
   shift
-  jid=$(env MDRMAP="$MDRMAP_EXE" CONFIG=study.ini NP=2 ${vars[@]+"${vars[@]}"} \
+  jid=$(env MDRMAP="$MDRMAP_EXE" CONFIG=big.ini NP=2 ${vars[@]+"${vars[@]}"} \
     sbatch --parsable --job-name="$name" --output="$WORK/$name.log" --ntasks=2 "$@" "$SBATCH") ||
     fail "$name: sbatch refused the job"
   jid=${jid%%;*}
@@ -151,31 +113,11 @@ expect_final() {
     fail "$1: ExitCode=$code Restarts=$restarts, expected $4 and $5"
   }
 }
-stamp() { stat -c %y "$1" 2>/dev/null || echo none; }
-# wait_open NAME MAP STAMP: until the study has opened MAP (its modification
-# time differs from STAMP; its ranks then catch signals), at most 120 s
-wait_open() {
-  local i
-  for ((i = 0; i < 600; i++)); do
-    [[ "$(stamp "$2")" == "$3" ]] || return 0
-    sleep 0.2
-  done
-  show_log "$1"
-  fail "$1: the study did not open its map in 120 s"
-}
-ranks_of() { # ranks_of JID: the PIDs of the mdrmap processes of this cluster's job JID
-  local p env
-  for p in $(pgrep -x mdrmap); do
-    env=$({ tr '\0' '\n' <"/proc/$p/environ"; } 2>/dev/null) || continue
-    grep -qx "SLURM_JOB_ID=$1" <<<"$env" && grep -qxF "SLURM_CONF=$SLURM_CONF" <<<"$env" && echo "$p"
-  done
-  return 0
-}
 runs() { grep -cE "Slurm job $2 on .*, restart [0-9]+" "$WORK/$1.log" || true; }
 
 # ---- A: a complete study --------------------------------------------------------
 t=$SECONDS
-submit complete OUTPUT=complete.h5 -- --time=15
+submit complete OUTPUT=complete.h5 CONFIG=small.ini -- --time=15
 wait_state complete "$jid" 'COMPLETED|FAILED|CANCELLED|TIMEOUT' 180
 expect_final complete "$jid" COMPLETED 0:0 0
 expect_log complete "new map $WORK/complete.h5" "running: srun --mpi=pmix " "the map is complete"
@@ -186,18 +128,14 @@ pass "A complete: COMPLETED, exit 0:0, srun --mpi=pmix, map complete ($((SECONDS
 # ---- B: the wall-time warning, requeue, resume, complete ----------------------------
 t=$SECONDS
 before=$(stamp walltime.h5)
-submit walltime OUTPUT=walltime.h5 SBATCH_SIGNAL=B:USR1@25 MAX_REQUEUES=5 -- --time=1
+submit walltime OUTPUT=walltime.h5 CONFIG=small.ini SBATCH_SIGNAL=B:USR1@25 MAX_REQUEUES=5 \
+  -- --time=1
 wait_open walltime walltime.h5 "$before"
-sleep 0.5 # a few cases done before the pause
-paused=$(ranks_of "$jid")
-[[ -n "$paused" ]] || fail "walltime: no mdrmap process of job $jid found"
-# shellcheck disable=SC2086
-kill -STOP $paused
+sleep 0.2 # a few cases done before the pause
+pause walltime "$jid"
 wait_log walltime "SIGUSR1 received" 100
 t_warn=$((SECONDS - t))
-# shellcheck disable=SC2086
-kill -CONT $paused
-paused=""
+resume
 wait_state walltime "$jid" 'COMPLETED|FAILED|CANCELLED|TIMEOUT' 300
 n=$(runs walltime "$jid")
 expect_final walltime "$jid" COMPLETED 0:0 $((n - 1))
@@ -268,7 +206,7 @@ pass "E LAUNCHER='$bad': FAILED 1:0, not requeued, says to set LAUNCHER ($((SECO
 if [[ $MPI_DEFAULT == none ]]; then
   t=$SECONDS
   cpus=$(sinfo -h -o %c | head -n 1)
-  out=$(env MDRMAP="$MDRMAP_EXE" CONFIG=study.ini sbatch --test-only --nodes=1 \
+  out=$(env MDRMAP="$MDRMAP_EXE" CONFIG=big.ini sbatch --test-only --nodes=1 \
     --ntasks=$((cpus + 1)) "$SBATCH" 2>&1) && fail "sbatch --test-only accepted $((cpus + 1)) tasks: $out"
   grep -q "Requested node configuration is not available" <<<"$out" ||
     fail "sbatch --test-only: $out"
@@ -295,7 +233,7 @@ if [[ $MPI_DEFAULT == none ]]; then
   wait_state mpirun "$jid" 'COMPLETED|FAILED|CANCELLED|TIMEOUT' 180
   expect_final mpirun "$jid" COMPLETED 0:0 0
   ! grep -qE "SIGUSR1|interrupted" mpirun.log || fail "mpirun: the signal reached the study"
-  compare_maps complete.h5 mpirun.h5 || fail "mpirun: the map differs from A's"
+  check_map --complete mpirun.h5 || fail "mpirun: the map is not complete"
   pass "G LAUNCHER=mpirun: scancel --signal=USR1 (no --batch) reaches no rank; COMPLETED" \
     "($((SECONDS - t)) s)"
 fi
