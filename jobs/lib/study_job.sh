@@ -455,6 +455,11 @@ study_job_main() { # study_job_main slurm|pbs
   mode=local
   if [[ $sched == slurm && -n "${SLURM_JOB_ID:-}" ]]; then mode=slurm; fi
   if [[ $sched == pbs && -n "${PBS_JOBID:-}" ]]; then mode=pbs; fi
+  if [[ $sched == pbs && $mode == local && -n "${SLURM_JOB_ID:-}" ]]; then
+    say "warning: Slurm job $SLURM_JOB_ID without PBS_JOBID (Slurm's qsub without its" \
+      "spank_pbs plugin?): running as on a workstation, nothing will be resubmitted;" \
+      "submit jobs/study.sbatch with sbatch instead, or enable spank_pbs"
+  fi
   trap 'on_signal USR1' USR1
   trap 'on_signal TERM' TERM
   trap 'on_signal INT' INT

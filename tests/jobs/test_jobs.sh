@@ -250,6 +250,10 @@ for script in "$SBATCH" "$PBS"; do
 done
 compare_maps "$WORK/tiny_study.sbatch.h5" "$WORK/tiny_study.pbs.h5" ||
   fail "the two scripts made different maps"
+# study.pbs in a Slurm job without PBS_JOBID (Slurm's qsub without spank_pbs)
+run tiny_pbs_in_slurm "$PBS" CONFIG=tiny.ini OUTPUT="$WORK/tiny_study.pbs.h5" SLURM_JOB_ID=99
+expect tiny_pbs_in_slurm 0 "warning: Slurm job 99 without PBS_JOBID .*nothing will be resubmitted"
+pass "study.pbs in a Slurm job without PBS_JOBID: a warning"
 
 # refusals: exit 2, file untouched, no requeue
 echo "not a map" >notamap.h5
