@@ -9,7 +9,8 @@
 #include <vector>
 
 // The straightforward method, deliberately plain: every element of the travel
-// path is stored and visited at every step; one fixed step dt = dx / v;
+// path is stored and visited at every step; one fixed step dt = dx / (largest
+// velocity of the history);
 // contact changes are detected at step ends (first order in dt); forces are
 // raw element sums and a2 is the last element in contact (first order in dx).
 // Free relaxation is still exact (exp(-dt/tau)) so that the method is stable

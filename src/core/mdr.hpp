@@ -7,9 +7,13 @@ namespace mdrmap {
 
 /// How the continuum forces and the trailing edge are read off the element row.
 enum class MdrSubgrid {
-  None,       ///< the paper: raw element sums, a2 = last element in contact (first order)
-  Linear,     ///< high-order quadrature, gap h - u interpolated linearly (second order)
-  Exponential ///< high-order quadrature, free depression interpolated log-linearly (default)
+  None,   ///< the paper: raw element sums, a2 = last element in contact (first order)
+  Linear, ///< high-order quadrature, gap h - u interpolated linearly (second order)
+  /// High-order quadrature; the free depression interpolated in the exact form
+  /// of the piece of material it belongs to (log-linear where it left contact
+  /// at the cap, a parabola where it let go at a velocity change), with tracers
+  /// at the boundaries between pieces: exact to rounding for any history (default).
+  Exponential
 };
 
 struct MdrOptions {
@@ -17,7 +21,7 @@ struct MdrOptions {
   double cells_per_a1 = 0;    ///< fixed resolution a1/dx (0: chosen from rtol)
   bool spinup = false;        ///< start from an undeformed foundation, not the stationary state
   double phase = 0.5;         ///< element offset at t = 0, in cells (x_i = (i + phase) dx)
-  bool estimate_error = true; ///< run a half-resolution companion for error_estimate
+  bool estimate_error = true; ///< run a half-resolution companion (other phase) for error_estimate
   MdrSubgrid subgrid = MdrSubgrid::Exponential;
 };
 
