@@ -19,12 +19,11 @@
 #include <typeinfo>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "core/case.hpp"
 #include "study/config.hpp"
 
 namespace fs = std::filesystem;
 using mdrmap::InvalidInput;
-using mdrmap::Scene;
 using namespace mdrmap::study;
 
 namespace {
@@ -363,7 +362,7 @@ TEST(StudyConfigGood, V1OverVMultipliesV) {
   EXPECT_EQ(cases[1].v1, 6.0);
   EXPECT_EQ(cases[2].v1, 2.0);
   EXPECT_EQ(cases[3].v1, 12.0);
-  for (const Scene& s : cases)
+  for (const StepRow& s : cases)
     EXPECT_EQ(s.G, 2.5);
 }
 
@@ -403,16 +402,27 @@ TEST(StudyConfigGood, TrailingCommentNeedsWhitespace) {
   EXPECT_EQ(parse(base({{6, "v1 = 1\t;x"}})).axes[4].values, std::vector<double>({1.0}));
 }
 
-TEST(StudyConfigGood, ProtocolFor) {
+TEST(StudyConfigGood, CaseForIsTheSeedStep) {
   const StudyConfig c = parse(base({{4, "tau = 0, 2"}}, "t_end_over_tau = 3\n"));
   const auto cases = expand_cases(c);
   ASSERT_EQ(cases.size(), 2u);
-  const mdrmap::Protocol p0 = protocol_for(c, cases[0]);
-  EXPECT_EQ(p0.t_end, mdrmap::default_t_end(cases[0]));
-  EXPECT_EQ(p0.samples, 11);
-  const mdrmap::Protocol p1 = protocol_for(c, cases[1]);
-  EXPECT_EQ(p1.t_end, 6.0);
-  EXPECT_EQ(p1.samples, 11);
+  for (const StepRow& r : cases) {
+    // one segment v -> v1 over the window, [run] samples, linear
+    const mdrmap::Case k = case_for(c, r);
+    EXPECT_EQ(k.loading.d, r.d);
+    EXPECT_EQ(k.indenter.R, r.R);
+    EXPECT_EQ(k.material.tau, r.tau);
+    EXPECT_EQ(k.material.G, r.G);
+    EXPECT_EQ(k.history.v0, r.v);
+    ASSERT_EQ(k.history.size(), 1u);
+    EXPECT_EQ(k.history.segments[0].w, r.v1);
+    EXPECT_EQ(k.history.segments[0].T, step_duration(c, r));
+    EXPECT_EQ(k.sampling.samples, 11);
+    EXPECT_EQ(k.sampling.spacing, mdrmap::Spacing::Linear);
+  }
+  const StepRow& r0 = cases[0]; // tau = 0: the default window
+  EXPECT_EQ(step_duration(c, r0), mdrmap::default_step_duration(r0.d, r0.R, r0.tau, r0.v, r0.v1));
+  EXPECT_EQ(step_duration(c, cases[1]), 6.0); // t_end_over_tau * tau
 }
 
 TEST(StudyConfigGood, ParseAxisErrorsNameTheAxis) {
@@ -743,12 +753,13 @@ TEST(StudyExamples, ShippedConfigsLoad) {
   }
   const StudyConfig s = load_config((dir / "start_stop.ini").string());
   EXPECT_TRUE(s.run.timeseries);
-  for (const Scene& sc : expand_cases(s)) {
+  for (const StepRow& sc : expand_cases(s)) {
     // a start-stop test: fast before (zeta >> 1, a2 ~ 0) and nearly stopped
     // after (zeta1 << 1, a2 -> a1), v1 = 1e-4 v as in the paper
     EXPECT_EQ(sc.v1, 1e-4 * sc.v);
-    EXPECT_GE(mdrmap::zeta(sc), 100.0);
-    EXPECT_LE(mdrmap::zeta1(sc), 0.1 + 1e-12);
+    const mdrmap::Case k = case_for(s, sc);
+    EXPECT_GE(mdrmap::zeta(k, sc.v), 100.0);
+    EXPECT_LE(mdrmap::zeta(k, sc.v1), 0.1 + 1e-12);
   }
 }
 
@@ -865,7 +876,7 @@ std::size_t check_cases(const StudyConfig& c, const std::string& input) {
     return 0;
   }
   if (count > kFuzzExpandLimit) return 0;
-  std::vector<Scene> cases;
+  std::vector<StepRow> cases;
   if (!returns_or_refuses("expand_cases", input, [&] { cases = expand_cases(c); })) {
     EXPECT_EQ(c.kind, StudyConfig::Kind::Cases)
         << "a parsed grid refused to expand (a case the parse-time check missed)\n"
@@ -874,15 +885,15 @@ std::size_t check_cases(const StudyConfig& c, const std::string& input) {
   }
   EXPECT_EQ(cases.size(), count) << input;
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const Scene& s = cases[i];
+    const StepRow& s = cases[i];
     bool finite = true;
     for (const double x : {s.d, s.R, s.tau, s.v, s.v1, s.G})
       finite = finite && std::isfinite(x);
     EXPECT_TRUE(finite) << "case " << i + 1 << "\n" << input;
     EXPECT_EQ(s.G, c.run.G) << input;
     try {
-      mdrmap::validate(s);
-      mdrmap::validate(protocol_for(c, s));
+      validate_row(s);
+      mdrmap::validate(case_for(c, s));
     } catch (const std::exception& e) {
       ADD_FAILURE() << "expanded case " << i + 1 << " is invalid: " << e.what() << "\n" << input;
     }
@@ -1314,7 +1325,7 @@ TEST(StudyFuzz, ShippedCsvsMutated) {
     const std::string input = "seed " + std::to_string(seed) + " iteration " +
                               std::to_string(iter) + ", G = " + mdrmap::format_number(G) +
                               ", mutated " + name + ": " + c_literal(text);
-    std::vector<Scene> cases;
+    std::vector<StepRow> cases;
     try {
       cases = read_cases_csv(path, G);
     } catch (const InvalidInput& e) {
@@ -1329,12 +1340,12 @@ TEST(StudyFuzz, ShippedCsvsMutated) {
     }
     ++ok;
     ASSERT_FALSE(cases.empty()) << input;
-    for (const Scene& s : cases) {
+    for (const StepRow& s : cases) {
       for (const double x : {s.d, s.R, s.tau, s.v, s.v1})
         ASSERT_TRUE(std::isfinite(x)) << input;
       ASSERT_EQ(s.G, G) << input;
       try {
-        mdrmap::validate(s);
+        validate_row(s);
       } catch (const std::exception& e) {
         FAIL() << "a case read is invalid: " << e.what() << "\n" << input;
       }
@@ -1430,8 +1441,8 @@ TEST(StudyFuzz, ParseConfigReturnsOrThrowsInvalidInput) {
         // A config that parses expands: every case was validated up front.
         const auto cases = expand_cases(c);
         ASSERT_EQ(cases.size(), case_count(c)) << text;
-        for (const Scene& s : cases)
-          mdrmap::validate(protocol_for(c, s));
+        for (const StepRow& s : cases)
+          mdrmap::validate(case_for(c, s));
         ASSERT_FALSE(canonical(c).empty());
       }
     } catch (const InvalidInput& e) {
@@ -1488,8 +1499,8 @@ TEST(StudyFuzz, ReadCasesCsvReturnsOrThrowsInvalidInput) {
       const auto cases = read_cases_csv(path, 1.0);
       ++ok;
       ASSERT_FALSE(cases.empty());
-      for (const Scene& s : cases)
-        mdrmap::validate(s);
+      for (const StepRow& s : cases)
+        validate_row(s);
     } catch (const InvalidInput& e) {
       ++refused;
       ASSERT_TRUE(good_message(e.what())) << c_literal(text);

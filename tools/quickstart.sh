@@ -34,12 +34,12 @@ simulate() {
   echo "== $name: mdrmap simulate $* --output $csv"
   rm -f "$csv"
   "$MDRMAP" simulate "$@" --output "$csv"
-  if [[ ! -s "$csv" ]] || ! grep -q '^t,FN,Fx,mu,a2$' "$csv"; then
-    echo "quickstart: mdrmap simulate wrote no CSV with header t,FN,Fx,mu,a2 to $csv" >&2
+  if [[ ! -s "$csv" ]] || ! grep -q '^t,segment,FN,Fx,mu,a2$' "$csv"; then
+    echo "quickstart: mdrmap simulate wrote no CSV with header t,segment,FN,Fx,mu,a2 to $csv" >&2
     exit 1
   fi
   local header_line
-  header_line=$(grep -n -m1 '^t,FN,Fx,mu,a2$' "$csv" | cut -d: -f1)
+  header_line=$(grep -n -m1 '^t,segment,FN,Fx,mu,a2$' "$csv" | cut -d: -f1)
   head -n "$((header_line + 4))" "$csv"
   echo "..."
   tail -n 1 "$csv"
@@ -74,6 +74,13 @@ study friction_map jobs/examples/friction_map.ini
 # = 0.075 in the limit v1 -> 0); then a2 grows from 5e-4 a1 towards
 # a2(v1) = 0.905 a1 (a1 = 0.1) and mu relaxes towards 0.0185.
 simulate start_stop --d 1e-2 --R 1 --tau 1 --v 100 --v1 1e-2 --G 1
+
+# A velocity-step sequence (zeta0 = v tau / sqrt(R d) = 1): up tenfold, back
+# down, down tenfold again, a hold of 10 tau, and a restart. The '# event'
+# lines give per change mu before and after it, its extremum, D_c and the
+# apparent rate-and-state parameters a, a - b, b.
+simulate step_sequence --d 1e-2 --R 1 --tau 1 --v 0.1 \
+  --history 1:4,0.1:4,0.01:6,0:10,0.1:4 --samples 41
 
 echo
 echo "quickstart: done; output in $OUT_DIR/"

@@ -4,25 +4,47 @@
 //   # mdrmap <version> (<commit>) simulate solver=... rtol=... error_estimate=...
 //     cells_per_a1=... elements=... steps=... element_updates=... root_solves=...
 //     wall_seconds=...                                        (one line)
-//   # scene d=... R=... tau=... v=... v1=... G=... t_end=... samples=... zeta=... zeta1=...
+//   # case d=... R=... tau=... G=... v=... history=W1:T1,W2:T2,... spacing=linear|log
+//     samples=... log-decades=... zeta0=...                   (one line)
 //   # error_vs_exact=...                  (only when the solver is not the exact one)
+//   # event k=... t=... w_before=... w_after=... mu_before=... mu_after=... mu_peak=...
+//     t_peak=... slip_peak=... mu_end=... mu_ss_before=... mu_ss_after=... D_c=... a=...
+//     a_minus_b=... b=...                 (one line per segment k = 0, 1, ...)
 //   # pre FN=... Fx=... mu=... a2=...     (always the last comment line)
-//   t,FN,Fx,mu,a2
-//   <samples rows>
+//   t,segment,FN,Fx,mu,a2
+//   <samples rows per segment, segment after segment>
+//
+// The `# case` line gives every parameter of the table (core/params.hpp) as
+// name=value in the table's order, the parameters of the sampling after the
+// history; `v` is the velocity v0 before t = 0 and zeta0 = v tau / a1. The
+// event fields are core/events.hpp's EventMetrics of the change at the start
+// of segment k: its time t (since the first change), the velocities before
+// and after it, mu just before and just after it, the extremum of mu in the
+// segment (mu_peak, at t_peak after the change, after a slip slip_peak), mu at
+// the segment's end, the stationary mu at both velocities, the slip D_c over
+// which |mu - mu_ss_after| falls to 1/e of its value just after the change,
+// and the apparent rate-and-state parameters a, a - b and b. A value that is
+// undefined (a log of 0 or of 1, a hold, no 1/e decay within the segment) is
+// printed as nan.
 //
 // Every floating-point number is printed with 17 significant digits, which
 // reads back to the same double.
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
-#include "core/scene.hpp"
+#include "core/case.hpp"
+#include "core/events.hpp"
 #include "core/solver.hpp"
 
 namespace mdrmap::app {
 
-/// `%.17g`: round-trips every finite double.
+/// `%.17g`: round-trips every finite double; NaN prints as "nan" (never "-nan").
 std::string format_double(double x);
+
+/// A history as "W1:T1,W2:T2,...", each number with 17 significant digits.
+std::string format_history(const History& h);
 
 /// Everything the comment lines report besides the series itself.
 struct SimulateRecord {
@@ -32,13 +54,13 @@ struct SimulateRecord {
   double rtol = 0.0;                    ///< requested tolerance
   RunInfo info;                         ///< cost and error estimate of the run
   double wall_seconds = 0.0;            ///< wall time of the run
-  Scene scene;                          ///< the scene as run
-  Protocol protocol;                    ///< the sampling as run (t_end resolved)
+  Case c;                               ///< the case as run (durations resolved)
   std::optional<double> error_vs_exact; ///< case error against the continuum solver
+  std::vector<EventMetrics> events;     ///< one per segment
 };
 
 /// The CSV column header line (without newline).
-inline constexpr const char* kCsvHeader = "t,FN,Fx,mu,a2";
+inline constexpr const char* kCsvHeader = "t,segment,FN,Fx,mu,a2";
 
 /// Writes the comment lines, the header and one row per sample to `out`.
 /// Does not flush or check for I/O errors; the caller does (ferror / fclose).

@@ -19,15 +19,17 @@ using mdrmap::app::kExitRuntime;
 std::string usage() {
   return std::string("mdrmap ") + mdrmap::kVersion + " (" + mdrmap::kGitCommit + R"()
 Viscoelastic friction in the method of dimensionality reduction (MDR): the
-response of a sliding parabolic contact on a Kelvin foundation to a step in
-the sliding velocity, for one case or as parameter maps.
+response of a sliding parabolic contact on a Kelvin foundation to changes of
+the sliding velocity (a step, or a history of steps and holds), for one case
+or as parameter maps.
 
 Usage: mdrmap <subcommand> [options]
        mdrmap --help | --version
 
 Subcommands:
-  simulate   one velocity step: normal force, friction force, friction
-             coefficient and trailing edge of the contact over time, as CSV
+  simulate   one case, a velocity step or history: normal force, friction
+             force, friction coefficient and trailing edge of the contact
+             over time, as CSV, with event metrics of every velocity change
   study      parameter maps over many cases in parallel: MPI ranks share
              the cases, results go to one HDF5 friction map
 

@@ -1,5 +1,7 @@
 #include "app/simulate_cmd.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <cstring>
 #include <exception>
 #include <fcntl.h>
+#include <iterator>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -17,9 +20,11 @@
 #include <boost/program_options.hpp>
 
 #include "app/csv_output.hpp"
+#include "core/case.hpp"
 #include "core/error_metric.hpp"
+#include "core/events.hpp"
 #include "core/exact.hpp"
-#include "core/scene.hpp"
+#include "core/params.hpp"
 #include "core/solver.hpp"
 #include "mdrmap/version.hpp"
 
@@ -30,37 +35,30 @@ namespace {
 
 constexpr const char* kPrefix = "mdrmap simulate: error: ";
 constexpr double kDefaultRtol = 1e-4;
-constexpr long kDefaultSamples = 201;
 constexpr double kExactReferenceRtol = 1e-12;
 
-/// Every option, in the order of the help text; `required` ones have no default.
-struct OptionSpec {
-  const char* name;
-  bool required;
-  const char* meaning; ///< used in "missing" messages
-};
+/// Options that are not case parameters of the table (core/params.hpp): the
+/// history's two forms, the sampling's spacing and how to run.
+constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
+constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver", "output"};
 
-constexpr OptionSpec kOptions[] = {
-    {"d", true, "the indentation depth, a finite number > 0"},
-    {"R", true, "the radius of curvature of the indenter, a finite number > 0"},
-    {"tau", true, "the relaxation time eta/G, a finite number >= 0"},
-    {"v", true, "the sliding velocity before the step, a finite number > 0"},
-    {"v1", true, "the sliding velocity after the step, a finite number >= 0"},
-    {"G", false, ""},
-    {"t-end", false, ""},
-    {"samples", false, ""},
-    {"rtol", false, ""},
-    {"solver", false, ""},
-    {"output", false, ""},
-};
+/// Every option, in the order of the help text: the table's case parameters,
+/// the history, the table's sampling parameters, then the rest.
+std::vector<std::string> option_names() {
+  std::vector<std::string> names;
+  for (const auto& p : case_parameters())
+    if (p.part != Part::Sampling) names.emplace_back(p.name);
+  names.insert(names.end(), std::begin(kHistoryOptions), std::end(kHistoryOptions));
+  for (const auto& p : case_parameters())
+    if (p.part == Part::Sampling) names.emplace_back(p.name);
+  names.insert(names.end(), std::begin(kRunOptions), std::end(kRunOptions));
+  return names;
+}
 
 std::string all_option_names() {
   std::string s;
-  for (const auto& o : kOptions) {
-    s += "--";
-    s += o.name;
-    s += ", ";
-  }
+  for (const auto& o : option_names())
+    s += "--" + o + ", ";
   return s + "--help";
 }
 
@@ -105,9 +103,11 @@ int report_runtime(const std::string& what) {
   return kExitRuntime;
 }
 
+// --- Numbers -------------------------------------------------------------------
+
 /// Strict decimal (or hex) floating-point number, the whole text. "nan" and
-/// "inf" parse; the core validation then rejects them with the allowed range.
-double parse_double(const char* option, const std::string& text) {
+/// "inf" parse; the range checks then reject them with the allowed range.
+double parse_double(const std::string& option, const std::string& text) {
   const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
@@ -121,34 +121,117 @@ double parse_double(const char* option, const std::string& text) {
   return x;
 }
 
-/// Strict integer: optional sign and decimal digits only.
-long parse_samples(const std::string& text) {
-  const std::string allowed =
-      "must be an integer from 2 to " + std::to_string(kMaxSamples) + ", got " + shown(text);
+/// Strict integer for a count parameter: optional sign and decimal digits.
+double parse_integer(const ParamSpec& spec, const std::string& text) {
+  const std::string allowed = "must be " + spec.allowed() + ", got " + shown(text);
   std::size_t i = (!text.empty() && (text[0] == '+' || text[0] == '-')) ? 1 : 0;
-  if (i >= text.size()) throw InvalidInput("samples", allowed);
+  if (i >= text.size()) throw InvalidInput(spec.name, allowed);
   for (; i < text.size(); ++i)
-    if (text[i] < '0' || text[i] > '9') throw InvalidInput("samples", allowed);
+    if (text[i] < '0' || text[i] > '9') throw InvalidInput(spec.name, allowed);
   errno = 0;
-  const long n = std::strtol(text.c_str(), nullptr, 10);
-  if (errno == ERANGE) throw InvalidInput("samples", allowed);
-  return n;
+  const long long n = std::strtoll(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) throw InvalidInput(spec.name, allowed);
+  return static_cast<double>(n);
 }
 
+/// A table parameter's value from its text: parsed, checked against its range.
+double parse_parameter(const ParamSpec& spec, const std::string& text) {
+  const double x = spec.integer() ? parse_integer(spec, text) : parse_double(spec.name, text);
+  spec.check(x);
+  return x;
+}
+
+/// Checks x against a spec, blaming `option` (e.g. the segment spec "w" is
+/// given as --v1 in the one-step shorthand).
+void check_as(const std::string& option, const ParamSpec& spec, double x) {
+  try {
+    spec.check(x);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(option, e.what());
+  }
+}
+
+// --- History -------------------------------------------------------------------
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? comma : comma - start));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+/// W or T of one segment: a number in its spec's range. `where` names the segment.
+double segment_number(const std::string& where, const ParamSpec& spec, const std::string& text) {
+  try {
+    const double x = parse_double(spec.symbol, trimmed(text));
+    spec.check(x);
+    return x;
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("history", where + ": " + spec.symbol + " " + e.what());
+  }
+}
+
+/// One segment "W:T"; k is 1-based.
+Segment parse_segment(std::size_t k, const std::string& item) {
+  const std::string where = "segment " + std::to_string(k) + " '" + item + "'";
+  const std::string form = "a segment is W:T, its velocity W then its duration T";
+  const std::string tok = trimmed(item);
+  if (tok.empty())
+    throw InvalidInput("history", "segment " + std::to_string(k) +
+                                      " is empty; segments W:T are separated by single commas, "
+                                      "e.g. 0.1:10,0:100,1:10");
+  const std::size_t colon = tok.find(':');
+  if (colon == std::string::npos) throw InvalidInput("history", where + " has no ':'; " + form);
+  if (tok.find(':', colon + 1) != std::string::npos)
+    throw InvalidInput("history", where + " has more than one ':'; " + form);
+  Segment s;
+  s.w = segment_number(where, segment_velocity_spec(), tok.substr(0, colon));
+  s.T = segment_number(where, segment_duration_spec(), tok.substr(colon + 1));
+  return s;
+}
+
+/// "W1:T1,W2:T2,...": every token checked; throws InvalidInput("history").
+std::vector<Segment> parse_history(const std::string& text) {
+  if (trimmed(text).empty())
+    throw InvalidInput("history", "must be one or more segments W:T separated by commas, e.g. "
+                                  "0.1:10,0:100,1:10; got " +
+                                      shown(text));
+  const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
+  if (n > kMaxSegments)
+    throw InvalidInput("history", "has " + std::to_string(n) + " segments; at most " +
+                                      std::to_string(kMaxSegments) + " are allowed");
+  std::vector<Segment> segments;
+  const auto items = split_commas(text);
+  for (std::size_t k = 0; k < items.size(); ++k)
+    segments.push_back(parse_segment(k + 1, items[k]));
+  return segments;
+}
+
+// --- Command line --------------------------------------------------------------
+
 struct SimulateArgs {
-  Scene scene;
-  Protocol protocol;
+  Case c;
   SolverKind solver = SolverKind::Auto;
   double rtol = kDefaultRtol;
   std::string output; ///< empty or "-": stdout
 };
 
-/// Parses and validates the command line. Throws InvalidInput, or lets
-/// boost::program_options errors through for the caller to translate.
-SimulateArgs parse_args(const std::vector<std::string>& args) {
+/// Parses the command line into option texts. Throws InvalidInput for stray
+/// arguments, or lets boost::program_options errors through.
+po::variables_map option_texts(const std::vector<std::string>& args) {
   po::options_description desc;
-  for (const auto& o : kOptions)
-    desc.add_options()(o.name, po::value<std::string>());
+  for (const auto& name : option_names())
+    desc.add_options()(name.c_str(), po::value<std::string>());
   desc.add_options()("help", "");
 
   const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
@@ -169,34 +252,112 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
     throw InvalidInput("", "unexpected argument " + shown(tok) +
                                "; every value must follow its option, e.g. --d 0.1");
   }
-
   po::variables_map vm;
   po::store(parsed, vm);
   po::notify(vm);
+  return vm;
+}
 
-  for (const auto& o : kOptions)
-    if (o.required && !vm.count(o.name))
-      throw InvalidInput(o.name, std::string("is required: ") + o.meaning + ", got nothing");
+/// What the table says about a parameter, for help and "required" messages.
+std::string describe(const ParamSpec& p) {
+  return std::string(p.meaning) + " (" + dim_name(p.dim) + "), " + p.allowed();
+}
 
+void require_options(const po::variables_map& vm) {
+  for (const auto& p : case_parameters())
+    if (p.required && !vm.count(p.name))
+      throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
+  if (vm.count("v1") && vm.count("history"))
+    throw InvalidInput("history", "cannot be combined with --v1: give either --history "
+                                  "W1:T1,W2:T2,... or its one-segment shorthand --v1 V1 "
+                                  "[--t-end T]");
+  if (!vm.count("v1") && !vm.count("history"))
+    throw InvalidInput("v1", "is required: the sliding velocity after t = 0 (length/time), " +
+                                 segment_velocity_spec().allowed() +
+                                 "; or give a whole history with --history W1:T1,W2:T2,...; "
+                                 "got nothing");
+  if (vm.count("t-end") && vm.count("history"))
+    throw InvalidInput("t-end", "belongs to the shorthand --v1 V1 [--t-end T]; with --history "
+                                "each segment W:T has its own duration");
+}
+
+/// Sets every table parameter from its option, or from the table's default.
+void read_case_parameters(const po::variables_map& vm, Case& c) {
+  for (const auto& p : case_parameters()) {
+    const double x =
+        vm.count(p.name) ? parse_parameter(p, vm[p.name].as<std::string>()) : p.fallback;
+    p.set(c, x);
+  }
+}
+
+/// The history from --history, or the one segment of --v1 V1 [--t-end T];
+/// every value is checked with the segment specs, the shorthand's reported as
+/// --v1 / --t-end. Needs the case parameters set (the default window).
+void read_history(const po::variables_map& vm, Case& c) {
+  auto text = [&](const char* name) { return vm[name].as<std::string>(); };
+  if (vm.count("history")) {
+    c.history.segments = parse_history(text("history"));
+    return;
+  }
+  const double v1 = parse_double("v1", text("v1"));
+  check_as("v1", segment_velocity_spec(), v1);
+  std::optional<double> t_end;
+  if (vm.count("t-end")) {
+    t_end = parse_double("t-end", text("t-end"));
+    check_as("t-end", segment_duration_spec(), *t_end);
+  }
+  // the scales first (as for any case), then the window they give
+  c.history.segments = {Segment{v1, 1.0}};
+  validate(c);
+  const double d = c.loading.d, R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
+  const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
+  if (!t_end) {
+    try {
+      segment_duration_spec().check(T);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("t-end", std::string("the default window ") + e.what() +
+                                      "; give --t-end or rescale the units");
+    }
+  }
+  c.history.segments = {Segment{v1, T}};
+}
+
+Spacing parse_spacing(const std::string& text) {
+  if (text == "linear") return Spacing::Linear;
+  if (text == "log") return Spacing::Log;
+  throw InvalidInput("spacing", "must be linear or log, got " + shown(text));
+}
+
+/// Refuses outputs beyond kMaxSamples rows in all.
+void check_total_samples(const Case& c) {
+  const double rows =
+      static_cast<double>(c.sampling.samples) * static_cast<double>(c.history.size());
+  if (rows > static_cast<double>(kMaxSamples))
+    throw InvalidInput("samples", std::to_string(c.sampling.samples) + " per segment x " +
+                                      std::to_string(c.history.size()) +
+                                      " segments = " + format_number(rows) + " rows, more than " +
+                                      std::to_string(kMaxSamples) + "; lower --samples");
+}
+
+/// Parses and validates the command line. Throws InvalidInput, or lets
+/// boost::program_options errors through for the caller to translate.
+SimulateArgs parse_args(const std::vector<std::string>& args) {
+  const po::variables_map vm = option_texts(args);
+  require_options(vm);
   auto text = [&](const char* name) { return vm[name].as<std::string>(); };
 
   SimulateArgs a;
-  a.scene.d = parse_double("d", text("d"));
-  a.scene.R = parse_double("R", text("R"));
-  a.scene.tau = parse_double("tau", text("tau"));
-  a.scene.v = parse_double("v", text("v"));
-  a.scene.v1 = parse_double("v1", text("v1"));
-  if (vm.count("G")) a.scene.G = parse_double("G", text("G"));
-  std::optional<double> t_end;
-  if (vm.count("t-end")) t_end = parse_double("t-end", text("t-end"));
-  a.protocol.samples = vm.count("samples") ? parse_samples(text("samples")) : kDefaultSamples;
+  read_case_parameters(vm, a.c);
+  if (vm.count("spacing")) a.c.sampling.spacing = parse_spacing(text("spacing"));
+  if (vm.count("log-decades") && a.c.sampling.spacing != Spacing::Log)
+    throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
+                                      "drop --log-decades");
+  read_history(vm, a.c);
+  validate(a.c);
+  check_total_samples(a.c);
   if (vm.count("rtol")) a.rtol = parse_double("rtol", text("rtol"));
   if (vm.count("solver")) a.solver = parse_solver(text("solver"));
   if (vm.count("output")) a.output = text("output");
-
-  validate(a.scene);
-  a.protocol.t_end = t_end ? *t_end : default_t_end(a.scene);
-  validate(a.protocol);
   validate_rtol(a.rtol);
   if (vm.count("output") && a.output.empty())
     throw InvalidInput("output", "must be a file path (or - for stdout), got an empty string");
@@ -268,7 +429,7 @@ int run(const SimulateArgs& a) {
   if (!to_stdout) file.emplace(a.output);
 
   const auto start = std::chrono::steady_clock::now();
-  const RunResult res = run_case(a.scene, a.protocol, a.solver, a.rtol);
+  const RunResult res = run_case(a.c, a.solver, a.rtol);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -279,11 +440,11 @@ int run(const SimulateArgs& a) {
   rec.rtol = a.rtol;
   rec.info = res.info;
   rec.wall_seconds = wall;
-  rec.scene = a.scene;
-  rec.protocol = a.protocol;
+  rec.c = a.c;
+  rec.events = event_metrics(a.c, res.series);
   if (rec.solver != "exact") {
-    const RunResult ref = run_exact(a.scene, a.protocol, kExactReferenceRtol);
-    rec.error_vs_exact = case_error(res.series, ref.series, a.scene).max();
+    const RunResult ref = run_exact(a.c, kExactReferenceRtol);
+    rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
   }
 
   if (file) {
@@ -299,44 +460,154 @@ int run(const SimulateArgs& a) {
   return kExitOk;
 }
 
+// --- Help ----------------------------------------------------------------------
+
+/// "  --name ARG" padded to the text column, then `text` wrapped to 79 columns.
+std::string help_entry(const std::string& option, const std::string& text) {
+  constexpr std::size_t kColumn = 17, kWidth = 79;
+  std::string out = "  " + option;
+  if (out.size() + 1 > kColumn)
+    out += "\n" + std::string(kColumn, ' ');
+  else
+    out += std::string(kColumn - out.size(), ' ');
+  std::size_t col = kColumn;
+  std::size_t pos = 0;
+  bool first = true;
+  while (pos < text.size()) {
+    std::size_t end = text.find(' ', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(pos, end - pos);
+    if (!first && col + 1 + word.size() > kWidth) {
+      out += "\n" + std::string(kColumn, ' ');
+      col = kColumn;
+      first = true;
+    }
+    if (!first) out += ' ', ++col;
+    out += word;
+    col += word.size();
+    first = false;
+    pos = end + 1;
+  }
+  return out + "\n";
+}
+
+/// One help entry per table parameter of the sampling part or of the others.
+std::string parameter_help(bool sampling) {
+  std::string s;
+  for (const auto& p : case_parameters()) {
+    if ((p.part == Part::Sampling) != sampling) continue;
+    std::string allowed = p.allowed();
+    allowed[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(allowed[0])));
+    std::string text = "(" + std::string(dim_name(p.dim)) + ") " + p.meaning + ". " + allowed;
+    text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
+    s += help_entry(std::string("--") + p.name + " " + p.symbol, text);
+  }
+  return s;
+}
+
+/// The required options of the table, as the usage line gives them.
+std::string required_usage() {
+  std::string s;
+  for (const auto& p : case_parameters())
+    if (p.required) s += std::string(" --") + p.name + " " + p.symbol;
+  return s;
+}
+
+std::string history_help() {
+  const ParamSpec &w = segment_velocity_spec(), &T = segment_duration_spec();
+  return help_entry("--v1 V1", "one step: the sliding velocity from t = 0 on (" +
+                                   std::string(dim_name(w.dim)) + "), " + w.allowed() +
+                                   "; 0 stops the indenter, V1 > V0 is a speed-up") +
+         help_entry("--t-end T", "with --v1: how long the step is followed (" +
+                                     std::string(dim_name(T.dim)) + "), " + T.allowed() +
+                                     ". Default: 6 tau; for tau = 0, 6 a1/min(V0,V1) "
+                                     "(6 a1/V0 if V1 = 0)") +
+         help_entry("--history W1:T1,W2:T2,...",
+                    "segments one after another from t = 0: sliding velocity Wk (" +
+                        std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
+                        "duration Tk (" + dim_name(T.dim) + "), " + T.allowed() + "; at most " +
+                        std::to_string(kMaxSegments) +
+                        " segments. --v1 V1 --t-end T is --history V1:T; give one of the two "
+                        "forms, not both");
+}
+
+std::string sampling_help() {
+  return parameter_help(true) +
+         help_entry("--spacing S",
+                    "linear or log: where the N instants of a segment k (start t_k, duration "
+                    "T_k) lie. Default: linear") +
+         "                   linear  t_k + j T_k/(N-1), j = 0..N-1\n"
+         "                   log     t_k, then t_k + T_k 10^(-D (N-1-j)/(N-2)),\n"
+         "                           j = 1..N-1 (D = --log-decades): a long hold and\n"
+         "                           the transient at its start both resolved\n";
+}
+
+std::string output_help() {
+  return R"(Output: comment lines starting with '#', then CSV with a header line.
+  # mdrmap VERSION (COMMIT) simulate solver=NAME rtol=E error_estimate=...
+      cells_per_a1=... elements=... steps=... element_updates=...
+      root_solves=... wall_seconds=...            (all on one line)
+  # case d=... R=... tau=... G=... v=... history=W1:T1,... spacing=linear
+      samples=N log-decades=D zeta0=...           (all on one line: every
+                                                   case parameter, the history)
+  # error_vs_exact=...     (solvers other than exact only: the case error
+                            against the continuum solution)
+  # event k=K t=... w_before=... w_after=... mu_before=... mu_after=...
+      mu_peak=... t_peak=... slip_peak=... mu_end=... mu_ss_before=...
+      mu_ss_after=... D_c=... a=... a_minus_b=... b=...
+                           (one line per segment K = 0, 1, ...: the change at
+                            its start, see below)
+  # pre FN=... Fx=... mu=... a2=...   (stationary state at V0 before t = 0)
+  t,segment,FN,Fx,mu,a2
+  ... N rows per segment, segment after segment; segment is 0-based, t is
+      measured from the first change (t = 0 is the instant just after it) ...
+zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0.
+Events: the change at time t from w_before to w_after; mu just before it
+(mu_before) and just after it (mu_after); the extremum of mu in the segment,
+the sample farthest from the stationary mu_ss_after (mu_peak), its time since
+the change (t_peak) and the slip w_after t_peak (slip_peak); mu at the
+segment's end (mu_end); the stationary mu at both velocities; D_c, the slip
+over which |mu - mu_ss_after| falls to 1/e of its value just after the change;
+the apparent rate-and-state parameters a = (mu_after - mu_before) /
+ln(w_after/w_before), a_minus_b = (mu_ss_after - mu_ss_before) /
+ln(w_after/w_before) and b = a - a_minus_b. Where a value is undefined (a
+velocity of 0 or equal velocities in the log, no 1/e decay within the segment,
+a hold) it is printed as nan.
+The case error is the largest of max_k |q_k - q_ref,k| / max_k |q_ref,k| for
+q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. error_estimate is the
+solver's own bound on it. Numbers have 17 significant digits, so they read
+back to the same double.
+)";
+}
+
 } // namespace
 
 std::string simulate_help() {
-  const std::string max_samples = std::to_string(kMaxSamples);
-  return R"(Usage: mdrmap simulate --d D --R R --tau TAU --v V --v1 V1 [options]
+  return "Usage: mdrmap simulate" + required_usage() +
+         R"(
+           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]
 
-Computes the response of a viscoelastic contact to a sudden change of the
-sliding velocity, in the method of dimensionality reduction (MDR). A rigid
-parabolic indenter (MDR profile x^2/R) is held at indentation depth d on a
-Kelvin foundation (shear modulus G, relaxation time tau = eta/G). It slides
-steadily at velocity v until t = 0, and at v1 from then on. The command prints
-the stationary state before the step and, at N instants from t = 0 (just after
-the step) to T, the normal force FN, the tangential (friction) force Fx,
-positive when it resists the motion, the friction coefficient mu = Fx/FN, and
-the trailing edge a2 of the contact. In the frame of the indenter the contact
-occupies [-a1, a2]; the leading edge stays at -a1, a1 = sqrt(R d).
+Computes the response of a viscoelastic contact to changes of the sliding
+velocity, in the method of dimensionality reduction (MDR). A rigid parabolic
+indenter (MDR profile x^2/R) is held at indentation depth d on a Kelvin
+foundation (shear modulus G, relaxation time tau = eta/G). It slides steadily
+at velocity V0 until t = 0, then follows a velocity history: one step to V1
+(--v1), or segments of constant velocity, holds included (--history). The
+command prints the stationary state before t = 0, event metrics of every
+velocity change and, at N instants per segment, the normal force FN, the
+tangential (friction) force Fx, positive when it resists the motion, the
+friction coefficient mu = Fx/FN, and the trailing edge a2 of the contact. In
+the frame of the indenter the contact occupies [-a1, a2]; the leading edge
+stays at -a1, a1 = sqrt(R d).
 
 Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
-times, v and v1 length/time; forces come out in units of G * length^2.
+times, velocities length/time; forces come out in units of G * length^2.
 
-Required options:
-  --d D          indentation depth (length), > 0
-  --R R          radius of curvature of the parabolic indenter (length), > 0
-  --tau TAU      relaxation time eta/G of the foundation (time), >= 0;
-                 0 is the purely elastic limit
-  --v V          sliding velocity before the step (length/time), > 0
-  --v1 V1        sliding velocity after the step (length/time), >= 0;
-                 0 stops the indenter, v1 > v is a speed-up
-
+Case parameters:
+)" + parameter_help(false) +
+         "\nVelocity history after t = 0 (--v1 or --history):\n" + history_help() +
+         "\nSampling, per segment:\n" + sampling_help() + R"(
 Other options:
-  --G G          shear modulus of the foundation (force/length^2), > 0.
-                 Default: 1
-  --t-end T      end of the sampled time window after the step (time), > 0.
-                 Default: 6 tau; for tau = 0, 6 a1 / min(v, v1) (6 a1 / v if
-                 v1 = 0)
-  --samples N    number of output instants t_k = k T/(N-1), k = 0..N-1;
-                 an integer from 2 to )" +
-         max_samples + R"(. Default: 201
   --rtol E       target accuracy: bound on the case error (below), a number
                  in (0, 0.1]. Default: 1e-4
   --solver S     auto, exact, mdr or baseline. Default: auto
@@ -349,25 +620,12 @@ Other options:
                  "-" means stdout
   --help         print this text and exit
 
-Output: comment lines starting with '#', then CSV with a header line.
-  # mdrmap VERSION (COMMIT) simulate solver=NAME rtol=E error_estimate=...
-      cells_per_a1=... elements=... steps=... element_updates=...
-      root_solves=... wall_seconds=...            (all on one line)
-  # scene d=... R=... tau=... v=... v1=... G=... t_end=T samples=N
-      zeta=... zeta1=...                          (all on one line)
-  # error_vs_exact=...     (solvers other than exact only: the case error
-                            against the continuum solution)
-  # pre FN=... Fx=... mu=... a2=...   (stationary state at v before the step)
-  t,FN,Fx,mu,a2
-  ... N rows, t = 0 to T ...
-zeta = v tau / a1 and zeta1 = v1 tau / a1 are the dimensionless velocities.
-The case error is the largest of max_k |q_k - q_ref,k| / max_k |q_ref,k| for
-q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. error_estimate is the
-solver's own bound on it. Numbers have 17 significant digits, so they read
-back to the same double.
-
-Example:
+)" + output_help() +
+         R"(
+Examples:
   mdrmap simulate --d 0.1 --R 10 --tau 1 --v 2 --v1 0.5 --output step.csv
+  mdrmap simulate --d 0.1 --R 10 --tau 1 --v 1 --history 1:2,0:1000,1:5 \
+      --samples 101 --spacing log       (slide-hold-slide: a hold of 1000 tau)
 
 Exit codes:
   0  success

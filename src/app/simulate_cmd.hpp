@@ -1,5 +1,5 @@
 #pragma once
-// `mdrmap simulate`: one velocity-step case, printed as CSV.
+// `mdrmap simulate`: one case (a velocity step or history), printed as CSV.
 #include <string>
 #include <vector>
 

@@ -49,12 +49,12 @@ void check_history(const History& h) {
                                       " segments; at most " + std::to_string(kMaxSegments) +
                                       " are allowed");
   for (std::size_t k = 0; k < h.segments.size(); ++k) {
-    const std::string which = "segment " + std::to_string(k + 1) + ": ";
     try {
       segment_velocity_spec().check(h.segments[k].w);
       segment_duration_spec().check(h.segments[k].T);
     } catch (const InvalidInput& e) {
-      throw InvalidInput("history", which + e.option() + " " + e.what());
+      throw InvalidInput("history",
+                         "segment " + std::to_string(k + 1) + ": " + e.option() + " " + e.what());
     }
   }
   if (!std::isfinite(h.end()))

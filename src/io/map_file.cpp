@@ -123,7 +123,7 @@ std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
 }
 
 void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                     const Provenance& prov, const std::vector<Scene>& cases) {
+                     const Provenance& prov, const std::vector<study::StepRow>& cases) {
   if (cases.size() != spec.n_cases) throw std::invalid_argument("MapFile::create: case count");
   if (spec.n_cases == 0) throw std::invalid_argument("MapFile::create: no cases");
   int rank = 0;
@@ -200,7 +200,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
     std::vector<double> col(cases.size());
     for (std::size_t c = 0; c < 6; ++c) {
       for (std::size_t i = 0; i < cases.size(); ++i) {
-        const Scene& s = cases[i];
+        const study::StepRow& s = cases[i];
         const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
         col[i] = vals[c];
       }

@@ -31,8 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "io/h5.hpp"
+#include "study/config.hpp"
 
 namespace mdrmap::io {
 
@@ -94,10 +94,10 @@ struct MapLayout {
 class MapFile {
 public:
   /// Collective. Creates `path` (which must not exist) with every dataset
-  /// allocated and zero-filled; rank 0 writes /cases and /grid. The file is
-  /// closed (complete and valid) on return.
+  /// allocated and zero-filled; rank 0 writes /cases (the rows' fields) and
+  /// /grid. The file is closed (complete and valid) on return.
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                     const Provenance& prov, const std::vector<Scene>& cases);
+                     const Provenance& prov, const std::vector<study::StepRow>& cases);
   /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema?
   /// On false, `why` says what it is instead.
   static bool is_map(const std::string& path, std::string* why);

@@ -12,6 +12,7 @@
 #include <map>
 #include <string_view>
 
+#include "core/params.hpp"
 #include "core/solver.hpp"
 
 namespace mdrmap::study {
@@ -60,7 +61,7 @@ const std::vector<std::string>& override_keys() {
 
 /// Grid axes in study order; the fifth is v1 or v1_over_v.
 constexpr const char* kAxisOrder[4] = {"d", "R", "tau", "v"};
-/// Columns of a case list, in Scene field order.
+/// Columns of a case list, in StepRow field order.
 constexpr const char* kColumns[5] = {"d", "R", "tau", "v", "v1"};
 
 bool contains(const std::vector<std::string>& v, const std::string& s) {
@@ -303,21 +304,53 @@ void fill_logspace(std::vector<double>& v, double lo, double hi, long long n) {
 
 // --- Cases ------------------------------------------------------------------
 
-std::string describe(const Scene& s) {
+std::string describe(const StepRow& s) {
   return "d = " + format_number(s.d) + ", R = " + format_number(s.R) +
          ", tau = " + format_number(s.tau) + ", v = " + format_number(s.v) +
          ", v1 = " + format_number(s.v1);
 }
 
-/// Validates one case as the runner will run it. Throws InvalidInput with the
-/// core's option names (d, R, tau, v, v1, G, t-end, samples).
-void validate_case(const StudyConfig& c, const Scene& s) {
-  validate(s);
-  validate(protocol_for(c, s));
+/// The table's specs of a row's fields, looked up once (rows are checked by
+/// the million).
+struct RowSpecs {
+  const ParamSpec &d, &R, &tau, &v, &v1, &G, &t_end, &samples;
+};
+const RowSpecs& row_specs() {
+  static const RowSpecs s{*find_parameter("d"),    *find_parameter("R"),
+                          *find_parameter("tau"),  *find_parameter("v"),
+                          segment_velocity_spec(), *find_parameter("G"),
+                          segment_duration_spec(), *find_parameter("samples")};
+  return s;
+}
+
+/// Checks `x` against a parameter spec, blaming `option` (a row field or the
+/// seed's t-end) instead of the spec's own name.
+void check_as(const char* option, const ParamSpec& spec, double x) {
+  try {
+    spec.check(x);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(option, e.what());
+  }
+}
+
+/// Checks a valid row's sampling as the seed's protocol was checked: the
+/// window (as "t-end"), then the samples. Returns the window.
+double check_sampling(const StudyConfig& c, const StepRow& r) {
+  const double T = step_duration(c, r);
+  check_as("t-end", row_specs().t_end, T);
+  check_as("samples", row_specs().samples, static_cast<double>(c.run.samples));
+  return T;
+}
+
+/// Validates one case as the runner will run it, without building it. Throws
+/// InvalidInput with the seed's option names (d, R, tau, v, v1, G, t-end, samples).
+void validate_case(const StudyConfig& c, const StepRow& s) {
+  validate_row(s);
+  check_sampling(c, s);
 }
 
 /// The message for a failed case check, for whichever key gets the blame.
-std::string case_problem(const InvalidInput& e, const Scene& s, const std::string& v1_name) {
+std::string case_problem(const InvalidInput& e, const StepRow& s, const std::string& v1_name) {
   const std::string& o = e.option();
   std::string what;
   if (o == "t-end") {
@@ -334,7 +367,7 @@ std::string case_problem(const InvalidInput& e, const Scene& s, const std::strin
 }
 
 /// Config key that answers for a core option, in a grid.
-std::string grid_option(const std::string& core_option, const Scene& s,
+std::string grid_option(const std::string& core_option, const StepRow& s,
                         const std::string& v1_name) {
   if (core_option == "v1") return "grid." + v1_name;
   if (core_option == "G") return "run.G";
@@ -415,7 +448,7 @@ std::vector<double> extremes(const std::vector<double>& v) {
   return out;
 }
 
-/// Calls f(scene) for every combination of the five axis value lists, in C
+/// Calls f(row) for every combination of the five axis value lists, in C
 /// order (last axis fastest); v1 is v1_over_v * v when `ratio`.
 template <class F>
 void for_each_combination(const std::vector<double>& D, const std::vector<double>& R,
@@ -426,7 +459,7 @@ void for_each_combination(const std::vector<double>& D, const std::vector<double
       for (const double tau : T)
         for (const double v : V)
           for (const double x : V1) {
-            Scene s;
+            StepRow s;
             s.d = d;
             s.R = r;
             s.tau = tau;
@@ -438,8 +471,8 @@ void for_each_combination(const std::vector<double>& D, const std::vector<double
 }
 
 /// Validates every case of a grid without expanding it: each axis value is in
-/// range (parse_axis), and the combined checks of validate(Scene) and
-/// validate(Protocol) are monotone in each parameter, so the corners of the
+/// range (parse_axis), and the combined checks of validate_row and the
+/// window and samples checks are monotone in each parameter, so the corners of the
 /// grid (smallest, largest, smallest positive value per axis) decide them.
 template <class WhereFn> void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
   const std::string& v1_name = c.axes[4].name;
@@ -447,7 +480,7 @@ template <class WhereFn> void check_grid_corners(const StudyConfig& c, const Whe
   const auto D = extremes(c.axes[0].values), R = extremes(c.axes[1].values),
              T = extremes(c.axes[2].values), V = extremes(c.axes[3].values),
              V1 = extremes(c.axes[4].values);
-  for_each_combination(D, R, T, V, V1, ratio, c.run.G, [&](const Scene& s) {
+  for_each_combination(D, R, T, V, V1, ratio, c.run.G, [&](const StepRow& s) {
     try {
       validate_case(c, s);
     } catch (const InvalidInput& e) {
@@ -859,10 +892,10 @@ void apply_override(StudyConfig& c, const std::string& key, const std::string& v
   c = std::move(n);
 }
 
-std::vector<Scene> expand_cases(const StudyConfig& c) {
+std::vector<StepRow> expand_cases(const StudyConfig& c) {
   const Where src{c.source_path.empty() ? "config" : c.source_path, 0};
   if (c.kind == StudyConfig::Kind::Cases) {
-    std::vector<Scene> cases = read_cases_csv(c.cases_file, c.run.G);
+    std::vector<StepRow> cases = read_cases_csv(c.cases_file, c.run.G);
     check_timeseries_memory(c.run, static_cast<double>(cases.size()));
     for (std::size_t i = 0; i < cases.size(); ++i) {
       try {
@@ -881,10 +914,10 @@ std::vector<Scene> expand_cases(const StudyConfig& c) {
   const std::size_t count = case_count(c);
   const auto& A = c.axes;
   const bool ratio = A[4].name == "v1_over_v";
-  std::vector<Scene> out;
+  std::vector<StepRow> out;
   out.reserve(count);
   for_each_combination(A[0].values, A[1].values, A[2].values, A[3].values, A[4].values, ratio,
-                       c.run.G, [&](const Scene& s) {
+                       c.run.G, [&](const StepRow& s) {
                          try {
                            validate_case(c, s);
                          } catch (const InvalidInput& e) {
@@ -908,11 +941,31 @@ std::size_t case_count(const StudyConfig& c) {
   return n;
 }
 
-Protocol protocol_for(const StudyConfig& c, const Scene& s) {
-  Protocol p;
-  p.samples = c.run.samples;
-  p.t_end = s.tau > 0.0 ? c.run.t_end_over_tau * s.tau : default_t_end(s);
-  return p;
+void validate_row(const StepRow& r) {
+  // the seed's scene order; each field against its parameter's range
+  const RowSpecs& spec = row_specs();
+  check_as("d", spec.d, r.d);
+  check_as("R", spec.R, r.R);
+  check_as("tau", spec.tau, r.tau);
+  check_as("v", spec.v, r.v);
+  check_as("v1", spec.v1, r.v1);
+  check_as("G", spec.G, r.G);
+  // Every field is in range: only the derived scales (a1, 16 G d^2,
+  // v tau / a1) can fail the whole case, over any valid window.
+  validate(step_case(r.d, r.R, r.tau, r.v, r.v1, r.G, 1.0, 2));
+}
+
+double step_duration(const StudyConfig& c, const StepRow& r) {
+  return r.tau > 0.0 ? c.run.t_end_over_tau * r.tau
+                     : default_step_duration(r.d, r.R, r.tau, r.v, r.v1);
+}
+
+Case case_for(const StudyConfig& c, const StepRow& r) {
+  validate_row(r);
+  const double T = check_sampling(c, r); // > 0: step_case takes it as given
+  Case out = step_case(r.d, r.R, r.tau, r.v, r.v1, r.G, T, c.run.samples);
+  validate(out);
+  return out;
 }
 
 std::string canonical(const StudyConfig& c) {
@@ -927,9 +980,9 @@ std::string canonical(const StudyConfig& c) {
       out += "\n";
     }
   } else {
-    const std::vector<Scene> cases = read_cases_csv(c.cases_file, c.run.G);
+    const std::vector<StepRow> cases = read_cases_csv(c.cases_file, c.run.G);
     out += "[cases]\ncount = " + std::to_string(cases.size()) + "\nd,R,tau,v,v1\n";
-    for (const Scene& s : cases)
+    for (const StepRow& s : cases)
       out += format_number(s.d) + "," + format_number(s.R) + "," + format_number(s.tau) + "," +
              format_number(s.v) + "," + format_number(s.v1) + "\n";
   }
@@ -946,7 +999,7 @@ std::string canonical(const StudyConfig& c) {
   return out;
 }
 
-std::vector<Scene> read_cases_csv(const std::string& path, double G) {
+std::vector<StepRow> read_cases_csv(const std::string& path, double G) {
   if (!std::isfinite(G) || !(G > 0.0))
     throw ConfigError("run.G", "G must be a finite number > 0, got " + format_number(G));
   std::error_code ec;
@@ -960,9 +1013,9 @@ std::vector<Scene> read_cases_csv(const std::string& path, double G) {
     throw ConfigError("cases.file", "cannot read " + shown_path(path) + ": " + std::strerror(err));
   }
   const std::string all_columns = "d, R, tau, v, v1";
-  int field_of_column[5] = {-1, -1, -1, -1, -1}; // Scene field -> CSV column index
-  std::vector<int> column_field;                 // CSV column -> Scene field
-  std::vector<Scene> cases;
+  int field_of_column[5] = {-1, -1, -1, -1, -1}; // StepRow field -> CSV column index
+  std::vector<int> column_field;                 // CSV column -> StepRow field
+  std::vector<StepRow> cases;
   bool have_header = false;
   int line_no = 0;
   std::string raw;
@@ -1020,7 +1073,7 @@ std::vector<Scene> read_cases_csv(const std::string& path, double G) {
                               "; " + kColumns[f] + " must be " + range_text(kColumns[f]));
       x[f] = n.x;
     }
-    Scene s;
+    StepRow s;
     s.d = x[0];
     s.R = x[1];
     s.tau = x[2];
@@ -1028,7 +1081,7 @@ std::vector<Scene> read_cases_csv(const std::string& path, double G) {
     s.v1 = x[4];
     s.G = G;
     try {
-      validate(s);
+      validate_row(s);
     } catch (const InvalidInput& e) {
       int f = -1;
       for (int j = 0; j < 5; ++j)

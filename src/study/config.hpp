@@ -14,15 +14,23 @@
 //   file = cases.csv        ; columns d,R,tau,v,v1 (header line required), relative to the INI
 //
 //   [run]
-//   t_end_over_tau = 6      ; sampled window after the step, in units of tau (tau = 0:
-//   default_t_end) samples = 201 rtol = 1e-4 solver = auto           ; auto | exact | mdr |
-//   baseline timeseries = false      ; store the full time series of every case G = 1
+//   t_end_over_tau = 6      ; window after the step, in units of tau
+//                           ; (tau = 0: mdrmap::default_step_duration)
+//   samples = 201
+//   rtol = 1e-4
+//   solver = auto           ; auto | exact | mdr | baseline
+//   timeseries = false      ; store the full time series of every case
+//   G = 1
+//
+// Every case is the seed's one-step history (stationary sliding at v, then
+// v1 from t = 0; a StepRow) until the study is generated from the parameter
+// table (issue 12).
 //
 // Comments start with ';' or '#'. Keys are case-sensitive.
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "core/case.hpp"
 
 namespace mdrmap::study {
 
@@ -35,6 +43,19 @@ struct Axis {
   std::string spec; ///< as written
   std::vector<double> values;
   bool logarithmic = false; ///< from logspace (plots use log axes)
+};
+
+/// One case of the study, the seed's one-step experiment: d, R, tau, v, v1
+/// from the grid or the case list, G from [run]. This is the study's row (and
+/// the /cases columns of its map) until the study is generated from the
+/// parameter table; case_for() turns it into a Case.
+struct StepRow {
+  double d = 0.0;   ///< indentation depth
+  double R = 0.0;   ///< radius of curvature of the indenter
+  double tau = 0.0; ///< relaxation time
+  double v = 0.0;   ///< sliding velocity before the step (the history's v0)
+  double v1 = 0.0;  ///< sliding velocity after the step (its one segment)
+  double G = 1.0;   ///< shear modulus, from [run]
 };
 
 struct RunSettings {
@@ -72,15 +93,26 @@ void apply_override(StudyConfig& c, const std::string& key, const std::string& v
 /// logspace:lo:hi:n. Throws ConfigError("grid.<name>").
 Axis parse_axis(const std::string& name, const std::string& spec);
 
-/// The cases in study order, each validated (mdrmap::validate); G from [run].
+/// The cases in study order, each validated (case_for); G from [run].
 /// Throws ConfigError naming the axis, or the CSV file, line and column.
-std::vector<Scene> expand_cases(const StudyConfig& c);
+std::vector<StepRow> expand_cases(const StudyConfig& c);
 
 /// Number of cases without building them (grid: product of axis sizes).
 std::size_t case_count(const StudyConfig& c);
 
-/// The protocol of one case: t_end = t_end_over_tau * tau (tau = 0: default_t_end).
-Protocol protocol_for(const StudyConfig& c, const Scene& s);
+/// Checks a row as the seed's scene was checked, in its order: d, R, tau, v,
+/// v1, G, then the derived scales. Throws InvalidInput whose option() is the
+/// row's field (d, R, tau, v, v1, G).
+void validate_row(const StepRow& r);
+
+/// Observation window of a row: t_end_over_tau * tau (tau = 0:
+/// default_step_duration).
+double step_duration(const StudyConfig& c, const StepRow& r);
+
+/// The case a row runs: step_case(d, R, tau, v, v1, G, step_duration,
+/// run.samples), validated. Throws InvalidInput naming d, R, tau, v, v1, G,
+/// t-end (the window) or samples, as the seed's scene and protocol did.
+Case case_for(const StudyConfig& c, const StepRow& r);
 
 /// Canonical text of everything that determines the results (axes values or
 /// the case list's contents, and the [run] settings), normalized so that
@@ -89,6 +121,6 @@ std::string canonical(const StudyConfig& c);
 
 /// Reads a CSV case list (header d,R,tau,v,v1 in any column order; extra
 /// columns are an error). Throws ConfigError naming file, line and column.
-std::vector<Scene> read_cases_csv(const std::string& path, double G);
+std::vector<StepRow> read_cases_csv(const std::string& path, double G);
 
 } // namespace mdrmap::study

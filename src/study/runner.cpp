@@ -156,7 +156,7 @@ double available_memory_bytes() {
 }
 
 // Cases of the study and the memory one rank needs for them, without
-// building them: per case the scene (6 doubles), its place in the to-do list,
+// building them: per case the row (6 doubles), its place in the to-do list,
 // its status and rank 0's column buffer at creation; a case list's canonical
 // text besides. Counting a case list streams its file.
 std::pair<std::size_t, double> study_memory(const StudyConfig& cfg) {
@@ -260,7 +260,7 @@ double residual(double sim, double an) {
 struct Worker {
   MPI_Comm comm;
   const StudyRequest& req;
-  const std::vector<Scene>& cases;
+  const std::vector<StepRow>& cases;
   const std::vector<std::size_t>& todo;
   io::RowWriter& map;
   SolverKind kind;
@@ -280,10 +280,8 @@ struct Worker {
     std::size_t finished = 0;
     for (; finished < count; ++finished) {
       if (stop_requested()) break;
-      const Scene& s = cases[todo[pos + finished]];
       const auto t0 = Clock::now();
-      rows.push_back(compute_case(s, protocol_for(req.config, s), kind, req.config.run.rtol,
-                                  map.timeseries()));
+      rows.push_back(compute_case(req.config, cases[todo[pos + finished]], kind, map.timeseries()));
       compute_seconds += seconds_since(t0);
       if (between_cases) between_cases();
     }
@@ -313,26 +311,27 @@ struct Worker {
 
 } // namespace
 
-io::CaseRow compute_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol,
+io::CaseRow compute_case(const StudyConfig& cfg, const StepRow& s, SolverKind kind,
                          bool timeseries) {
   io::CaseRow row;
   row.values.assign(io::row_fields().size(), 0.0);
   const auto t0 = Clock::now();
   try {
-    // The analytic estimates exist for every valid scene.
-    const State an_pre = analytic::stationary(s, s.v);
-    const State an_jump = analytic::jump(s);
-    const State an_post = analytic::stationary(s, s.v1);
+    const Case c = case_for(cfg, s);
+    // The analytic estimates exist for every valid case.
+    const State an_pre = analytic::stationary(c, s.v);
+    const State an_jump = analytic::jump(c, s.v, s.v1);
+    const State an_post = analytic::stationary(c, s.v1);
     fill_state(row, "analytic", "pre", an_pre);
     fill_state(row, "analytic", "jump", an_jump);
     fill_state(row, "analytic", "post", an_post);
-    const double lim[4] = {analytic::FN_inf(s), analytic::Fx_inf(s), analytic::mu_inf(s),
-                           analytic::mu_post_drop_limit(s)};
+    const double lim[4] = {analytic::FN_inf(c, s.v), analytic::Fx_inf(c, s.v), analytic::mu_inf(c),
+                           analytic::mu_post_drop_limit(c)};
     const char* lim_names[4] = {"FN_inf", "Fx_inf", "mu_inf", "mu_post_drop"};
     for (int i = 0; i < 4; ++i)
       row.values[io::field_index(std::string("analytic/") + lim_names[i])] = lim[i];
 
-    RunResult r = run_case(s, p, kind, rtol);
+    RunResult r = run_case(c, kind, cfg.run.rtol);
     const Series& x = r.series;
     const State jump = x.at(0), post = x.at(x.size() - 1);
     fill_state(row, "results", "pre", x.pre);
@@ -346,7 +345,7 @@ io::CaseRow compute_case(const Scene& s, const Protocol& p, SolverKind kind, dou
                       residual(sims[i].mu, ans[i].mu), residual(sims[i].a2, ans[i].a2)};
       fill_state(row, "residuals", when[i], res);
     }
-    // distance of the scene from the limits: before the step vs v -> inf
+    // distance of the case from the limits: before the step vs v -> inf
     // (eqs. 12-14), just after it vs the start-stop value 3/4 sqrt(d/R)
     const double lim_sim[4] = {x.pre.FN, x.pre.Fx, x.pre.mu, jump.mu};
     for (int i = 0; i < 4; ++i)
@@ -385,7 +384,7 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   MPI_Comm_free(&node);
 
   SolverKind kind = SolverKind::Auto;
-  std::vector<Scene> cases;
+  std::vector<StepRow> cases;
   std::string canon;
   io::MapSpec spec;
   collectively(comm, [&] {

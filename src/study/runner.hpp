@@ -72,9 +72,10 @@ struct StudySummary {
 /// StudySummary::write_failure set. Anything else is local to one rank.
 StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sink);
 
-/// One case, as a map row (results, analytic estimates, residuals). Never
-/// throws for a failing solver: the row is marked failed with the message.
-io::CaseRow compute_case(const Scene& s, const Protocol& p, SolverKind kind, double rtol,
+/// One case, as a map row (results, analytic estimates, residuals): the row
+/// becomes its Case (case_for) and runs with run.rtol. Never throws for a
+/// failing solver: the row is marked failed with the message.
+io::CaseRow compute_case(const StudyConfig& cfg, const StepRow& r, SolverKind kind,
                          bool timeseries);
 
 } // namespace mdrmap::study

@@ -24,14 +24,13 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
+#include "core/case.hpp"
 #include "study/config.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using mdrmap::InvalidInput;
-using mdrmap::Scene;
 using namespace mdrmap::study;
 
 /// Expanding more cases than this is skipped (case_count() tells first).
@@ -67,12 +66,12 @@ template <class F> bool returns_or_refuses(const char* step, F&& f) {
   }
 }
 
-void check_scene(const Scene& s, double G) {
+void check_row(const StepRow& s, double G) {
   for (const double x : {s.d, s.R, s.tau, s.v, s.v1, s.G})
     if (!std::isfinite(x)) fail("a case has a value that is not finite");
   if (s.G != G) fail("a case has the wrong G");
   try {
-    mdrmap::validate(s);
+    validate_row(s);
   } catch (const std::exception& e) {
     fail(std::string("a case is invalid: ") + e.what());
   }
@@ -86,18 +85,18 @@ void check_config(const StudyConfig& c) {
     return;
   }
   if (count > kExpandLimit) return;
-  std::vector<Scene> cases;
+  std::vector<StepRow> cases;
   if (!returns_or_refuses("expand_cases", [&] { cases = expand_cases(c); })) {
     if (grid) fail("a parsed grid refused to expand (a case the parse-time check missed)");
     return;
   }
   if (cases.size() != count) fail("expand_cases and case_count disagree");
-  for (const Scene& s : cases) {
-    check_scene(s, c.run.G);
+  for (const StepRow& s : cases) {
+    check_row(s, c.run.G);
     try {
-      mdrmap::validate(protocol_for(c, s));
+      mdrmap::validate(case_for(c, s));
     } catch (const std::exception& e) {
-      fail(std::string("a case's protocol is invalid: ") + e.what());
+      fail(std::string("a case's Case is invalid: ") + e.what());
     }
   }
   std::string text;
@@ -152,11 +151,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   write_fast(csv_path, csv);
   write_fast((fs::path(dir) / "failing.csv").string(), csv);
 
-  std::vector<Scene> cases;
+  std::vector<StepRow> cases;
   if (returns_or_refuses("read_cases_csv", [&] { cases = read_cases_csv(csv_path, 1.0); })) {
     if (cases.empty()) fail("read_cases_csv returned no cases");
-    for (const Scene& s : cases)
-      check_scene(s, 1.0);
+    for (const StepRow& s : cases)
+      check_row(s, 1.0);
   }
 
   StudyConfig c;
