@@ -123,7 +123,7 @@ TEST(MdrConvergence, ObservedOrderInDx) {
                          scene(3.0, 1e-3, 1e-6)};
   for (const Case& c : scenes) {
     const auto ref = run_exact(c, 1e-12);
-    for (MdrSubgrid mode : {MdrSubgrid::None, MdrSubgrid::Linear, MdrSubgrid::Exponential}) {
+    for (MdrSubgrid mode : {MdrSubgrid::None, MdrSubgrid::Linear, MdrSubgrid::Piecewise}) {
       std::vector<double> err;
       for (double n : cells) {
         MdrOptions o;
@@ -138,7 +138,7 @@ TEST(MdrConvergence, ObservedOrderInDx) {
       std::printf("zeta=%-6g v1/v=%-6g %-16s errors:", zeta0(c), v1_of(c) / c.history.v0, name);
       for (double e : err)
         std::printf(" %.2e", e);
-      if (mode == MdrSubgrid::Exponential) {
+      if (mode == MdrSubgrid::Piecewise) {
         std::printf("  (at rounding level)\n");
         for (double e : err)
           EXPECT_LE(e, 1e-10);

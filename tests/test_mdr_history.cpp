@@ -44,7 +44,7 @@ Case from_set(const std::string& name) {
 }
 
 /// mdr at a fixed resolution, without the error estimate.
-Series mdr_at(const Case& c, double cells, MdrSubgrid mode = MdrSubgrid::Exponential,
+Series mdr_at(const Case& c, double cells, MdrSubgrid mode = MdrSubgrid::Piecewise,
               double phase = 0.5) {
   MdrOptions o;
   o.cells_per_a1 = cells;
@@ -105,7 +105,7 @@ TEST(MdrHistorySet, ExactToRoundingAtCoarseResolutions) {
     for (double cells : {16.0, 37.0})
       for (double phase : {0.5, 0.2137}) {
         const double err =
-            case_error(mdr_at(nc.c, cells, MdrSubgrid::Exponential, phase), ref.series, nc.c).max();
+            case_error(mdr_at(nc.c, cells, MdrSubgrid::Piecewise, phase), ref.series, nc.c).max();
         EXPECT_LE(err, 1e-11) << "cells " << cells << " phase " << phase;
       }
   }
@@ -128,7 +128,7 @@ TEST(MdrHistoryConvergence, ObservedOrderPerHistoryType) {
   for (const auto& [type, c] : types) {
     SCOPED_TRACE(type);
     const RunResult ref = run_exact(c, 1e-13);
-    for (MdrSubgrid mode : {MdrSubgrid::None, MdrSubgrid::Linear, MdrSubgrid::Exponential}) {
+    for (MdrSubgrid mode : {MdrSubgrid::None, MdrSubgrid::Linear, MdrSubgrid::Piecewise}) {
       std::vector<double> err;
       for (double n : cells)
         err.push_back(case_error(mdr_at(c, n, mode), ref.series, c).max());
@@ -138,7 +138,7 @@ TEST(MdrHistoryConvergence, ObservedOrderPerHistoryType) {
       std::printf("[ info ] %-20s %-10s errors:", type, name);
       for (double e : err)
         std::printf(" %.2e", e);
-      if (mode == MdrSubgrid::Exponential) {
+      if (mode == MdrSubgrid::Piecewise) {
         std::printf("  (rounding)\n");
         for (double e : err)
           EXPECT_LE(e, 1e-12);
@@ -164,7 +164,7 @@ TEST(MdrHistoryChange, TrailingEdgeAcrossEachChange) {
   for (const auto& nc : history_case_set()) {
     SCOPED_TRACE(nc.name);
     const Case& c = nc.c;
-    const Series s = mdr_at(c, 32.0, MdrSubgrid::Exponential, 0.2137);
+    const Series s = mdr_at(c, 32.0, MdrSubgrid::Piecewise, 0.2137);
     const auto N = static_cast<std::size_t>(c.sampling.samples);
     for (std::size_t k = 0; k < c.history.size(); ++k) {
       const double before = k == 0 ? s.pre.a2 : s.a2[k * N - 1];

@@ -51,7 +51,7 @@ log() { printf 'bench: %s\n' "$*" >&2; }
 
 # 1. build (Release: timings of an unoptimised build mean nothing)
 bash tools/setup.sh
-BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release BUILD_TARGETS=mdrmap_bench \
+BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release BUILD_TARGETS="mdrmap_bench mdrmap_bench_history" \
   bash tools/build.sh -DMDRMAP_BUILD_BENCH=ON
 BENCH="$BUILD_DIR/tools/bench/mdrmap_bench"
 [[ -x "$BENCH" ]] || {
@@ -88,6 +88,19 @@ fi
 log "$BENCH ${bench_args[*]}"
 "$BENCH" "${bench_args[@]}" --command "$cmd" >"$OUT_DIR/bench.log"
 
+# 3b. velocity histories: history.csv, history.md (appended to bench.md)
+HIST="$BUILD_DIR/tools/bench/mdrmap_bench_history"
+hist_args=(--out "$OUT_DIR")
+((quick)) && hist_args+=(--quick)
+log "$HIST ${hist_args[*]}"
+"$HIST" "${hist_args[@]}" >"$OUT_DIR/history.log"
+{
+  echo
+  echo "## Velocity histories ($cmd, mdrmap_bench_history)"
+  echo
+  cat "$OUT_DIR/history.md"
+} >>"$OUT_DIR/bench.md"
+
 # 4. the plot
 cpu=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | sed -n 1p)
 tools/pyrun tools/plot_bench.py "$OUT_DIR/bench.csv" -o "$OUT_DIR/work_precision.png" \
@@ -120,9 +133,11 @@ fi
 
 # --publish: what the README shows
 if ((publish)); then
-  cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/work_precision.png" tools/bench/
-  log "copied bench.md, bench.csv, work_precision.png to tools/bench/"
+  cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/history.csv" "$OUT_DIR/work_precision.png" \
+    tools/bench/
+  log "copied bench.md, bench.csv, history.csv, work_precision.png to tools/bench/"
 fi
 
-log "wrote $OUT_DIR/{bench.csv,bench_cases.csv,bench.md,work_precision.png,machine.txt}"
+log "wrote $OUT_DIR/{bench.csv,bench_cases.csv,bench.md,history.csv,work_precision.png,machine.txt}"
 sed -n '/^### Targets/,/^### Error estimates/p' "$OUT_DIR/bench.md" | sed '$d'
+sed -n '/^## Velocity histories/,$p' "$OUT_DIR/bench.md"

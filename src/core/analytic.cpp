@@ -36,6 +36,8 @@ State contact_forces(const Case& c, double a2, double a1_minus_a2, double w) {
   st.Fx = 8.0 * c.material.G / (c.indenter.R * c.indenter.R) *
           (0.25 * diff2 * diff2 + (2.0 / 3.0) * L * (A * A * A + a2 * a2 * a2));
   st.mu = st.Fx / st.FN;
+  st.d = c.loading.d;
+  st.a1 = A;
   return st;
 }
 

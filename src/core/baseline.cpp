@@ -110,6 +110,8 @@ struct Row {
     st.FN = sN * dx;
     st.Fx = sX * dx;
     st.mu = st.Fx / st.FN;
+    st.d = c.loading.d;
+    st.a1 = a1;
     st.a2 = a2;
     return st;
   }
@@ -169,6 +171,7 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt) {
 
 RunResult run_baseline(const Case& s, const BaselineOptions& opt) {
   validate(s);
+  require_depth_control(s, "baseline");
   RunResult res = run_baseline_once(s, opt);
   if (opt.estimate_error) {
     // First order: the difference to a half-resolution run is about the error.

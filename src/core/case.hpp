@@ -50,9 +50,13 @@ struct Material {
   double tau = 0.0; ///< relaxation time eta/G, >= 0 (0: elastic)
 };
 
-/// How the indenter is held: at a fixed depth d.
+/// How the indenter is held: at a fixed depth d (depth control), or under a
+/// prescribed normal force F0 with the depth free (load control). Exactly one
+/// of the two is given (> 0); the other is 0.
 struct Loading {
-  double d = 0.0; ///< indentation depth, > 0
+  double d = 0.0;  ///< indentation depth, > 0 under depth control
+  double F0 = 0.0; ///< normal force, > 0 under load control
+  bool by_force() const { return F0 > 0.0; }
 };
 
 /// One segment of the velocity history: constant velocity w for a time T.
@@ -97,8 +101,13 @@ struct Case {
   History history;
   Sampling sampling;
 
-  /// Leading edge a1 = contact radius at depth d.
+  /// Leading edge a1 = contact radius at depth d (depth control).
   double a1() const { return indenter.contact_radius(loading.d); }
+  /// Hertz contact radius of F0 (load control): F0 = 16/3 G a0^3 / R.
+  double a0() const;
+  /// The length the error metric measures edges by: a1 at fixed depth, a0
+  /// under load.
+  double edge_scale() const { return loading.by_force() ? a0() : a1(); }
   /// Output samples of the whole history: samples per segment times segments.
   std::size_t total_samples() const;
 };
@@ -116,6 +125,10 @@ Case step_case(double d, double R, double tau, double v, double v1, double G = 1
 /// (nothing relaxes) the time the indenter needs to travel six contact
 /// half-widths at the slower speed.
 double default_step_duration(double d, double R, double tau, double v, double v1);
+
+/// Throws InvalidInput("FN") unless the case is depth-controlled: the fixed-
+/// depth solvers' guard (`solver` names the caller in the message).
+void require_depth_control(const Case& c, const char* solver);
 
 /// Similarity variable zeta = w tau / a1 at velocity w.
 double zeta(const Case& c, double w);

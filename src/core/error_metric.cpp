@@ -20,7 +20,7 @@ double rel_max(const std::vector<double>& q, const std::vector<double>& ref, dou
 } // namespace
 
 double CaseError::max() const {
-  return std::max({FN, Fx, mu, a2});
+  return std::max({FN, Fx, mu, a2, d});
 }
 
 CaseError case_error(const Series& run, const Series& ref, double a1) {
@@ -36,9 +36,28 @@ CaseError case_error(const Series& run, const Series& ref, double a1) {
   return e;
 }
 
+namespace {
+
+/// The load-control parts of the contract (docs/design.md, "Error metric").
+void load_errors(const Series& run, const Series& ref, const Case& c, CaseError& e) {
+  const double F0 = c.loading.F0, a0 = c.a0();
+  double fn = 0.0, edges = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k) {
+    fn = std::max(fn, std::abs(run.FN[k] - F0));
+    edges = std::max({edges, std::abs(run.a2[k] - ref.a2[k]), std::abs(run.a1[k] - ref.a1[k])});
+  }
+  e.FN = fn / F0;
+  e.a2 = edges / a0;
+  e.d = rel_max(run.d, ref.d);
+}
+
+} // namespace
+
 CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel) {
-  CaseError e = case_error(run, ref, c.a1());
-  const double mu_scale = std::sqrt(c.loading.d / c.indenter.R);
+  CaseError e = case_error(run, ref, c.edge_scale());
+  if (c.loading.by_force()) load_errors(run, ref, c, e);
+  const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
+  const double mu_scale = std::sqrt(d_scale / c.indenter.R);
   double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     fn_max = std::max(fn_max, std::abs(ref.FN[k]));

@@ -6,6 +6,7 @@ namespace mdrmap {
 
 struct CaseError {
   double FN = 0, Fx = 0, mu = 0, a2 = 0;
+  double d = 0; ///< under load control: the depth, by its largest magnitude
   double max() const;
 };
 
@@ -19,6 +20,11 @@ CaseError case_error(const Series& run, const Series& ref, double a1);
 /// F_x and mu denominators are also at least floor_rel times those scales:
 /// comparing two runs whose F_x is rounding noise over zero then stays
 /// meaningful (each element term carries ~1e-16 of the scale).
+///
+/// Under load control (c.loading.by_force()) the contract differs: F_N by
+/// max_k |F_N,k - F0| / F0 (the run against the prescribed force, not the
+/// reference), d, F_x and mu by their largest reference magnitude, a1 and a2
+/// (both in `a2`) by the Hertz radius a0.
 CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel = 0.0);
 
 } // namespace mdrmap

@@ -316,6 +316,7 @@ double relative_error(const Case& c, const Series& s, const State& err) {
 
 RunResult run_exact(const Case& c, double rtol) {
   validate(c);
+  require_depth_control(c, "exact");
   // Solve the roots to ~10 bits beyond what rtol asks, 52 bits at most.
   const int bits = std::clamp(static_cast<int>(std::ceil(-std::log2(rtol))) + 12, 24, 52);
   ExactSolution ex(c, bits);

@@ -260,6 +260,8 @@ public:
     st.Fx =
         integrate(ja, jb, xr, [&](double x) { return pressure(x) * (-2.0 * x / s_.indenter.R); });
     st.mu = st.Fx / st.FN;
+    st.d = s_.loading.d;
+    st.a1 = a1_;
     st.a2 = xr;
     return st;
   }
@@ -749,6 +751,7 @@ double initial_cells(const MdrOptions& o) {
 
 RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   validate(s);
+  require_depth_control(s, "mdr");
   RunResult res;
   res.info.solver = "mdr";
   res.info.rtol = opt.rtol;

@@ -13,7 +13,7 @@ enum class MdrSubgrid {
   /// of the piece of material it belongs to (log-linear where it left contact
   /// at the cap, a parabola where it let go at a velocity change), with tracers
   /// at the boundaries between pieces: exact to rounding for any history (default).
-  Exponential
+  Piecewise
 };
 
 struct MdrOptions {
@@ -22,7 +22,7 @@ struct MdrOptions {
   bool spinup = false;        ///< start from an undeformed foundation, not the stationary state
   double phase = 0.5;         ///< element offset at t = 0, in cells (x_i = (i + phase) dx)
   bool estimate_error = true; ///< run a half-resolution companion (other phase) for error_estimate
-  MdrSubgrid subgrid = MdrSubgrid::Exponential;
+  MdrSubgrid subgrid = MdrSubgrid::Piecewise;
 };
 
 /// Runs the discrete model. With cells_per_a1 == 0 it picks dx from rtol and

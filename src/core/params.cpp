@@ -52,6 +52,12 @@ double get_decades(const Case& c) {
 void set_decades(Case& c, double x) {
   c.sampling.decades = x;
 }
+double get_F0(const Case& c) {
+  return c.loading.F0;
+}
+void set_F0(Case& c, double x) {
+  c.loading.F0 = x;
+}
 double no_get(const Case&) {
   return 0.0;
 }
@@ -69,6 +75,8 @@ const char* dim_name(Dim d) {
     return "length/time";
   case Dim::Stress:
     return "force/length^2";
+  case Dim::Force:
+    return "force";
   case Dim::Count:
     return "count";
   case Dim::Number:
@@ -94,20 +102,22 @@ void ParamSpec::check(double x) const {
 
 const std::vector<ParamSpec>& case_parameters() {
   static const std::vector<ParamSpec> table = {
-      {"d", "D", Part::Loading, Dim::Length, 0.0, false, kInf, true, 0.0, "indentation depth",
-       get_d, set_d},
-      {"R", "R", Part::Indenter, Dim::Length, 0.0, false, kInf, true, 0.0,
+      {"d", "D", Part::Loading, Dim::Length, 0.0, false, kInf, false, "loading", 0.0,
+       "indentation depth (depth control)", get_d, set_d},
+      {"FN", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
+       "prescribed normal force (load control: the depth follows it)", get_F0, set_F0},
+      {"R", "R", Part::Indenter, Dim::Length, 0.0, false, kInf, true, nullptr, 0.0,
        "radius of curvature of the parabolic indenter", get_R, set_R},
-      {"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, 0.0,
+      {"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, nullptr, 0.0,
        "relaxation time eta/G of the foundation; 0 is the purely elastic limit", get_tau, set_tau},
-      {"G", "G", Part::Material, Dim::Stress, 0.0, false, kInf, false, 1.0,
+      {"G", "G", Part::Material, Dim::Stress, 0.0, false, kInf, false, nullptr, 1.0,
        "shear modulus of the foundation", get_G, set_G},
-      {"v", "V0", Part::History, Dim::Velocity, 0.0, false, kInf, true, 0.0,
+      {"v", "V0", Part::History, Dim::Velocity, 0.0, false, kInf, true, nullptr, 0.0,
        "sliding velocity of the stationary sliding before t = 0", get_v0, set_v0},
       {"samples", "N", Part::Sampling, Dim::Count, 2.0, true, static_cast<double>(kMaxSamples),
-       false, 201.0, "output instants per segment, from its start to its end", get_samples,
+       false, nullptr, 201.0, "output instants per segment, from its start to its end", get_samples,
        set_samples},
-      {"log-decades", "D", Part::Sampling, Dim::Number, 0.0, false, 300.0, false, 4.0,
+      {"log-decades", "D", Part::Sampling, Dim::Number, 0.0, false, 300.0, false, nullptr, 4.0,
        "with --spacing log: the first instant after a segment's start is T 10^-D", get_decades,
        set_decades},
   };
@@ -115,16 +125,26 @@ const std::vector<ParamSpec>& case_parameters() {
 }
 
 const ParamSpec& segment_velocity_spec() {
-  static const ParamSpec s{
-      "w",    "W",   Part::History, Dim::Velocity, 0.0,
-      true,   kInf,  true,          0.0,           "sliding velocity of a segment; 0 is a hold",
-      no_get, no_set};
+  static const ParamSpec s{"w",
+                           "W",
+                           Part::History,
+                           Dim::Velocity,
+                           0.0,
+                           true,
+                           kInf,
+                           true,
+                           nullptr,
+                           0.0,
+                           "sliding velocity of a segment; 0 is a hold",
+                           no_get,
+                           no_set};
   return s;
 }
 
 const ParamSpec& segment_duration_spec() {
-  static const ParamSpec s{"T",  "T", Part::History,           Dim::Time, 0.0,   false, kInf,
-                           true, 0.0, "duration of a segment", no_get,    no_set};
+  static const ParamSpec s{
+      "T",     "T", Part::History,           Dim::Time, 0.0,   false, kInf, true,
+      nullptr, 0.0, "duration of a segment", no_get,    no_set};
   return s;
 }
 

@@ -12,7 +12,7 @@
 namespace mdrmap {
 
 /// Physical dimension, in the user's consistent units.
-enum class Dim { Length, Time, Velocity, Stress, Count, Number };
+enum class Dim { Length, Time, Velocity, Stress, Force, Count, Number };
 
 /// "length", "time", "length/time", "force/length^2", "count", "number".
 const char* dim_name(Dim d);
@@ -29,6 +29,7 @@ struct ParamSpec {
   bool lo_inclusive;   ///< the range is >= lo (true) or > lo (false)
   double hi;           ///< inclusive upper bound (infinity: none)
   bool required;       ///< the case cannot be built without it
+  const char* one_of;  ///< nullptr, or a group (e.g. "loading") of which exactly one is given
   double fallback;     ///< default when not required
   const char* meaning; ///< one line, lower case, no final period
   double (*get)(const Case&);

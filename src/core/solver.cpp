@@ -16,6 +16,8 @@ void Series::resize(std::size_t n) {
   Fx.assign(n, 0.0);
   mu.assign(n, 0.0);
   a2.assign(n, 0.0);
+  d.assign(n, 0.0);
+  a1.assign(n, 0.0);
 }
 
 void Series::set(std::size_t k, double time, int seg, const State& st) {
@@ -25,6 +27,8 @@ void Series::set(std::size_t k, double time, int seg, const State& st) {
   Fx[k] = st.Fx;
   mu[k] = st.mu;
   a2[k] = st.a2;
+  d[k] = st.d;
+  a1[k] = st.a1;
 }
 
 SolverKind parse_solver(const std::string& name) {
