@@ -1,7 +1,15 @@
 #pragma once
 // Shared by the physics tests: the seed's one-step case (stationary sliding at
 // v, then v1 for one segment) from its parameters in one call, and its parts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <utility>
+#include <vector>
+
 #include "core/case.hpp"
+#include "core/mdr.hpp"
 
 namespace mdrmap::testing {
 
@@ -26,6 +34,53 @@ inline double t_end_of(const Case& c) {
 inline void set_velocities(Case& c, double v, double v1) {
   c.history.v0 = v;
   c.history.segments.at(0).w = v1;
+}
+
+/// A history case: d = d_over_R R with R = 2, tau = 1, v0 from
+/// zeta0 = v0 tau / a1; segments given as (w / v0, T / tau).
+inline Case history_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
+                         long samples, double d_over_R = 1e-3) {
+  Case c = step_case(2.0 * d_over_R, 2.0, 1.0, 1.0, 0.0);
+  c.history.v0 = zeta0 * c.a1() / c.material.tau;
+  c.history.segments.clear();
+  for (const auto& [w, T] : segs)
+    c.history.segments.push_back({w * c.history.v0, T});
+  c.sampling.samples = samples;
+  return c;
+}
+
+/// Least-squares slope of log(err) against log(1/dx).
+inline double observed_order(const std::vector<double>& cells, const std::vector<double>& err) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const double x = std::log(cells[i]), y = std::log(err[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/// Prints the errors of an mdr read-out over `cells` and asserts what it
+/// promises: the paper's raw sums first order, the linear gap second order,
+/// the default piecewise read-out at rounding (errors <= `rounding`).
+inline void expect_readout_order(MdrSubgrid mode, const std::vector<double>& cells,
+                                 const std::vector<double>& err, double rounding) {
+  const char* name = mode == MdrSubgrid::None     ? "raw sums"
+                     : mode == MdrSubgrid::Linear ? "linear gap"
+                                                  : "piecewise";
+  std::printf("[ info ] %-10s errors:", name);
+  for (double e : err)
+    std::printf(" %.2e", e);
+  if (mode == MdrSubgrid::Piecewise) {
+    std::printf("  (rounding)\n");
+    for (double e : err)
+      EXPECT_LE(e, rounding);
+    return;
+  }
+  const double order = observed_order(cells, err);
+  std::printf("  order %.2f\n", order);
+  EXPECT_GT(order, mode == MdrSubgrid::None ? 0.8 : 1.7);
+  EXPECT_LT(order, mode == MdrSubgrid::None ? 1.3 : 2.6);
 }
 
 } // namespace mdrmap::testing

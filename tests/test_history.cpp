@@ -14,19 +14,14 @@
 #include "core/events.hpp"
 #include "core/exact.hpp"
 #include "core/mdr.hpp"
+#include "test_case.hpp"
 
 namespace mdrmap {
 namespace {
 
 /// d = 1e-3 R, tau = 1, v0 from zeta0; segments as (w / v0, T / tau).
-Case history(double zeta0, std::vector<std::pair<double, double>> segs, long samples = 41) {
-  Case c = step_case(2e-3, 2.0, 1.0, 1.0, 0.0);
-  c.history.v0 = zeta0 * c.a1() / c.material.tau;
-  c.history.segments.clear();
-  for (const auto& [w, T] : segs)
-    c.history.segments.push_back({w * c.history.v0, T});
-  c.sampling.samples = samples;
-  return c;
+Case history(double zeta0, const std::vector<std::pair<double, double>>& segs, long samples = 41) {
+  return testing::history_case(zeta0, segs, samples);
 }
 
 /// mdr at a fixed fine resolution: an independent solver of the same model.

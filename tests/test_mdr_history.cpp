@@ -20,20 +20,14 @@
 #include "core/error_metric.hpp"
 #include "core/exact.hpp"
 #include "core/mdr.hpp"
+#include "test_case.hpp"
 
 namespace mdrmap {
 namespace {
 
-/// d = 1e-3 R (R = 2), tau = 1, v0 from zeta0 = v0 tau / a1; segments as (w / v0, T / tau).
 Case history(double zeta0, const std::vector<std::pair<double, double>>& segs, long samples = 61,
              double d_over_R = 1e-3) {
-  Case c = step_case(2.0 * d_over_R, 2.0, 1.0, 1.0, 0.0);
-  c.history.v0 = zeta0 * c.a1() / c.material.tau;
-  c.history.segments.clear();
-  for (const auto& [w, T] : segs)
-    c.history.segments.push_back({w * c.history.v0, T});
-  c.sampling.samples = samples;
-  return c;
+  return testing::history_case(zeta0, segs, samples, d_over_R);
 }
 
 Case from_set(const std::string& name) {
@@ -60,17 +54,6 @@ bool all_finite(const Series& x) {
         !std::isfinite(x.a2[k]))
       return false;
   return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
-}
-
-// Least-squares slope of log(err) against log(1/dx).
-double observed_order(const std::vector<double>& cells, const std::vector<double>& err) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const double x = std::log(cells[i]), y = std::log(err[i]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // Done-criterion of the history issue: on every history of the set, mdr at
@@ -132,27 +115,8 @@ TEST(MdrHistoryConvergence, ObservedOrderPerHistoryType) {
       std::vector<double> err;
       for (double n : cells)
         err.push_back(case_error(mdr_at(c, n, mode), ref.series, c).max());
-      const char* name = mode == MdrSubgrid::None     ? "raw sums"
-                         : mode == MdrSubgrid::Linear ? "linear gap"
-                                                      : "per-piece";
-      std::printf("[ info ] %-20s %-10s errors:", type, name);
-      for (double e : err)
-        std::printf(" %.2e", e);
-      if (mode == MdrSubgrid::Piecewise) {
-        std::printf("  (rounding)\n");
-        for (double e : err)
-          EXPECT_LE(e, 1e-12);
-        continue;
-      }
-      const double order = observed_order(cells, err);
-      std::printf("  order %.2f\n", order);
-      if (mode == MdrSubgrid::None) {
-        EXPECT_GT(order, 0.8);
-        EXPECT_LT(order, 1.3);
-      } else {
-        EXPECT_GT(order, 1.7);
-        EXPECT_LT(order, 2.6);
-      }
+      std::printf("%-20s ", type);
+      testing::expect_readout_order(mode, cells, err, 1e-12);
     }
   }
 }
@@ -237,7 +201,7 @@ TEST(MdrHistoryBruteForce, BaselineConvergesAtFirstOrder) {
       ASSERT_TRUE(all_finite(r.series));
       err.push_back(case_error(r.series, ref.series, c).max());
     }
-    const double order = observed_order(cells, err);
+    const double order = testing::observed_order(cells, err);
     std::printf("[ info ] baseline %-28s errors %.2e %.2e %.2e  order %.2f\n", name, err[0], err[1],
                 err[2], order);
     EXPECT_GE(order, 0.7);
