@@ -171,23 +171,30 @@ struct Parsed {
   std::string header;
   std::map<std::string, std::string> run, case_line, pre;
   std::vector<std::map<std::string, std::string>> events; ///< one per segment
-  std::optional<double> error_vs_exact;
-  std::vector<std::vector<double>> rows; ///< t, segment, FN, Fx, mu, a2
+  std::optional<double> error_vs_exact;                   ///< or error_vs_reference under load
+  std::map<std::string, std::string> reference;           ///< the error_vs_reference line's fields
+  bool load = false;                                      ///< the load-control header
+  std::vector<std::vector<double>> rows;                  ///< t, segment, FN, Fx, mu, a2 [, d, a1]
 };
 
-/// Column of each quantity in a parsed row.
-enum Col { kT = 0, kSegment = 1, kFN = 2, kFx = 3, kMu = 4, kA2 = 5 };
+/// Column of each quantity in a parsed row (kD, kA1: under load control only).
+enum Col { kT = 0, kSegment = 1, kFN = 2, kFx = 3, kMu = 4, kA2 = 5, kD = 6, kA1 = 7 };
 
 /// The `# case` line as the parameter table makes it: every case parameter
-/// by name, the history, the spacing, the sampling parameters, zeta0.
-std::regex case_line_regex() {
+/// by name (of the loading group only the one given: FN under load, d at
+/// fixed depth), the history, the spacing, the sampling parameters, a0 under
+/// load, zeta0.
+std::regex case_line_regex(bool load) {
+  auto given = [&](const mdrmap::ParamSpec& p) {
+    return !p.one_of || (std::string(p.name) == "FN") == load;
+  };
   std::string re = "^# case";
   for (const auto& p : mdrmap::case_parameters())
-    if (p.part != mdrmap::Part::Sampling) re += std::string(" ") + p.name + R"(=\S+)";
+    if (p.part != mdrmap::Part::Sampling && given(p)) re += std::string(" ") + p.name + R"(=\S+)";
   re += R"( history=\S+ spacing=(linear|log))";
   for (const auto& p : mdrmap::case_parameters())
     if (p.part == mdrmap::Part::Sampling) re += std::string(" ") + p.name + R"(=\S+)";
-  return std::regex(re + R"( zeta0=\S+$)");
+  return std::regex(re + (load ? R"( a0=\S+)" : "") + R"( zeta0=\S+$)");
 }
 
 const char* const kEventKeys[] = {"k",         "t",        "w_before",     "w_after",
@@ -214,7 +221,10 @@ Parsed parse_output(const std::string& text) {
   while (i < lines.size() && starts_with(lines[i], "#"))
     p.comments.push_back(lines[i++]);
   if (i < lines.size()) p.header = lines[i++];
-  EXPECT_EQ(p.header, "t,segment,FN,Fx,mu,a2");
+  p.load = p.header == "t,segment,FN,Fx,mu,a2,d,a1";
+  if (!p.load) {
+    EXPECT_EQ(p.header, "t,segment,FN,Fx,mu,a2");
+  }
 
   EXPECT_GE(p.comments.size(), 4U); // version, case, at least one event, pre
   if (p.comments.size() < 4) return p;
@@ -223,7 +233,7 @@ Parsed parse_output(const std::string& text) {
                          R"(root_solves=-?\d+ wall_seconds=\S+$)");
   EXPECT_TRUE(std::regex_match(p.comments[0], first)) << p.comments[0];
   p.run = fields(p.comments[0]);
-  EXPECT_TRUE(std::regex_match(p.comments[1], case_line_regex())) << p.comments[1];
+  EXPECT_TRUE(std::regex_match(p.comments[1], case_line_regex(p.load))) << p.comments[1];
   p.case_line = fields(p.comments[1]);
   std::size_t c = 2;
   if (starts_with(p.comments[c], "# error_vs_exact=")) {
@@ -231,20 +241,28 @@ Parsed parse_output(const std::string& text) {
         << p.comments[c];
     p.error_vs_exact = to_double(fields(p.comments[c]).at("error_vs_exact"));
     ++c;
+  } else if (starts_with(p.comments[c], "# error_vs_reference=")) {
+    const std::regex ref(R"(^# error_vs_reference=\S+ reference=\S+ reference_rtol=\S+$)");
+    EXPECT_TRUE(p.load) << "a reference other than exact under load control only";
+    EXPECT_TRUE(std::regex_match(p.comments[c], ref)) << p.comments[c];
+    p.reference = fields(p.comments[c]);
+    p.error_vs_exact = to_double(p.reference.at("error_vs_reference"));
+    ++c;
   }
   for (; c + 1 < p.comments.size(); ++c) {
     EXPECT_TRUE(std::regex_match(p.comments[c], event_regex())) << p.comments[c];
     p.events.push_back(fields(p.comments[c]));
     EXPECT_EQ(p.events.back()["k"], std::to_string(p.events.size() - 1)) << p.comments[c];
   }
-  const std::regex pre(R"(^# pre FN=\S+ Fx=\S+ mu=\S+ a2=\S+$)");
+  const std::regex pre(p.load ? R"(^# pre FN=\S+ Fx=\S+ mu=\S+ a2=\S+ d=\S+ a1=\S+$)"
+                              : R"(^# pre FN=\S+ Fx=\S+ mu=\S+ a2=\S+$)");
   EXPECT_TRUE(std::regex_match(p.comments.back(), pre))
       << "the last comment line must be '# pre ...': " << p.comments.back();
   p.pre = fields(p.comments.back());
 
   for (; i < lines.size(); ++i) {
     const auto cells = split(lines[i], ',');
-    EXPECT_EQ(cells.size(), 6U) << "row " << lines[i];
+    EXPECT_EQ(cells.size(), p.load ? 8U : 6U) << "row " << lines[i];
     std::vector<double> row;
     for (const auto& cell : cells) {
       const double x = to_double(cell);
@@ -303,7 +321,7 @@ void expect_matches_series(const Parsed& p, const mdrmap::Series& ref, double to
 }
 
 const std::vector<std::string> kOptionNames{
-    "--d",       "--R",           "--tau",     "--v",    "--v1",     "--G",      "--t-end",
+    "--d",       "--FN",          "--R",       "--tau",  "--v",      "--v1",     "--G",   "--t-end",
     "--history", "--log-decades", "--spacing", "--rtol", "--solver", "--output", "--help"};
 
 /// The seed's one-step case as the command line gives it (--v1 shorthand).
@@ -647,7 +665,15 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       {"unknown solver", {{"solver", "fast"}}, {}, "solver"},
       {"unknown option", {}, {"--speed", "3"}, "speed"},
       {"wrong case option", {}, {"--g", "3"}, "g"},
-      {"missing --d", {{"d", kDrop}}, {}, "d"},
+      {"FN = 0", {{"d", kDrop}, {"FN", "0"}}, {}, "FN"},
+      {"FN < 0", {{"d", kDrop}, {"FN", "-1"}}, {}, "FN"},
+      {"FN = nan", {{"d", kDrop}, {"FN", "nan"}}, {}, "FN"},
+      {"FN = inf", {{"d", kDrop}, {"FN", "inf"}}, {}, "FN"},
+      {"FN not a number", {{"d", kDrop}, {"FN", "1N"}}, {}, "FN"},
+      {"d = 0 beside FN", {{"d", "0"}, {"FN", "1"}}, {}, "d"},
+      {"FN = -1 beside d", {{"FN", "-1"}}, {}, "FN"},
+      {"FN twice", {{"d", kDrop}, {"FN", "1"}}, {"--FN", "2"}, "FN"},
+      {"fn (case)", {}, {"--fn", "1"}, "fn"},
       {"missing --v1", {{"v1", kDrop}}, {}, "v1"},
       {"--d twice", {}, {"--d", "0.2"}, "d"},
       {"--v1 and --history", {}, {"--history", "0.5:6"}, "history"},
@@ -758,7 +784,7 @@ TEST(cli, SimulateHelpIsGeneratedFromTheParameterTable) {
               std::string::npos);
     std::string allowed = p.allowed().substr(1); // sentence case in the help
     EXPECT_NE(help.find(allowed), std::string::npos) << allowed;
-    if (!p.required) {
+    if (!p.required && !p.one_of) {
       EXPECT_NE(help.find("Default: " + mdrmap::format_number(p.fallback)), std::string::npos);
     }
   }
@@ -1014,6 +1040,225 @@ TEST(cli, SimulateShorthandEqualsOneSegmentHistory) {
     EXPECT_EQ(without_wall_time(a.out), without_wall_time(b.out));
     const Parsed p = parse_output(a.out);
     EXPECT_EQ(history_of(p), (std::vector<std::pair<double, double>>{{s.v1, T}}));
+  }
+}
+
+// --- Load control (--FN) ----------------------------------------------------------
+
+/// The members of the table's loading group, as the help and messages spell them.
+std::vector<const mdrmap::ParamSpec*> loading_group() {
+  std::vector<const mdrmap::ParamSpec*> g;
+  for (const auto& p : mdrmap::case_parameters())
+    if (p.one_of && std::string(p.one_of) == "loading") g.push_back(&p);
+  return g;
+}
+
+/// Neither or both of --d and --FN: exit 2, one line naming both (and saying
+/// which were given), no output touched or created.
+TEST(cli, SimulateLoadingNeedsExactlyOneOfDepthAndForce) {
+  const auto group = loading_group();
+  ASSERT_EQ(group.size(), 2U);
+  TempDir dir;
+  const fs::path existing = dir.path() / "existing.csv";
+  const std::vector<std::string> scene{"--R", "10", "--tau", "1", "--v", "1", "--v1", "0.1"};
+  struct Row {
+    const char* label;
+    std::vector<std::string> loading;
+    const char* got;
+  };
+  for (const Row& row :
+       {Row{"neither", {}, "got none"},
+        Row{"both", {"--d", "0.1", "--FN", "0.2"}, "got --d and --FN"},
+        Row{"both, FN first", {"--FN", "0.2", "--d", "0.1"}, "got --d and --FN"}}) {
+    SCOPED_TRACE(row.label);
+    for (const bool with_output : {false, true}) {
+      std::vector<std::string> args{"simulate"};
+      args.insert(args.end(), row.loading.begin(), row.loading.end());
+      args.insert(args.end(), scene.begin(), scene.end());
+      if (with_output) args.insert(args.end(), {"--output", existing.string()});
+      write_file(existing, "keep me\n");
+      const Outcome r = run_mdrmap(args);
+      EXPECT_EQ(r.code, 2) << r.err;
+      EXPECT_EQ(r.out, "");
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_TRUE(starts_with(r.err, "mdrmap simulate: error: give exactly one of ")) << r.err;
+      for (const auto* p : group) {
+        EXPECT_NE(r.err.find(std::string("--") + p->name + " " + p->symbol), std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find(p->meaning), std::string::npos) << r.err;
+      }
+      EXPECT_NE(r.err.find(row.got), std::string::npos) << r.err;
+      EXPECT_EQ(read_file(existing), "keep me\n");
+      std::size_t files = 0;
+      for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path()))
+        ++files;
+      EXPECT_EQ(files, 1U) << "no temporary left behind";
+    }
+  }
+  // An explicit value out of range is reported by its own range, even beside
+  // the other member: the range first, then the group.
+  for (const auto& [opt, value] :
+       std::vector<std::pair<std::string, std::string>>{{"d", "0"}, {"FN", "-1"}, {"FN", "0"}}) {
+    std::vector<std::string> args{"simulate", "--" + opt, value};
+    args.insert(args.end(), scene.begin(), scene.end());
+    const Outcome r = run_mdrmap(args);
+    EXPECT_EQ(r.code, 2);
+    const auto* spec = mdrmap::find_parameter(opt);
+    ASSERT_NE(spec, nullptr);
+    EXPECT_EQ(r.err, "mdrmap simulate: error: --" + opt + ": must be " + spec->allowed() +
+                         ", got " + value + "\n");
+  }
+}
+
+/// The help shows the loading group from the table's one_of field: both
+/// members in the usage line as one alternative, and no "Default: 0".
+TEST(cli, SimulateHelpShowsTheLoadingGroup) {
+  const Outcome r = run_mdrmap({"simulate", "--help"});
+  ASSERT_EQ(r.code, 0);
+  const std::string help = flattened(r.out);
+  std::string alternative, listed;
+  for (const auto* p : loading_group()) {
+    const std::string opt = std::string("--") + p->name + " " + p->symbol;
+    alternative += (alternative.empty() ? "(" : " | ") + opt;
+    listed += (listed.empty() ? "" : " or ") + opt;
+  }
+  EXPECT_TRUE(starts_with(r.out, "Usage: mdrmap simulate " + alternative + ") ")) << r.out;
+  for (const auto* p : loading_group()) {
+    SCOPED_TRACE(p->name);
+    // the entry in the option list: from its line to the next option's line
+    const std::string entry = std::string("\n  --") + p->name + " " + p->symbol + " ";
+    const std::size_t at = r.out.find(entry);
+    ASSERT_NE(at, std::string::npos);
+    const std::string text = flattened(r.out.substr(at, r.out.find("\n  --", at + 1) - at));
+    EXPECT_NE(text.find("The " + std::string(p->one_of) + ": give exactly one of " + listed),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("Default"), std::string::npos) << text;
+  }
+  for (const char* word : {"t,segment,FN,Fx,mu,a2,d,a1", "a0=", "d=... a1=...",
+                           "zeta0 = V0 tau / a0", "error_vs_reference"})
+    EXPECT_NE(r.out.find(word), std::string::npos) << word;
+}
+
+/// The case at fixed depth d with everything else of `c`: what the
+/// fixed-depth formulas take (independent of the load solver).
+mdrmap::Case held_at(mdrmap::Case c, double d) {
+  c.loading.F0 = 0.0;
+  c.loading.d = d;
+  return c;
+}
+
+// Load control end to end: F0 = 16/3 G a0^3 / R with a0 = 1, R = 100, tau = 1:
+// v0 = 1 (zeta0 = 1), a drop to 0.1 for 40 tau (long enough to settle), then
+// a rise back to 1 for 40 tau.
+constexpr double kF0 = 16.0 / 3.0 / 100.0;
+const std::vector<std::string> kLoadBase{"simulate", "--FN", num(kF0), "--R",    "100", "--tau",
+                                         "1",        "--v",  "1",      "--rtol", "1e-3"};
+
+TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
+  const long N = 41;
+  std::vector<std::string> args = kLoadBase;
+  args.insert(args.end(), {"--history", "0.1:40,1:40", "--samples", num(N), "--spacing", "log"});
+  const Outcome r = run_mdrmap(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const Parsed p = parse_output(r.out);
+  ASSERT_TRUE(p.load) << p.header;
+  EXPECT_FALSE(p.error_vs_exact.has_value()) << "the default solver: no reference line";
+  EXPECT_EQ(p.case_line.count("d"), 0U) << "only the loading given";
+  EXPECT_EQ(to_double(p.case_line.at("FN")), kF0);
+  const double a0 = to_double(p.case_line.at("a0"));
+  EXPECT_NEAR(a0, 1.0, 1e-15);                                 // 16/3 G a0^3 / R = F0
+  EXPECT_NEAR(to_double(p.case_line.at("zeta0")), 1.0, 1e-15); // v tau / a0
+  ASSERT_EQ(p.rows.size(), 2U * N);
+
+  // Before t = 0: the fixed-depth stationary state at the depth printed, whose
+  // normal force is F0 (stationary sliding under load).
+  mdrmap::Case c = mdrmap::step_case(1.0, 100.0, 1.0, 1.0, 0.1, 1.0, 40.0, N);
+  const double d_pre = to_double(p.pre.at("d"));
+  const mdrmap::State pre = mdrmap::analytic::stationary(held_at(c, d_pre), 1.0);
+  EXPECT_NEAR(to_double(p.pre.at("FN")), kF0, 1e-12 * kF0);
+  EXPECT_NEAR(pre.FN, kF0, 1e-12 * kF0);
+  EXPECT_NEAR(to_double(p.pre.at("mu")), pre.mu, 1e-12 * pre.mu);
+  EXPECT_NEAR(to_double(p.pre.at("a2")), pre.a2, 1e-12);
+  EXPECT_NEAR(to_double(p.pre.at("a1")), std::sqrt(100.0 * d_pre), 1e-14);
+
+  // Every sample: F_N = F0 within rtol, the leading edge a1 = sqrt(R d).
+  for (const auto& row : p.rows) {
+    EXPECT_LE(std::abs(row[kFN] - kF0), 1e-3 * kF0) << "t = " << row[kT];
+    EXPECT_NEAR(row[kA1], std::sqrt(100.0 * row[kD]), 1e-12) << "t = " << row[kT];
+    EXPECT_LE(row[kA2], row[kA1] * (1 + 1e-12));
+  }
+  // The end of each segment is the stationary state under load at its velocity,
+  // and the events' stationary states are those under load: mu_ss_before of
+  // the first change is the state before t = 0, mu_ss_after the settled end.
+  ASSERT_EQ(p.events.size(), 2U);
+  EXPECT_NEAR(to_double(p.events[0].at("mu_ss_before")), to_double(p.pre.at("mu")), 1e-12 * pre.mu);
+  for (std::size_t k = 0; k < 2; ++k) {
+    SCOPED_TRACE("segment " + std::to_string(k));
+    const auto& end = p.rows[k * N + N - 1];
+    const double w = k == 0 ? 0.1 : 1.0;
+    const mdrmap::State ss = mdrmap::analytic::stationary(held_at(c, end[kD]), w);
+    EXPECT_LE(std::abs(ss.FN - kF0), 2e-3 * kF0);
+    EXPECT_LE(std::abs(end[kMu] - ss.mu), 2e-3 * pre.mu);
+    EXPECT_LE(std::abs(to_double(p.events[k].at("mu_ss_after")) - end[kMu]), 2e-3 * pre.mu);
+    EXPECT_EQ(p.events[k].at("a_minus_b") == "nan", false);
+  }
+  // The same case in the library, the same call: identical to the last digit.
+  c.loading = {0.0, kF0};
+  c.history.segments = {{0.1, 40.0}, {1.0, 40.0}};
+  c.sampling.spacing = mdrmap::Spacing::Log;
+  const mdrmap::Series lib = mdrmap::run_case(c, mdrmap::SolverKind::Auto, 1e-3).series;
+  ASSERT_EQ(lib.size(), p.rows.size());
+  for (std::size_t i = 0; i < lib.size(); ++i) {
+    EXPECT_EQ(p.rows[i][kFN], lib.FN[i]);
+    EXPECT_EQ(p.rows[i][kMu], lib.mu[i]);
+    EXPECT_EQ(p.rows[i][kD], lib.d[i]);
+    EXPECT_EQ(p.rows[i][kA1], lib.a1[i]);
+  }
+}
+
+/// Under load a solver other than the default is compared with the load
+/// solver at a 1000x tighter rtol; exact refuses the case (exit 2, --solver).
+TEST(cli, SimulateUnderLoadOtherSolvers) {
+  std::vector<std::string> args = kLoadBase;
+  args.insert(args.end(), {"--v1", "0.1", "--samples", "11", "--solver", "mdr"});
+  const Outcome r = run_mdrmap(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Parsed p = parse_output(r.out);
+  ASSERT_TRUE(p.load);
+  ASSERT_TRUE(p.error_vs_exact.has_value());
+  EXPECT_EQ(to_double(p.reference.at("reference_rtol")), 1e-6);
+  EXPECT_LE(*p.error_vs_exact, 1e-3);
+  EXPECT_GE(*p.error_vs_exact, 0.0);
+
+  TempDir dir;
+  const fs::path out = dir.path() / "out.csv";
+  write_file(out, "keep me\n");
+  args = kLoadBase;
+  args.insert(args.end(), {"--v1", "0.1", "--solver", "exact", "--output", out.string()});
+  const Outcome ex = run_mdrmap(args);
+  EXPECT_EQ(ex.code, 2) << ex.err;
+  EXPECT_EQ(std::count(ex.err.begin(), ex.err.end(), '\n'), 1) << ex.err;
+  EXPECT_TRUE(starts_with(ex.err, "mdrmap simulate: error: --solver: ")) << ex.err;
+  EXPECT_EQ(read_file(out), "keep me\n");
+}
+
+/// tau = 0 under load: Hertz at once (d = d0 = a0^2/R, a1 = a2 = a0, mu = 0),
+/// and the default window of --v1 is 6 a0 / min(v, v1).
+TEST(cli, SimulateUnderLoadElasticIsHertz) {
+  const Outcome r = run_mdrmap({"simulate", "--FN", num(kF0), "--R", "100", "--tau", "0", "--v",
+                                "2", "--v1", "0.5", "--samples", "5"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Parsed p = parse_output(r.out);
+  ASSERT_TRUE(p.load);
+  EXPECT_EQ(history_of(p), (std::vector<std::pair<double, double>>{{0.5, 6.0 / 0.5}}));
+  for (const auto& row : p.rows) {
+    EXPECT_NEAR(row[kD], 0.01, 1e-14);
+    EXPECT_NEAR(row[kA1], 1.0, 1e-12);
+    EXPECT_NEAR(row[kA2], 1.0, 1e-12);
+    EXPECT_NEAR(row[kFN], kF0, 1e-12 * kF0);
+    EXPECT_LE(std::abs(row[kMu]), 1e-12);
   }
 }
 

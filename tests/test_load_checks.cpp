@@ -1,4 +1,4 @@
-// Independent checks of load control (docs/load_notes.md): the depth root of
+// Independent checks of load control (docs/design.md, "Load control"): the depth root of
 // stationary sliding under load, the friction curve mu(zeta0) against its
 // closed-form similarity parametrization (one maximum, at v tau = sqrt(3) a1),
 // its limits and their approach, indentation creep at rest against the closed
@@ -56,8 +56,8 @@ Scaled stationary_scaled(double zeta0) {
 }
 
 /// The same curve in closed form, parametrized by the fixed-depth similarity
-/// variable zeta = v tau / a1 (docs/load_notes.md, "The curve in closed
-/// form"): beta = a2/a1, P = 2/3 + beta - beta^3/3 + 2 zeta^2 beta,
+/// variable zeta = v tau / a1 (docs/design.md, "Load control", the second
+/// route): beta = a2/a1, P = 2/3 + beta - beta^3/3 + 2 zeta^2 beta,
 /// F0 = (16/3) G a0^3 / R = 4 G a1^3 P / R, so alpha = a1/a0 = (4/(3P))^(1/3).
 Scaled curve(double zeta) {
   const double b = 1.0 / (std::hypot(1.0, zeta) + zeta);
@@ -168,7 +168,7 @@ std::pair<double, double> power_law(double z1, double e1, double z2, double e2) 
 }
 
 // The limits and how the curve approaches them (series of the closed-form
-// parametrization, docs/load_notes.md): zeta0 -> 0: mu/(a0/R) = 2 zeta0 (1 -
+// parametrization, docs/design.md, "Load control"): zeta0 -> 0: mu/(a0/R) = 2 zeta0 (1 -
 // 3/4 zeta0), d/d0 = 1 - zeta0^2/2, a2/a0 = 1 - zeta0; zeta0 -> infinity
 // (1/zeta = a1/(v tau) ~ (2/sqrt 3) zeta0^-3/2 is the small parameter): the
 // contact shrinks to [-a1, a2 -> 0] with a2/a0 = 2/3 zeta0^-2 (1 - c),
@@ -212,7 +212,7 @@ TEST(LoadStationary, LimitsAndTheirApproach) {
   }
 }
 
-/// Indentation creep at rest under a step load (docs/load_notes.md, "Creep"):
+/// Indentation creep at rest under a step load (docs/design.md, "Load control"):
 /// full contact [-a, a], a = sqrt(R d), F0 / (4 G) = (4/3) a d + 2 a tau d',
 /// d(0) = 0. With y = (d/d0)^(3/2) it is y' = (1 - y)/tau, so
 /// d(t) = d0 (1 - exp(-t/tau))^(2/3).
@@ -315,7 +315,7 @@ double creep_error(const Case& c, const Series& s) {
 // (a0/dx = 800, where the dx error is below 1e-6), and in dx (dt = tau/40960)
 // at second order: at rest the contact is symmetric, the raw sum's end error
 // is O(dx) at each instant but changes sign as the edge sweeps through a cell,
-// and the depth integrates it over time (docs/load_notes.md, "Creep").
+// and the depth integrates it over time (docs/design.md, "Load control").
 // F_N = F0 at every sample; mu = 0 at rest.
 TEST(LoadCreep, BaselineOrdersInDtAndDx) {
   const Case c = load_case(1.0, {{0.0, 3.0}}, 31);

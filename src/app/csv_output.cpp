@@ -13,13 +13,40 @@ const char* spacing_name(Spacing s) {
 }
 
 /// " name=value" for every table parameter of the sampling part (`sampling`)
-/// or of the other parts.
+/// or of the other parts; of a one_of group only the member given (non-zero).
 std::string parameters(const Case& c, bool sampling) {
   std::string s;
   for (const auto& p : case_parameters())
-    if ((p.part == Part::Sampling) == sampling)
+    if ((p.part == Part::Sampling) == sampling && (!p.one_of || p.get(c) != 0.0))
       s += std::string(" ") + p.name + "=" + format_double(p.get(c));
   return s;
+}
+
+/// The `# case` line (without newline).
+std::string case_line(const Case& c) {
+  const bool load = c.loading.by_force();
+  std::string s = "# case" + parameters(c, false) + " history=" + format_history(c.history) +
+                  " spacing=" + spacing_name(c.sampling.spacing) + parameters(c, true);
+  if (load) s += " a0=" + format_double(c.a0());
+  return s + " zeta0=" + format_double(c.history.v0 * c.material.tau / c.edge_scale());
+}
+
+void write_reference(std::FILE* out, const SimulateRecord& rec) {
+  if (!rec.error_vs_exact) return;
+  if (rec.reference == "exact")
+    std::fprintf(out, "# error_vs_exact=%.17g\n", *rec.error_vs_exact);
+  else
+    std::fprintf(out, "# error_vs_reference=%.17g reference=%s reference_rtol=%.17g\n",
+                 *rec.error_vs_exact, rec.reference.c_str(), rec.reference_rtol);
+}
+
+void write_rows(std::FILE* out, const Series& s, bool load) {
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    std::fprintf(out, "%.17g,%d,%.17g,%.17g,%.17g,%.17g", s.t[k], s.segment[k], s.FN[k], s.Fx[k],
+                 s.mu[k], s.a2[k]);
+    if (load) std::fprintf(out, ",%.17g,%.17g", s.d[k], s.a1[k]);
+    std::fputc('\n', out);
+  }
 }
 
 void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
@@ -75,24 +102,17 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
                in.root_solves, rec.wall_seconds);
 
   const Case& c = rec.c;
-  const std::string case_line =
-      "# case" + parameters(c, false) + " history=" + format_history(c.history) +
-      " spacing=" + spacing_name(c.sampling.spacing) + parameters(c, true) +
-      " zeta0=" + format_double(zeta(c, c.history.v0));
-  std::fprintf(out, "%s\n", case_line.c_str());
-
-  if (rec.error_vs_exact) std::fprintf(out, "# error_vs_exact=%.17g\n", *rec.error_vs_exact);
-
+  const bool load = c.loading.by_force();
+  std::fprintf(out, "%s\n", case_line(c).c_str());
+  write_reference(out, rec);
   for (std::size_t k = 0; k < rec.events.size(); ++k)
     write_event(out, k, rec.events[k]);
 
   const State& pre = series.pre;
-  std::fprintf(out, "# pre FN=%.17g Fx=%.17g mu=%.17g a2=%.17g\n", pre.FN, pre.Fx, pre.mu, pre.a2);
-
-  std::fprintf(out, "%s\n", kCsvHeader);
-  for (std::size_t k = 0; k < series.size(); ++k)
-    std::fprintf(out, "%.17g,%d,%.17g,%.17g,%.17g,%.17g\n", series.t[k], series.segment[k],
-                 series.FN[k], series.Fx[k], series.mu[k], series.a2[k]);
+  std::fprintf(out, "# pre FN=%.17g Fx=%.17g mu=%.17g a2=%.17g", pre.FN, pre.Fx, pre.mu, pre.a2);
+  if (load) std::fprintf(out, " d=%.17g a1=%.17g", pre.d, pre.a1);
+  std::fprintf(out, "\n%s\n", load ? kCsvHeaderLoad : kCsvHeader);
+  write_rows(out, series, load);
 }
 
 } // namespace mdrmap::app

@@ -5,18 +5,24 @@
 //     cells_per_a1=... elements=... steps=... element_updates=... root_solves=...
 //     wall_seconds=...                                        (one line)
 //   # case d=... R=... tau=... G=... v=... history=W1:T1,W2:T2,... spacing=linear|log
-//     samples=... log-decades=... zeta0=...                   (one line)
-//   # error_vs_exact=...                  (only when the solver is not the exact one)
+//     samples=... log-decades=... zeta0=...                   (one line; under load
+//     FN=... in place of d=..., and a0=... before zeta0)
+//   # error_vs_exact=...                  (fixed depth, a solver other than exact)
+//   # error_vs_reference=... reference=NAME reference_rtol=...
+//                                         (under load, a solver other than the default)
 //   # event k=... t=... w_before=... w_after=... mu_before=... mu_after=... mu_peak=...
 //     t_peak=... slip_peak=... mu_end=... mu_ss_before=... mu_ss_after=... D_c=... a=...
 //     a_minus_b=... b=...                 (one line per segment k = 0, 1, ...)
-//   # pre FN=... Fx=... mu=... a2=...     (always the last comment line)
-//   t,segment,FN,Fx,mu,a2
+//   # pre FN=... Fx=... mu=... a2=...     (always the last comment line; under
+//                                          load d=... a1=... follow)
+//   t,segment,FN,Fx,mu,a2                 (under load t,segment,FN,Fx,mu,a2,d,a1)
 //   <samples rows per segment, segment after segment>
 //
 // The `# case` line gives every parameter of the table (core/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the
-// history; `v` is the velocity v0 before t = 0 and zeta0 = v tau / a1. The
+// history; of a one_of group (the loading: d or FN) only the member given.
+// `v` is the velocity v0 before t = 0 and zeta0 = v tau / a1 at fixed depth;
+// under load zeta0 = v tau / a0, a0 the Hertz radius of F0 (Case::a0). The
 // event fields are core/events.hpp's EventMetrics of the change at the start
 // of segment k: its time t (since the first change), the velocities before
 // and after it, mu just before and just after it, the extremum of mu in the
@@ -55,12 +61,15 @@ struct SimulateRecord {
   RunInfo info;                         ///< cost and error estimate of the run
   double wall_seconds = 0.0;            ///< wall time of the run
   Case c;                               ///< the case as run (durations resolved)
-  std::optional<double> error_vs_exact; ///< case error against the continuum solver
+  std::optional<double> error_vs_exact; ///< case error against the reference below
+  std::string reference = "exact";      ///< solver of the reference run
+  double reference_rtol = 0.0;          ///< its rtol
   std::vector<EventMetrics> events;     ///< one per segment
 };
 
-/// The CSV column header line (without newline).
+/// The CSV column header line (without newline): depth control, load control.
 inline constexpr const char* kCsvHeader = "t,segment,FN,Fx,mu,a2";
+inline constexpr const char* kCsvHeaderLoad = "t,segment,FN,Fx,mu,a2,d,a1";
 
 /// Writes the comment lines, the header and one row per sample to `out`.
 /// Does not flush or check for I/O errors; the caller does (ferror / fclose).

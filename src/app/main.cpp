@@ -19,9 +19,10 @@ using mdrmap::app::kExitRuntime;
 std::string usage() {
   return std::string("mdrmap ") + mdrmap::kVersion + " (" + mdrmap::kGitCommit + R"()
 Viscoelastic friction in the method of dimensionality reduction (MDR): the
-response of a sliding parabolic contact on a Kelvin foundation to changes of
-the sliding velocity (a step, or a history of steps and holds), for one case
-or as parameter maps.
+response of a sliding parabolic contact on a Kelvin foundation, held at a
+fixed depth or pressed with a prescribed normal force, to changes of the
+sliding velocity (a step, or a history of steps and holds), for one case or
+as parameter maps.
 
 Usage: mdrmap <subcommand> [options]
        mdrmap --help | --version

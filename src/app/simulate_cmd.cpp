@@ -36,6 +36,9 @@ namespace {
 constexpr const char* kPrefix = "mdrmap simulate: error: ";
 constexpr double kDefaultRtol = 1e-4;
 constexpr double kExactReferenceRtol = 1e-12;
+/// Under load the reference is the load solver at rtol * factor, not below the floor.
+constexpr double kLoadReferenceFactor = 1e-3;
+constexpr double kLoadReferenceFloor = 1e-9;
 
 /// Options that are not case parameters of the table (core/params.hpp): the
 /// history's two forms, the sampling's spacing and how to run.
@@ -281,12 +284,57 @@ void require_options(const po::variables_map& vm) {
                                 "each segment W:T has its own duration");
 }
 
-/// Sets every table parameter from its option, or from the table's default.
+/// Sets every table parameter from its option, or from the table's default
+/// (0 for the members of a one_of group that are not given). An explicitly
+/// given value is checked against its own range here, before the groups.
 void read_case_parameters(const po::variables_map& vm, Case& c) {
   for (const auto& p : case_parameters()) {
     const double x =
         vm.count(p.name) ? parse_parameter(p, vm[p.name].as<std::string>()) : p.fallback;
     p.set(c, x);
+  }
+}
+
+/// The members of the table's one_of group `group`, in the table's order.
+std::vector<const ParamSpec*> group_members(const std::string& group) {
+  std::vector<const ParamSpec*> members;
+  for (const auto& q : case_parameters())
+    if (q.one_of && group == q.one_of) members.push_back(&q);
+  return members;
+}
+
+/// "--d D or --FN F0": the members with their symbols, `sep` between all
+/// but the last two, `last_sep` between those.
+std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
+                        const char* last_sep) {
+  std::string s;
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (i > 0) s += i + 1 == members.size() ? last_sep : sep;
+    s += std::string("--") + members[i]->name + " " + members[i]->symbol;
+  }
+  return s;
+}
+
+/// Exactly one option of each one_of group (e.g. --d or --FN, the loading)
+/// is given; otherwise one line naming the whole group. Raw message: no single
+/// option is at fault.
+void require_one_of_each_group(const po::variables_map& vm) {
+  for (const auto& p : case_parameters()) {
+    if (!p.one_of || group_members(p.one_of).front() != &p) continue; // each group once
+    const auto members = group_members(p.one_of);
+    std::string given;
+    int n = 0;
+    for (const ParamSpec* q : members) {
+      if (!vm.count(q->name)) continue;
+      given += (n++ ? " and --" : "--") + std::string(q->name);
+    }
+    if (n == 1) continue;
+    std::string what;
+    for (const ParamSpec* q : members)
+      what += std::string(what.empty() ? "" : ", ") + "--" + q->name + " " + q->meaning;
+    throw InvalidInput("", "give exactly one of " + group_usage(members, ", ", " or ") + " (the " +
+                               p.one_of + ": " + what + "); got " +
+                               (n == 0 ? std::string("none") : given));
   }
 }
 
@@ -309,7 +357,10 @@ void read_history(const po::variables_map& vm, Case& c) {
   // the scales first (as for any case), then the window they give
   c.history.segments = {Segment{v1, 1.0}};
   validate(c);
-  const double d = c.loading.d, R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
+  // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
+  // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0)
+  const double a = c.edge_scale(), R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
+  const double d = c.loading.by_force() ? a * a / R : c.loading.d;
   const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
   if (!t_end) {
     try {
@@ -348,6 +399,7 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
 
   SimulateArgs a;
   read_case_parameters(vm, a.c);
+  require_one_of_each_group(vm);
   if (vm.count("spacing")) a.c.sampling.spacing = parse_spacing(text("spacing"));
   if (vm.count("log-decades") && a.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
@@ -423,6 +475,23 @@ private:
   bool committed_ = false;
 };
 
+/// For a solver other than the default: the case error against a reference.
+/// At fixed depth the continuum solver at 1e-12; under load the default (load)
+/// solver at a much tighter rtol (docs/design.md, "Error metric").
+void add_reference_error(const SimulateArgs& a, const RunResult& res, SimulateRecord& rec) {
+  if (!a.c.loading.by_force()) {
+    if (rec.solver == "exact") return;
+    const RunResult ref = run_exact(a.c, kExactReferenceRtol);
+    rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
+    return;
+  }
+  if (a.solver == SolverKind::Auto) return;
+  rec.reference_rtol = std::max(a.rtol * kLoadReferenceFactor, kLoadReferenceFloor);
+  const RunResult ref = run_case(a.c, SolverKind::Auto, rec.reference_rtol);
+  rec.reference = ref.info.solver.empty() ? "auto" : ref.info.solver;
+  rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
+}
+
 int run(const SimulateArgs& a) {
   std::optional<AtomicFile> file; // created before the solver runs: a bad path fails fast
   const bool to_stdout = a.output.empty() || a.output == "-";
@@ -442,10 +511,7 @@ int run(const SimulateArgs& a) {
   rec.wall_seconds = wall;
   rec.c = a.c;
   rec.events = event_metrics(a.c, res.series);
-  if (rec.solver != "exact") {
-    const RunResult ref = run_exact(a.c, kExactReferenceRtol);
-    rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
-  }
+  add_reference_error(a, res, rec);
 
   if (file) {
     write_simulate_csv(file->get(), rec, res.series);
@@ -499,17 +565,26 @@ std::string parameter_help(bool sampling) {
     std::string allowed = p.allowed();
     allowed[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(allowed[0])));
     std::string text = "(" + std::string(dim_name(p.dim)) + ") " + p.meaning + ". " + allowed;
-    text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
+    if (p.one_of)
+      text += ". The " + std::string(p.one_of) + ": give exactly one of " +
+              group_usage(group_members(p.one_of), ", ", " or ");
+    else
+      text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
     s += help_entry(std::string("--") + p.name + " " + p.symbol, text);
   }
   return s;
 }
 
-/// The required options of the table, as the usage line gives them.
+/// The required options of the table, as the usage line gives them: each
+/// one_of group as "(--d D | --FN F0)" where its first member stands.
 std::string required_usage() {
   std::string s;
-  for (const auto& p : case_parameters())
+  for (const auto& p : case_parameters()) {
     if (p.required) s += std::string(" --") + p.name + " " + p.symbol;
+    if (!p.one_of) continue;
+    const auto members = group_members(p.one_of);
+    if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
+  }
   return s;
 }
 
@@ -521,7 +596,7 @@ std::string history_help() {
          help_entry("--t-end T", "with --v1: how long the step is followed (" +
                                      std::string(dim_name(T.dim)) + "), " + T.allowed() +
                                      ". Default: 6 tau; for tau = 0, 6 a1/min(V0,V1) "
-                                     "(6 a1/V0 if V1 = 0)") +
+                                     "(6 a1/V0 if V1 = 0), a0 in place of a1 under --FN") +
          help_entry("--history W1:T1,W2:T2,...",
                     "segments one after another from t = 0: sliding velocity Wk (" +
                         std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
@@ -549,19 +624,30 @@ std::string output_help() {
       root_solves=... wall_seconds=...            (all on one line)
   # case d=... R=... tau=... G=... v=... history=W1:T1,... spacing=linear
       samples=N log-decades=D zeta0=...           (all on one line: every
-                                                   case parameter, the history)
+                                                   case parameter given, the
+                                                   history; under --FN: FN=...
+                                                   in place of d=..., and
+                                                   a0=... before zeta0)
   # error_vs_exact=...     (solvers other than exact only: the case error
                             against the continuum solution)
+  # error_vs_reference=... reference=NAME reference_rtol=...
+                           (under --FN, solvers other than auto only: the
+                            case error against the load solver at a 1000x
+                            tighter rtol, at least 1e-9)
   # event k=K t=... w_before=... w_after=... mu_before=... mu_after=...
       mu_peak=... t_peak=... slip_peak=... mu_end=... mu_ss_before=...
       mu_ss_after=... D_c=... a=... a_minus_b=... b=...
                            (one line per segment K = 0, 1, ...: the change at
                             its start, see below)
-  # pre FN=... Fx=... mu=... a2=...   (stationary state at V0 before t = 0)
-  t,segment,FN,Fx,mu,a2
+  # pre FN=... Fx=... mu=... a2=...   (stationary state at V0 before t = 0;
+                                       under --FN also d=... a1=...)
+  t,segment,FN,Fx,mu,a2               (under --FN: t,segment,FN,Fx,mu,a2,d,a1)
   ... N rows per segment, segment after segment; segment is 0-based, t is
       measured from the first change (t = 0 is the instant just after it) ...
-zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0.
+zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0; under --FN
+zeta0 = V0 tau / a0, a0 the Hertz contact radius of F0 (F0 = 16/3 G a0^3/R),
+and the columns d and a1 give the depth and the leading edge, a1 = sqrt(R d).
+The stationary states of the events are then those under the load F0.
 Events: the change at time t from w_before to w_after; mu just before it
 (mu_before) and just after it (mu_after); the extremum of mu in the segment,
 the sample farthest from the stationary mu_ss_after (mu_peak), its time since
@@ -574,9 +660,10 @@ ln(w_after/w_before) and b = a - a_minus_b. Where a value is undefined (a
 velocity of 0 or equal velocities in the log, no 1/e decay within the segment,
 a hold) it is printed as nan.
 The case error is the largest of max_k |q_k - q_ref,k| / max_k |q_ref,k| for
-q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. error_estimate is the
-solver's own bound on it. Numbers have 17 significant digits, so they read
-back to the same double.
+q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. Under --FN: max_k |FN_k - F0|
+/ F0, d, Fx and mu by their largest magnitude, a1 and a2 by a0.
+error_estimate is the solver's own bound on it. Numbers have 17 significant
+digits, so they read back to the same double.
 )";
 }
 
@@ -589,16 +676,18 @@ std::string simulate_help() {
 
 Computes the response of a viscoelastic contact to changes of the sliding
 velocity, in the method of dimensionality reduction (MDR). A rigid parabolic
-indenter (MDR profile x^2/R) is held at indentation depth d on a Kelvin
-foundation (shear modulus G, relaxation time tau = eta/G). It slides steadily
-at velocity V0 until t = 0, then follows a velocity history: one step to V1
-(--v1), or segments of constant velocity, holds included (--history). The
-command prints the stationary state before t = 0, event metrics of every
-velocity change and, at N instants per segment, the normal force FN, the
-tangential (friction) force Fx, positive when it resists the motion, the
-friction coefficient mu = Fx/FN, and the trailing edge a2 of the contact. In
-the frame of the indenter the contact occupies [-a1, a2]; the leading edge
-stays at -a1, a1 = sqrt(R d).
+indenter (MDR profile x^2/R) is held at indentation depth d (--d, depth
+control) or pressed with the normal force F0 (--FN, load control: the depth
+follows) on a Kelvin foundation (shear modulus G, relaxation time tau =
+eta/G). It slides steadily at velocity V0 until t = 0, then follows a
+velocity history: one step to V1 (--v1), or segments of constant velocity,
+holds included (--history). The command prints the stationary state before
+t = 0, event metrics of every velocity change and, at N instants per segment,
+the normal force FN, the tangential (friction) force Fx, positive when it
+resists the motion, the friction coefficient mu = Fx/FN, and the trailing
+edge a2 of the contact. In the frame of the indenter the contact occupies
+[-a1, a2], a1 = sqrt(R d); at fixed depth the leading edge stays at -a1,
+under load the depth d and a1 are printed too.
 
 Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
 times, velocities length/time; forces come out in units of G * length^2.
@@ -614,7 +703,8 @@ Other options:
                    exact     continuum (dx -> 0) solution, semi-analytic
                    mdr       discrete MDR element simulation with error control
                    baseline  the paper's brute-force method, for reference
-                   auto      the cheapest solver that meets rtol (exact here)
+                   auto      the cheapest solver that meets rtol (exact at
+                             fixed depth, the load solver under --FN)
   --output FILE  write to FILE instead of stdout. FILE is replaced at once
                  when the run succeeds and left untouched when it fails;
                  "-" means stdout
@@ -626,6 +716,8 @@ Examples:
   mdrmap simulate --d 0.1 --R 10 --tau 1 --v 2 --v1 0.5 --output step.csv
   mdrmap simulate --d 0.1 --R 10 --tau 1 --v 1 --history 1:2,0:1000,1:5 \
       --samples 101 --spacing log       (slide-hold-slide: a hold of 1000 tau)
+  mdrmap simulate --FN 0.1 --R 10 --tau 1 --v 1 --history 0.1:20,1:20
+                                        (load control: a step down and up)
 
 Exit codes:
   0  success

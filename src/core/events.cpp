@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/analytic.hpp"
+#include "core/load_stationary.hpp"
 
 namespace mdrmap {
 namespace {
@@ -36,6 +37,11 @@ double one_over_e_slip(const Series& s, std::size_t i0, long n, double mu_ss, do
   return kNaN;
 }
 
+/// The stationary state at w: at the case's depth, or under its load F0.
+State stationary_of(const Case& c, double w) {
+  return c.loading.by_force() ? stationary_under_load(c, w) : analytic::stationary(c, w);
+}
+
 } // namespace
 
 std::vector<EventMetrics> event_metrics(const Case& c, const Series& series) {
@@ -50,8 +56,8 @@ std::vector<EventMetrics> event_metrics(const Case& c, const Series& series) {
     e.t = series.t[i0];
     e.w_before = c.history.before(k);
     e.w_after = c.history.segments[k].w;
-    e.ss_before = analytic::stationary(c, e.w_before);
-    e.ss_after = analytic::stationary(c, e.w_after);
+    e.ss_before = stationary_of(c, e.w_before);
+    e.ss_after = stationary_of(c, e.w_after);
     e.mu_before = k == 0 ? series.pre.mu : series.mu[i0 - 1];
     e.mu_after = series.mu[i0];
     std::size_t ip = i0;

@@ -12,7 +12,7 @@
 #include "core/analytic.hpp"
 #include "core/error_metric.hpp"
 
-// The fixed-step element row under load control (docs/load_notes.md). An
+// The fixed-step element row under load control (docs/design.md, "Load control"). An
 // element in contact at xi has u = d - g(xi), u' = d' - w g'(xi) and force
 // 4 G dx (D - q(xi)) with D = d + tau d' and q = g + tau w g'. Over a contact
 // set C of n elements the balance F0 = 4 G dx sum_C (D - q) gives
@@ -265,7 +265,7 @@ private:
 /// depth. Until t = tau the steps are graded, h = min(dt, t, dt sqrt(t/tau))
 /// from t = tau (dx/a0)^3 / 100: no step longer than the time elapsed, and
 /// sum h d'' finite, which restores first order in dt for about 2 tau/dt
-/// extra steps (docs/load_notes.md, "Creep").
+/// extra steps (docs/design.md, "Load control").
 struct Stepper {
   LoadRow& row;
   double tau;

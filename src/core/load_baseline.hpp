@@ -1,7 +1,7 @@
 #pragma once
 // The straightforward fixed-step element row under load control, kept as an
-// independent brute-force check of the load-control solver (docs/load_notes.md,
-// to be merged into docs/design.md, "Load control"). Deliberately plain:
+// independent brute-force check of the load-control solver (docs/design.md,
+// "Load control", the independent check). Deliberately plain:
 // elements over the whole travel path, one fixed time step, contact decided at
 // step ends, raw element sums. The depth follows from the force balance each
 // step: over the contact set C, F0 = 4 G dx sum_C (D - g - tau w g') with

@@ -5,6 +5,8 @@
 
 #include "core/baseline.hpp"
 #include "core/exact.hpp"
+#include "core/load.hpp"
+#include "core/load_baseline.hpp"
 #include "core/mdr.hpp"
 
 namespace mdrmap {
@@ -58,9 +60,34 @@ void validate_rtol(double rtol) {
     throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
 }
 
+namespace {
+
+// Load control (docs/design.md, "Load control"): auto and mdr run the load
+// solver; exact refuses (it solves depth control only).
+RunResult run_load_case(const Case& c, SolverKind kind, double rtol) {
+  switch (kind) {
+  case SolverKind::Auto:
+  case SolverKind::Mdr: {
+    LoadOptions o;
+    o.rtol = rtol;
+    return run_load(c, o);
+  }
+  case SolverKind::Baseline: {
+    // the fixed-step check solver at its default resolution (rtol does not set it)
+    return run_load_baseline(c, LoadBaselineOptions{});
+  }
+  case SolverKind::Exact:
+    break;
+  }
+  return run_exact(c, rtol); // refuses a force-controlled case
+}
+
+} // namespace
+
 RunResult run_case(const Case& c, SolverKind kind, double rtol) {
   validate(c);
   validate_rtol(rtol);
+  if (c.loading.by_force()) return run_load_case(c, kind, rtol);
   switch (kind) {
   case SolverKind::Auto:
   case SolverKind::Exact:

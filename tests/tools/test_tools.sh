@@ -52,33 +52,11 @@ TS="$SRCDIR/tools/plot_timeseries.py"
 PM="$SRCDIR/tools/plot_map.py"
 MS="$SRCDIR/tools/map_summary.py"
 JOBS=${TOOLS_TEST_JOBS:-2}
-checks=0
 started=()
 bad_names=()
 
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
-ok() {
-  checks=$((checks + 1))
-  echo "ok $checks: $*"
-}
-py() { bash "$PYRUN" "$@"; }
-
-# run NAME CMD...: must exit 0 without a traceback; stdout in $W/NAME.out, stderr in $W/NAME.err
-run() {
-  local name=$1
-  shift
-  if ! "$@" >"$W/$name.out" 2>"$W/$name.err"; then
-    cat "$W/$name.out" "$W/$name.err" >&2
-    fail "$name: exited non-zero: $*"
-  fi
-  if grep -q Traceback "$W/$name.err"; then
-    cat "$W/$name.err" >&2
-    fail "$name: traceback"
-  fi
-}
+# shellcheck source=tests/tools/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # bad NAME EXPECTED CMD...: must exit 2 with exactly one stderr line containing EXPECTED
 bad() {

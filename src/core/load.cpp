@@ -1,0 +1,239 @@
+#include "core/load.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/analytic.hpp"
+#include "core/error_metric.hpp"
+#include "core/load_stationary.hpp"
+
+namespace mdrmap {
+namespace {
+
+struct SingleRun {
+  Series series;
+  long steps = 0, updates = 0, elements = 0;
+  LoadChecks checks;
+};
+
+struct RunSettings {
+  double cells, phase, time_tol, dt_over_tau;
+  LoadStart start;
+  int split = 1; ///< adaptive steps per sample interval, at least
+};
+
+/// The shallowest contact the history reaches in a stationary state: the
+/// stationary a1 at its largest velocity (a0 at rest). Sets dx.
+double reference_radius(const Case& c, LoadStart start) {
+  double wmax = start == LoadStart::Stationary ? c.history.v0 : 0.0;
+  for (const auto& s : c.history.segments)
+    wmax = std::max(wmax, s.w);
+  return stationary_alpha(wmax * c.material.tau / c.a0()) * c.a0();
+}
+
+/// Steps from the row's time to `target`: fixed, or adaptive by step doubling
+/// (one step h against two of h/2; the two-step result is kept and the local
+/// error taken as their difference / 3, for d, D relative to d and e to a1).
+class Stepper {
+public:
+  Stepper(LoadRow& row, const RunSettings& s, double tau) : row_(row), s_(s), tau_(tau) {}
+  void restart() { h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol); }
+  long steps() const { return steps_; }
+
+  void advance_to(double target) {
+    const double hmax = (target - row_.t()) / s_.split;
+    while (row_.t() < target) {
+      const double left = target - row_.t();
+      double h = s_.dt_over_tau > 0.0 ? s_.dt_over_tau * tau_ : std::min(h_, hmax);
+      if (h >= left * (1.0 - 1e-12)) h = left;
+      if (s_.dt_over_tau > 0.0 || left <= 1e-12 * (std::abs(target) + tau_)) {
+        LoadRow::Trial tr = row_.trial(h);
+        if (h == left) tr.t_end = target;
+        row_.commit(tr);
+        ++steps_;
+      } else {
+        adaptive_step(h, h == left, target);
+      }
+      row_.rebase_time();
+    }
+  }
+
+private:
+  void adaptive_step(double h, bool to_target, double target) {
+    // (a trial that leaves the window is a rejected step, e.g. an undeformed
+    // start, where D is unbounded as d -> 0)
+    const LoadRow::Trial big = row_.trial(h), half = row_.trial(0.5 * h);
+    if (!row_.fits(big) || !row_.fits(half)) {
+      h_ = 0.25 * h;
+      return;
+    }
+    row_.checkpoint();
+    row_.commit(half);
+    const LoadRow::Trial two = row_.trial(0.5 * h);
+    if (!row_.fits(two)) {
+      row_.rollback();
+      h_ = 0.25 * h;
+      return;
+    }
+    const double err = std::max({std::abs(two.d - big.d) / two.d,
+                                 std::abs(two.D - big.D) / std::max(two.d, std::abs(two.D)),
+                                 std::abs(two.e - big.e) / std::sqrt(two.d * row_.R())}) /
+                       3.0;
+    const double fac = err > 0.0 ? 0.9 * std::cbrt(s_.time_tol / err) : 5.0;
+    if (err <= s_.time_tol || h < 1e-14 * tau_) {
+      LoadRow::Trial last = two;
+      if (to_target) last.t_end = target;
+      row_.commit(last);
+      row_.release();
+      ++steps_;
+      if (!to_target || fac < 1.0) h_ = h * std::clamp(fac, 0.2, 5.0);
+      return;
+    }
+    row_.rollback();
+    h_ = h * std::clamp(fac, 0.1, 0.9);
+  }
+
+  LoadRow& row_;
+  RunSettings s_;
+  double tau_;
+  double h_ = 0.0;
+  long steps_ = 0;
+};
+
+State hertz(const Case& c) {
+  const double a0 = c.a0();
+  State st;
+  st.FN = c.loading.F0;
+  st.a2 = a0;
+  st.a1 = a0;
+  st.d = a0 * (a0 / c.indenter.R);
+  return st;
+}
+
+// tau = 0: nothing has memory; every state is the Hertz contact of F0.
+SingleRun run_elastic(const Case& c) {
+  SingleRun out;
+  out.series.resize(c.total_samples());
+  out.series.pre = hertz(c);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k)
+    for (long j = 0; j < c.sampling.samples; ++j, ++i)
+      out.series.set(i, c.history.start(k) + c.sampling.offset(j, c.history.segments[k].T),
+                     static_cast<int>(k), hertz(c));
+  out.checks.max_a1_over_a0 = 1.0;
+  return out;
+}
+
+SingleRun run_once(const Case& c, const RunSettings& s) {
+  if (!(c.material.tau > 0.0)) return run_elastic(c);
+  const double a0 = c.a0();
+  const double dx = reference_radius(c, s.start) / s.cells;
+  const double a_start = s.start == LoadStart::Stationary
+                             ? stationary_alpha(c.history.v0 * c.material.tau / a0) * a0
+                             : a0;
+  const double A = 1.6 * std::max(a0, a_start) + 4.0 * dx;
+  if (!(2.0 * A / dx < 2e8))
+    throw std::runtime_error("load: the element window would hold " + format_number(2.0 * A / dx) +
+                             " elements (more than 2e8)");
+  LoadRow row(c, dx, A, s.phase);
+  if (s.start == LoadStart::Stationary)
+    row.start_stationary(c.history.v0);
+  else if (s.start == LoadStart::Rest)
+    row.start_rest();
+  else
+    row.start_undeformed(1e-12);
+  SingleRun out;
+  out.series.resize(c.total_samples());
+  out.series.pre = row.measure();
+  Stepper stepper(row, s, c.material.tau);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double t0 = c.history.start(k);
+    row.change_velocity(seg.w);
+    stepper.restart();
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      // (t0 + offset: the row's clock runs from the first change, as the samples)
+      stepper.advance_to(std::max(row.t(), t0 + c.sampling.offset(j, seg.T)));
+      row.check_one_interval();
+      out.series.set(i, t0 + c.sampling.offset(j, seg.T), static_cast<int>(k), row.measure());
+    }
+  }
+  out.steps = stepper.steps();
+  out.updates = row.updates();
+  out.elements = static_cast<long>(row.capacity());
+  out.checks = row.checks();
+  return out;
+}
+
+// Starting resolution and local time tolerance from rtol (refined below if
+// the companion disagrees by more than rtol).
+RunSettings initial_settings(const LoadOptions& o) {
+  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1};
+  if (!(s.cells > 0.0)) s.cells = std::clamp(std::ceil(0.5 / std::sqrt(o.rtol)), 16.0, 1e6);
+  if (!(s.time_tol > 0.0)) s.time_tol = 0.05 * o.rtol;
+  return s;
+}
+
+void merge(LoadChecks& a, const LoadChecks& b) {
+  a.leading_edge_detached += b.leading_edge_detached;
+  a.second_contact += b.second_contact;
+  a.max_a1_over_a0 = std::max(a.max_a1_over_a0, b.max_a1_over_a0);
+}
+
+} // namespace
+
+RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
+  validate(c);
+  if (!c.loading.by_force())
+    throw InvalidInput("solver", "the load solver needs a prescribed normal force (--FN)");
+  validate_rtol(opt.rtol);
+  RunResult res;
+  res.info.solver = "mdr";
+  res.info.rtol = opt.rtol;
+  RunSettings s = initial_settings(opt);
+  const bool adaptive = !(opt.cells > 0.0);
+  LoadChecks all;
+  for (int attempt = 0;; ++attempt) {
+    SingleRun fine = run_once(c, s);
+    res.info.steps += fine.steps;
+    res.info.element_updates += fine.updates;
+    res.info.refinements = attempt + 1;
+    merge(all, fine.checks);
+    double est = 0.0;
+    if (opt.estimate_error || adaptive) {
+      // half the resolution at a shifted phase (a read-out error that depends
+      // on where the grid falls is not shared), four times the local step error
+      RunSettings cs = s;
+      cs.cells = 0.5 * s.cells;
+      cs.phase = std::fmod(s.phase + 0.381966, 1.0);
+      // and at least two steps per sample interval: where the sample spacing
+      // limits the steps, the companion does not repeat the step error
+      cs.time_tol = 4.0 * s.time_tol;
+      cs.split = 2;
+      if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
+      SingleRun coarse = run_once(c, cs);
+      res.info.steps += coarse.steps;
+      res.info.element_updates += coarse.updates;
+      // floored at the local step tolerance: below it the two runs' difference
+      // no longer measures the error (it is within the scatter over grid
+      // phases of an unresolved tail, ~1e-6 at zeta0 = 1e-4)
+      est = std::max(case_error(coarse.series, fine.series, c, 1e-12).max(), s.time_tol) +
+            64.0 * std::numeric_limits<double>::epsilon();
+    }
+    res.series = std::move(fine.series);
+    res.info.error_estimate = est;
+    res.info.cells_per_a1 = s.cells;
+    res.info.elements = fine.elements;
+    if (!adaptive || est <= opt.rtol || attempt >= 4) break;
+    const double f = std::clamp(std::sqrt(est / opt.rtol), 1.5, 4.0);
+    s.cells = std::ceil(s.cells * f);
+    s.time_tol /= f * f;
+  }
+  if (checks) *checks = all;
+  return res;
+}
+
+} // namespace mdrmap

@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# End-to-end test of the history tools (tools/steps.py, tools/healing.py) on
+# runs of `mdrmap simulate` made here.
+#
+#   bash tests/tools/test_history_tools.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
+#
+# Checks:
+#   - --help of each tool exits 0 and prints a usage line;
+#   - at fixed depth (docs/design.md, "Histories at fixed depth"): a step up
+#     reaches the new stationary state at once (no 1/e decay: D_c nan, b = 0),
+#     a step down has b < 0, and a reslide after a hold of any length has no
+#     peak (dmu_peak = 0 for every hold);
+#   - the tools' a and a-b equal mdrmap's own event metrics of the same CSVs;
+#   - under load (--FN): every run's F_N is F0, the runs have settled, and the
+#     tools' a, a-b equal the event metrics (whose stationary states must then
+#     be those under load); mu just after a reslide from a 1000 tau hold equals
+#     its closed form (reslide out of the Hertz contact, d continuous);
+#   - --from-csv reads the kept CSVs back to the same table;
+#   - every PNG starts with the PNG signature and has a drawn size;
+#   - bad invocations exit 2 with exactly one line on stderr, no traceback,
+#     and write no PNG.
+set -euo pipefail
+
+if (($# != 4)); then
+  echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
+  exit 2
+fi
+MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
+[[ -x "$MDRMAP" ]] || { echo "FAIL: no executable $MDRMAP" >&2; exit 1; }
+W="$WORKDIR/history_tools_test"
+rm -rf "$W"
+mkdir -p "$W"
+ST="$SRCDIR/tools/steps.py"
+HE="$SRCDIR/tools/healing.py"
+
+# shellcheck source=tests/tools/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+# bad NAME EXPECTED CMD...: exit 2, one stderr line containing EXPECTED, no PNG
+bad() {
+  local name=$1 expected=$2 rc=0 lines
+  shift 2
+  rm -f "$W/bad.png"
+  "$@" -o "$W/bad.png" >"$W/$name.out" 2>"$W/$name.err" || rc=$?
+  lines=$(wc -l <"$W/$name.err")
+  if ((rc != 2)) || ((lines != 1)) || ! grep -qF -- "$expected" "$W/$name.err"; then
+    cat "$W/$name.err" >&2
+    fail "$name: expected exit 2 and one stderr line with '$expected', got exit $rc, $lines lines"
+  fi
+  [[ ! -e "$W/bad.png" ]] || fail "$name: wrote a PNG"
+  ok "bad input refused: $name"
+}
+
+# png FILE: PNG signature and a drawn size
+png() {
+  [[ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]] || fail "$1: not a PNG"
+  (($(stat -c %s "$1") > 20000)) || fail "$1: too small for a drawn figure"
+  ok "$(basename "$1") is a drawn PNG"
+}
+
+# table_value FILE ZETA STEP COLUMN: a value of the steps table
+table_value() {
+  awk -v z="$2" -v s="$3" -v c="$4" '
+    $1 == "zeta0" && $2 == "step" { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    $1 == z && $2 == s { print $(col[c]) }' "$1"
+}
+
+# event_check CSVDIR TABLE: the tools' a and a-b (units of mu_ref) equal the
+# CSV's own event line (units of mu) to the 4 digits printed
+event_check() {
+  local dir=$1 table=$2 f z s
+  for f in "$dir"/step_*.csv; do
+    z=$(basename "$f" .csv | cut -d_ -f3)
+    s=$(basename "$f" .csv | cut -d_ -f2)
+    awk -v ta="$(table_value "$table" "$z" "$s" a)" -v tab="$(table_value "$table" "$z" "$s" a-b)" '
+      /^# case / { for (i = 3; i <= NF; i++) { split($i, kv, "="); c[kv[1]] = kv[2] } }
+      /^# event / { for (i = 3; i <= NF; i++) { split($i, kv, "="); e[kv[1]] = kv[2] } }
+      END {
+        ref = ("a0" in c) ? c["a0"] / c["R"] : sqrt(c["d"] / c["R"])
+        bad = 0
+        if (ta == "" || tab == "") bad = 1
+        else {
+          if (abs(e["a"] / ref - ta) > 1e-3 * abs(ta) + 1e-12) bad = 1
+          if (abs(e["a_minus_b"] / ref - tab) > 1e-3 * abs(tab) + 1e-12) bad = 1
+        }
+        if (bad) { printf "event a=%s a_minus_b=%s (scale %s) vs table a=%s a-b=%s\n", e["a"], e["a_minus_b"], ref, ta, tab; exit 1 }
+      }
+      function abs(x) { return x < 0 ? -x : x }' "$f" || fail "$f: the tool's a, a-b differ from the event line"
+  done
+  ok "$(basename "$dir"): the tools' a and a-b equal mdrmap's event metrics"
+}
+
+for tool in "$ST" "$HE"; do
+  run help "$PYRUN" "$tool" --help
+  grep -q "^usage: " "$W/help.out" || fail "$tool --help: no usage line"
+  ok "$(basename "$tool") --help"
+done
+
+# ------------------------------------------------------------ fixed depth
+run steps_depth py "$ST" --d 0.01 --R 100 --samples 41 --mdrmap "$MDRMAP" \
+  --csv-dir "$W/steps_depth" -o "$W/steps_depth.png"
+png "$W/steps_depth.png"
+for z in 0.1 1 10; do
+  [[ "$(table_value "$W/steps_depth.out" "$z" up D_c)" == nan ]] || fail "fixed depth, step up at $z: D_c not nan"
+  b=$(table_value "$W/steps_depth.out" "$z" up b)
+  awk -v b="$b" 'BEGIN { exit !(b < 1e-12 && b > -1e-12) }' || fail "fixed depth, step up: b = $b, not 0"
+  b=$(table_value "$W/steps_depth.out" "$z" down b)
+  awk -v b="$b" 'BEGIN { exit !(b < 0) }' || fail "fixed depth, step down at $z: b = $b, not < 0"
+done
+ok "fixed depth: a step up is stationary at once (D_c nan, b = 0), a step down has b < 0"
+event_check "$W/steps_depth" "$W/steps_depth.out"
+
+run steps_depth_reread py "$ST" --d 0.01 --R 100 --samples 41 --csv-dir "$W/steps_depth" --from-csv
+cmp -s <(grep -v '^wrote' "$W/steps_depth.out") "$W/steps_depth_reread.out" ||
+  fail "--from-csv gives another table"
+ok "--from-csv reads the kept CSVs back to the same table"
+
+run healing_depth py "$HE" --d 0.01 --R 100 --samples 31 --holds 0.1,10,1000 --mdrmap "$MDRMAP" \
+  -o "$W/healing_depth.png"
+png "$W/healing_depth.png"
+awk '/^ *[0-9.e+-]+ +[0-9.e+-]+ / { n++; if ($2 + 0 > 1e-12 || $2 + 0 < -1e-12) bad = 1 }
+     END { exit !(n == 3 && !bad) }' "$W/healing_depth.out" ||
+  fail "fixed depth: a reslide shows a peak ($(cat "$W/healing_depth.out"))"
+ok "fixed depth: no peak after a hold of 0.1, 10 or 1000 tau"
+
+# ------------------------------------------------------------ load control
+# F0 = 16/3 G a0^3 / R with a0 = 1, R = 100
+F0=0.053333333333333333
+run steps_load py "$ST" --FN $F0 --R 100 --samples 41 --rtol 1e-3 --mdrmap "$MDRMAP" \
+  --csv-dir "$W/steps_load" -o "$W/steps_load.png"
+png "$W/steps_load.png"
+for f in "$W"/steps_load/step_*.csv; do
+  awk -F, -v F0=$F0 'NR > 1 && !/^#/ && $1 != "t" { if (($3 - F0) / F0 > 1e-3 || ($3 - F0) / F0 < -1e-3) bad = 1 }
+    END { exit bad }' "$f" || fail "$f: F_N differs from F0 by more than rtol"
+done
+ok "load control: F_N = F0 within rtol in every step run"
+awk '$1 ~ /^[0-9.]+$/ && NF > 5 { if ($NF + 0 > 1e-3) bad = 1 } END { exit bad }' "$W/steps_load.out" ||
+  fail "load control: a step run has not settled ($(cat "$W/steps_load.out"))"
+ok "load control: every step run settles"
+event_check "$W/steps_load" "$W/steps_load.out"
+
+run healing_load py "$HE" --FN $F0 --R 100 --samples 31 --rtol 1e-3 --holds 0.1,10,1000 \
+  --zeta0 0.1,1,10 --mdrmap "$MDRMAP" --csv-dir "$W/healing_load" -o "$W/healing_load.png"
+png "$W/healing_load.png"
+# After a long hold the contact is Hertz's [-a0, a0] at d0; at the reslide d
+# is continuous and c = tau R d' jumps so that F0 = integral of
+# p = 4G/R (a0^2 + c - x^2 - 2 w tau x) over [-a0, e], e = min(a0, root of p):
+# mu(0+) in closed form (one scalar root), independent of the solver.
+cat >"$W/reslide.py" <<'EOF'
+import math, sys
+def bisect(f, lo, hi):
+    for _ in range(300):
+        m = (lo + hi) / 2
+        lo, hi = (m, hi) if (f(lo) < 0) == (f(m) < 0) else (lo, m)
+    return (lo + hi) / 2
+def mu_reslide(L):  # a0 = R = G = 1, F0 = 16/3, L = w tau / a0; mu in units of a0/R
+    def forces(c):
+        e = min(1.0, -L + math.sqrt(L * L + 1 + c))
+        P = lambda x: (1 + c) * x - x**3 / 3 - L * x * x
+        Q = lambda x: (1 + c) * x * x / 2 - x**4 / 4 - 2 * L * x**3 / 3
+        return 4 * (P(e) - P(-1)), -8 * (Q(e) - Q(-1))
+    c = bisect(lambda c: forces(c)[0] - 16 / 3, -2 * L, 100.0)
+    FN, Fx = forces(c)
+    return Fx / FN
+bad = 0
+for path in sys.argv[1:]:
+    lines = open(path).read().splitlines()
+    case = dict(t.split("=", 1) for t in next(l for l in lines if l.startswith("# case")).split()[2:])
+    zeta0, ref = float(case["zeta0"]), float(case["a0"]) / float(case["R"])
+    mu0 = next(float(r.split(",")[4]) for r in lines if r[:1].isdigit() and r.split(",")[1] == "1")
+    want = mu_reslide(zeta0)
+    ok = abs(mu0 / ref - want) <= 1e-3 * want
+    print(f"zeta0={zeta0:g}: mu(0+)/(a0/R) = {mu0 / ref:.10g}, closed form {want:.10g}")
+    bad += not ok
+sys.exit(bad)
+EOF
+run reslide_check py "$W/reslide.py" "$W"/healing_load/shs_*_1000.csv
+cat "$W/reslide_check.out"
+ok "load control: mu just after the reslide from a 1000 tau hold matches the closed form within rtol"
+
+# ------------------------------------------------------------ bad input
+fake="$W/fake_mdrmap"
+printf '#!/bin/sh\necho "mdrmap simulate: error: --FN: broken on purpose" >&2\nexit 2\n' >"$fake"
+chmod +x "$fake"
+base=(--R 100 --mdrmap "$MDRMAP")
+bad neither "exactly one of --FN" py "$ST" "${base[@]}"
+bad both "exactly one of --FN" py "$HE" --FN 1 --d 0.1 "${base[@]}"
+bad FN_negative "--FN: must be" py "$ST" --FN -1 "${base[@]}"
+bad FN_nan "--FN: must be" py "$HE" --FN nan "${base[@]}"
+bad tau_zero "--tau" py "$ST" --FN 1 --tau 0 "${base[@]}"
+bad zeta_text "--zeta0" py "$ST" --FN 1 --zeta0 1,abc "${base[@]}"
+bad zeta_zero "--zeta0" py "$HE" --FN 1 --zeta0 0 "${base[@]}"
+bad ratio_one "--ratio" py "$ST" --FN 1 --ratio 1 "${base[@]}"
+bad holds_order "--holds" py "$HE" --FN 1 --holds 10,1 "${base[@]}"
+bad samples "--samples" py "$HE" --FN 1 --samples 2 "${base[@]}"
+bad unknown_option "unrecognized arguments" py "$ST" --FN 1 --speed 3 "${base[@]}"
+bad from_csv_no_dir "--csv-dir" py "$ST" --FN 1 --from-csv "${base[@]}"
+bad from_csv_missing "no such file" py "$HE" --FN 1 --from-csv --csv-dir "$W/nothing" "${base[@]}"
+bad from_csv_other_case "rerun without --from-csv" py "$ST" --d 0.02 --R 100 --samples 41 \
+  --csv-dir "$W/steps_depth" --from-csv
+bad no_mdrmap "not an executable" py "$ST" --FN 1 --mdrmap "$W/none"
+bad mdrmap_fails "broken on purpose" py "$HE" --FN 1 --mdrmap "$fake"
+
+echo "all $checks checks passed"

@@ -1,0 +1,144 @@
+#!/usr/bin/env python3
+# pyrun-needs: numpy matplotlib
+"""Healing in slide-hold-slide tests under load (or at fixed depth): runs
+`mdrmap simulate` (or reads its CSVs) for a range of hold times and plots the
+friction peak after the reslide against log10(hold time).
+
+Each run slides stationarily at v0 (zeta0 = v0 tau / a0, a0 the Hertz radius
+of F0; a1 = sqrt(R d) at fixed depth), holds (velocity 0) for t_hold, then
+slides again at v0 for max(20 tau, 20 a0 / v0), each segment sampled on a log
+scale (6 decades). dmu_peak = the largest mu of the reslide minus the
+stationary mu at v0 (the '# pre' line), in units of a0/R. The tool prints
+dmu_peak per hold, its change per decade of hold time between neighbouring
+holds, and the least-squares slope d(dmu_peak)/d(log10 t_hold) over all holds.
+
+The figure: dmu_peak/(a0/R) against log10(t_hold/tau) (left), and mu/(a0/R)
+against slip/a0 during the reslide for each hold (right, the middle zeta0
+of the list).
+
+Usage:
+    tools/pyrun tools/healing.py --FN 0.0533 --R 100 --mdrmap build/src/mdrmap -o healing.png
+    tools/pyrun tools/healing.py --FN 0.0533 --holds 0.1,1,10 --zeta0 1 -o h.png
+
+Exit codes: 0 success, 2 bad input or a failing mdrmap run (one line on stderr).
+"""
+
+import argparse
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from maplib import Parser, UserError, run_tool, save_figure  # noqa: E402
+import simcsv  # noqa: E402
+from steps import parse_list  # noqa: E402
+
+PROG = "healing"
+
+
+def default_holds():
+    """0.1 .. 1000 tau, 9 holds, log spaced."""
+    return [10 ** (-1 + 0.5 * k) for k in range(9)]
+
+
+def peak(run):
+    """(dmu_peak, slip of the peak) of the reslide (segment 1), scaled by a0/R and a0."""
+    a, _, mu_ref = run.scales()
+    seg = run.segment(1)
+    mu, t = run.col["mu"][seg], run.col["t"][seg]
+    i = int(mu.argmax())
+    w = run.history()[1][0]
+    return (mu[i] - run.pre["mu"]) / mu_ref, w * (t[i] - t[0]) / a
+
+
+def plot(runs, zetas, holds, output, dpi, load, np):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10.5, 4))
+    for z in zetas:
+        y = [peak(runs[(z, h)])[0] for h in holds]
+        ax.plot(np.log10(holds), y, "o-", label=f"zeta0 = {z:g}")
+    ax.set_xlabel("log10(t_hold / tau)")
+    ax.set_ylabel("dmu_peak / (a0/R)" if load else "dmu_peak / sqrt(d/R)")
+    ax.set_title("peak of mu after the reslide above steady")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    cmap = plt.get_cmap("viridis")
+    z = zetas[len(zetas) // 2]
+    for k, h in enumerate(holds):
+        run = runs[(z, h)]
+        a, _, mu_ref = run.scales()
+        seg = run.segment(1)
+        w = run.history()[1][0]
+        slip = w * (run.col["t"][seg] - run.col["t"][seg][0]) / a
+        pos = slip > 0
+        bx.plot(slip[pos], run.col["mu"][seg][pos] / mu_ref, color=cmap(k / max(1, len(holds) - 1)),
+                label=f"{h:.3g} tau")
+    bx.axhline(runs[(z, holds[0])].pre["mu"] / runs[(z, holds[0])].scales()[2], color="k",
+               ls=":", lw=0.8)
+    bx.set_xscale("log")
+    bx.set_xlabel("slip since the reslide / a0" if load else "slip / a1")
+    bx.set_ylabel("mu / (a0/R)" if load else "mu / sqrt(d/R)")
+    bx.set_title(f"reslides at zeta0 = {z:g} (dotted: steady)")
+    bx.grid(True, which="both", alpha=0.3)
+    bx.legend(fontsize=7, title="hold", title_fontsize=7)
+    fig.suptitle("Slide-hold-slide " + ("under load (F_N = F0)" if load else "at fixed depth"),
+                 fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, output, dpi)
+
+
+def main():
+    p = Parser(prog=PROG, description=__doc__.split("\n\n")[0],
+               formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
+    simcsv.add_common(p)
+    p.add_argument("--zeta0", default="1", help="v0 tau / a0 values (default 1)")
+    p.add_argument("--holds", help="hold times in units of tau (default 9 from 0.1 to 1000, "
+                                   "log spaced)")
+    a = p.parse_args()
+    simcsv.check_common(a)
+    zetas = parse_list(a.zeta0, "zeta0")
+    holds = parse_list(a.holds, "holds") if a.holds else default_holds()
+    if len(set(holds)) != len(holds) or sorted(holds) != holds:
+        raise UserError(f"--holds: must increase, got {a.holds}")
+    base = simcsv.loading_args(a)
+    import numpy as np
+
+    exe = None if a.from_csv else simcsv.find_mdrmap(a.mdrmap)
+    scale = simcsv.length_scale(a)
+    runs = {}
+    with tempfile.TemporaryDirectory(prefix="mdrmap_healing_") as tmp:
+        workdir = a.csv_dir or tmp
+        for z in zetas:
+            v0 = z * scale / a.tau
+            T = max(20.0 * a.tau, 20.0 * scale / v0)
+            for h in holds:
+                args = base + ["--v", repr(v0), "--history", f"0:{h * a.tau!r},{v0!r}:{T!r}",
+                               "--samples", str(a.samples), "--spacing", "log", "--log-decades",
+                               "6", "--rtol", repr(a.rtol)]
+                runs[(z, h)] = simcsv.obtain(a, exe, workdir, f"shs_{z:g}_{h:.6g}.csv", args, np)
+    load = a.FN is not None
+    unit = "a0/R" if load else "sqrt(d/R)"
+    print(f"# dmu_peak in units of {unit}, slip_peak of {'a0' if load else 'a1'}; "
+          f"per_decade = change of dmu_peak from the previous hold / decades between them")
+    for z in zetas:
+        y = [peak(runs[(z, h)]) for h in holds]
+        print(f"zeta0 = {z:g}")
+        print(f"{'t_hold/tau':>12} {'dmu_peak':>12} {'slip_peak':>12} {'per_decade':>12}")
+        for k, h in enumerate(holds):
+            per = ((y[k][0] - y[k - 1][0]) / math.log10(h / holds[k - 1])) if k else math.nan
+            print(f"{h:>12.4g} {y[k][0]:>12.5g} {y[k][1]:>12.4g} {per:>12.5g}")
+        if len(holds) >= 2:
+            slope = np.polyfit(np.log10(holds), [v[0] for v in y], 1)[0]
+            print(f"slope d(dmu_peak)/d(log10 t_hold) over all holds: {slope:.5g}")
+    if a.output:
+        plot(runs, zetas, holds, a.output, a.dpi, load, np)
+        print(f"wrote {a.output}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(run_tool(main, PROG))
