@@ -214,6 +214,12 @@ LoadRow::Trial LoadRow::trial(double h) const {
   Trial tr;
   tr.h = h;
   tr.t_end = t_ + h;
+  if (!(rlo <= 0.0 && rhi >= 0.0 && lo > 0.0)) {
+    // no positive depth balances the load over this step (the depth would
+    // fall through 0: the step is far too long): a trial that does not fit
+    tr.d = tr.D = tr.e = std::numeric_limits<double>::quiet_NaN();
+    return tr;
+  }
   tr.d = bracketed_root(r, lo, hi, rlo, rhi);
   const Edge ed = edge_at(tr.d, h, f1);
   tr.D = ed.D;
@@ -251,10 +257,13 @@ void LoadRow::detach(const Trial& tr, const Frame& f1) {
 }
 
 bool LoadRow::fits(const Trial& tr) const {
-  return std::sqrt(R_ * tr.d) <= A_ - 3.0 * dx_;
+  return std::isfinite(tr.d) && std::sqrt(R_ * tr.d) <= A_ - 3.0 * dx_;
 }
 
 void LoadRow::commit(const Trial& tr) {
+  if (!std::isfinite(tr.d))
+    throw std::runtime_error("load: no depth balances the load over a step of " +
+                             format_number(tr.h) + " (fixed steps too long)");
   const Frame f1 = frame_at(tr.h);
   detach(tr, f1);
   P_ += static_cast<long double>(w_ * tr.h / dx_);

@@ -74,7 +74,7 @@ public:
     double t_end = 0.0; ///< t + h (the stepper may snap it to a sample instant)
   };
   Trial trial(double h) const;
-  /// Whether the leading edge of a trial stays inside the element window.
+  /// Whether a trial has a depth and its leading edge stays inside the window.
   bool fits(const Trial& tr) const;
   /// Apply a trial step (recorded for rollback while a checkpoint is open).
   void commit(const Trial& tr);
