@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "io/case_row.hpp"
 #include "io/h5.hpp"
 #include "study/config.hpp"
 
@@ -38,11 +39,6 @@ namespace mdrmap::io {
 
 inline constexpr const char* kSchema = "mdrmap-map/1";
 inline constexpr std::size_t kMessageLen = 160;
-
-/// Per-case float64 fields, as "group/name", in the order of CaseRow::values.
-const std::vector<std::string>& row_fields();
-/// Index of a field in row_fields(); throws std::out_of_range.
-std::size_t field_index(const std::string& name);
 
 struct Provenance {
   std::string program_version, git_commit, created_utc, command_line, units;
@@ -61,13 +57,6 @@ struct MapSpec {
   long samples = 0;
   bool timeseries = false;
   GridInfo grid; ///< empty for a case list
-};
-
-struct CaseRow {
-  std::vector<double> values; ///< row_fields().size() values
-  std::int8_t status = 0;
-  std::string message;
-  std::vector<double> t, FN, Fx, mu, a2; ///< time series (when the map stores them)
 };
 
 /// Bytes the map file of `spec` takes on disk (all datasets are allocated and

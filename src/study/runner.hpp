@@ -2,7 +2,8 @@
 // The MPI parameter study: cases are handed out by rank 0 in chunks on
 // request (pull-based), computed by every rank (rank 0 too, between
 // requests), and written by the rank that computed them straight into the
-// map file. The communicator is a parameter; nothing here prints.
+// map file. The communicator is a parameter; nothing here prints. One case's
+// row is computed by compute_case (study/compute.hpp, no MPI calls).
 #include <mpi.h>
 
 #include <csignal>
@@ -12,6 +13,7 @@
 
 #include "core/solver.hpp"
 #include "io/map_file.hpp"
+#include "study/compute.hpp"
 #include "study/config.hpp"
 
 namespace mdrmap::study {
@@ -71,11 +73,5 @@ struct StudySummary {
 /// on every rank; a failed row write ends the study early with
 /// StudySummary::write_failure set. Anything else is local to one rank.
 StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sink);
-
-/// One case, as a map row (results, analytic estimates, residuals): the row
-/// becomes its Case (case_for) and runs with run.rtol. Never throws for a
-/// failing solver: the row is marked failed with the message.
-io::CaseRow compute_case(const StudyConfig& cfg, const StepRow& r, SolverKind kind,
-                         bool timeseries);
 
 } // namespace mdrmap::study

@@ -1,0 +1,50 @@
+#pragma once
+// Private to the study config: what its readers (the INI schema, grid axes,
+// case lists) share beyond strings and locations (study/ini.hpp): strict
+// number parsing, the range of each case field, and the checks of a whole
+// study.
+#include <functional>
+#include <string>
+
+#include "study/config.hpp"
+#include "study/ini.hpp"
+
+namespace mdrmap::study::detail {
+
+// --- Numbers ------------------------------------------------------------------
+
+enum class NumError { None, Empty, NotNumber, NotFinite, TooLarge };
+
+struct Num {
+  double x = 0.0;
+  NumError err = NumError::None;
+};
+
+/// Strict: the whole text is one decimal (or hex) floating-point number.
+Num to_number(const std::string& s);
+
+/// "'abc' is not a number" and the like.
+std::string number_problem(const std::string& text, NumError e);
+
+/// Strict integer: optional sign and decimal digits; huge values clamp near 1e18.
+bool to_integer(const std::string& s, long long& out);
+
+// --- Case fields ----------------------------------------------------------------
+
+/// Whether a case field or grid axis (d, R, tau, v, v1, v1_over_v) may be 0.
+bool allows_zero(const std::string& field);
+
+/// "a finite number >= 0" or "a finite number > 0".
+std::string range_text(const std::string& field);
+
+// --- The whole study ----------------------------------------------------------
+
+/// Where the setting behind an option ("section.key" or "config") was made.
+using WhereFn = std::function<Where(const std::string& option)>;
+
+/// Every check that involves more than one setting (grids: shape, size, the
+/// time series' memory and every case; case lists are checked when read).
+/// Throws ConfigError located by where(option). Defined in study/config.cpp.
+void check_study(const StudyConfig& c, const WhereFn& where);
+
+} // namespace mdrmap::study::detail

@@ -1,0 +1,69 @@
+#pragma once
+// Private to the study runner: collective error handling, and the checks made
+// before a study writes anything (the output path, a resume's map and config,
+// the memory of this node, the space on the map's file system).
+#include <mpi.h>
+
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "core/solver.hpp"
+#include "io/map_file.hpp"
+#include "study/config.hpp"
+#include "study/runner.hpp"
+
+namespace mdrmap::study::detail {
+
+/// Runs fn on every rank; if it throws anywhere, every rank throws the error
+/// of the lowest failing rank (InvalidInput stays InvalidInput, anything else
+/// becomes CollectiveFailure), so no rank is left waiting in a collective call.
+template <class F> void collectively(MPI_Comm comm, F fn) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  int kind = 0; // 0 ok, 1 InvalidInput, 2 other
+  std::string option, message;
+  try {
+    fn();
+  } catch (const InvalidInput& e) {
+    kind = 1, option = e.option(), message = e.what();
+  } catch (const std::exception& e) {
+    kind = 2, message = e.what();
+  }
+  int mine = kind ? rank : 1 << 30, first = 0;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == 1 << 30) return;
+  auto bcast_string = [&](std::string& s) {
+    int n = static_cast<int>(s.size());
+    MPI_Bcast(&n, 1, MPI_INT, first, comm);
+    s.resize(static_cast<std::size_t>(n));
+    MPI_Bcast(s.data(), n, MPI_CHAR, first, comm);
+  };
+  MPI_Bcast(&kind, 1, MPI_INT, first, comm);
+  bcast_string(option);
+  bcast_string(message);
+  if (kind == 1) throw InvalidInput(option, message);
+  throw CollectiveFailure(message);
+}
+
+/// Rank 0's s on every rank (collective).
+std::string bcast_from_root(MPI_Comm comm, std::string s);
+
+/// The directory a path's file is in ("." for a bare name).
+std::string parent_dir(const std::string& path);
+
+/// What the checks established, alike on every rank.
+struct StudyPlan {
+  SolverKind kind = SolverKind::Auto;
+  std::vector<StepRow> cases;
+  std::string canon; ///< canonical(config), stored in the map and compared on resume
+  io::MapSpec spec;  ///< the map the study needs
+};
+
+/// Collective. Parses the solver, refuses a study too large for this node's
+/// memory, expands the cases; rank 0 checks the output path and, on resume,
+/// that the map holds this study, or else that a new map fits on its file
+/// system. Throws InvalidInput on every rank alike.
+StudyPlan preflight(MPI_Comm comm, const StudyRequest& req);
+
+} // namespace mdrmap::study::detail
