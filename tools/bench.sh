@@ -10,15 +10,20 @@
 #   3. runs mdrmap_bench, which writes $OUT_DIR/bench.csv (one row per setting
 #      and case subset), bench_cases.csv (one row per setting and scene) and
 #      bench.md (machine, tables, the cost targets, peak memory);
-#   4. plots $OUT_DIR/work_precision.png (tools/pyrun tools/plot_bench.py);
+#   3b. runs mdrmap_bench_history (velocity histories: history.csv, history.md)
+#       and mdrmap_bench_load (load control against the fixed-step load
+#       baseline, issue 11: load.csv, load.md); both appended to bench.md;
+#   4. plots $OUT_DIR/work_precision.png and load_work_precision.png
+#      (tools/pyrun tools/plot_bench.py);
 #   5. profiles with valgrind --tool=callgrind (skipped with --no-profile or
 #      --quick, or when valgrind is not installed): mdrmap_bench --profile mdr
 #      and --profile auto, top functions in $OUT_DIR/profile_{mdr,auto}.txt.
 #
 # --quick      smoke run of a few seconds (short ladders, one call per scene)
 # --no-profile skip step 5
-# --publish    copy bench.md, bench.csv and work_precision.png to tools/bench/,
-#              where the README's Performance section takes them from
+# --publish    copy bench.md, bench.csv, history.csv, load.csv, work_precision.png
+#              and load_work_precision.png to tools/bench/, where the README's
+#              Performance section takes them from
 #
 # Environment: BUILD_DIR=build-bench, OUT_DIR=out/bench (relative to the
 # repository root, or absolute), JOBS, CI (as tools/build.sh).
@@ -34,7 +39,7 @@ for arg in "$@"; do
   --no-profile) profile=0 ;;
   --publish) publish=1 ;;
   -h | --help)
-    sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'
     exit 0
     ;;
   *)
@@ -51,7 +56,8 @@ log() { printf 'bench: %s\n' "$*" >&2; }
 
 # 1. build (Release: timings of an unoptimised build mean nothing)
 bash tools/setup.sh
-BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release BUILD_TARGETS="mdrmap_bench mdrmap_bench_history" \
+BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release \
+  BUILD_TARGETS="mdrmap_bench mdrmap_bench_history mdrmap_bench_load" \
   bash tools/build.sh -DMDRMAP_BUILD_BENCH=ON
 BENCH="$BUILD_DIR/tools/bench/mdrmap_bench"
 [[ -x "$BENCH" ]] || {
@@ -101,9 +107,22 @@ log "$HIST ${hist_args[*]}"
   cat "$OUT_DIR/history.md"
 } >>"$OUT_DIR/bench.md"
 
+# 3c. load control: load.csv, load.md (a section of its own, appended to bench.md)
+LOAD="$BUILD_DIR/tools/bench/mdrmap_bench_load"
+load_args=(--out "$OUT_DIR" --command "$cmd")
+((quick)) && load_args+=(--quick)
+log "$LOAD ${load_args[*]}"
+"$LOAD" "${load_args[@]}" >"$OUT_DIR/load.log" 2>"$OUT_DIR/load_progress.log"
+{
+  echo
+  cat "$OUT_DIR/load.md"
+} >>"$OUT_DIR/bench.md"
+
 # 4. the plot
 cpu=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | sed -n 1p)
 tools/pyrun tools/plot_bench.py "$OUT_DIR/bench.csv" -o "$OUT_DIR/work_precision.png" \
+  --title "$cpu, $(nproc) cores, $(date -u '+%Y-%m-%d')$( ((quick)) && echo ' (--quick smoke run)')"
+tools/pyrun tools/plot_bench.py --load "$OUT_DIR/load.csv" -o "$OUT_DIR/load_work_precision.png" \
   --title "$cpu, $(nproc) cores, $(date -u '+%Y-%m-%d')$( ((quick)) && echo ' (--quick smoke run)')"
 
 # 5. the profile
@@ -133,11 +152,12 @@ fi
 
 # --publish: what the README shows
 if ((publish)); then
-  cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/history.csv" "$OUT_DIR/work_precision.png" \
-    tools/bench/
-  log "copied bench.md, bench.csv, history.csv, work_precision.png to tools/bench/"
+  cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/history.csv" "$OUT_DIR/load.csv" \
+    "$OUT_DIR/work_precision.png" "$OUT_DIR/load_work_precision.png" tools/bench/
+  log "copied bench.md, bench.csv, history.csv, load.csv, work_precision.png," \
+    "load_work_precision.png to tools/bench/"
 fi
 
-log "wrote $OUT_DIR/{bench.csv,bench_cases.csv,bench.md,history.csv,work_precision.png,machine.txt}"
+log "wrote $OUT_DIR/{bench.csv,bench_cases.csv,bench.md,history.csv,load.csv,work_precision.png,load_work_precision.png,machine.txt}"
 sed -n '/^### Targets/,/^### Error estimates/p' "$OUT_DIR/bench.md" | sed '$d'
 sed -n '/^## Velocity histories/,$p' "$OUT_DIR/bench.md"

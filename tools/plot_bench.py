@@ -14,8 +14,15 @@ x is the median wall time of one solver call per scene. Errors that are
 exactly zero (the reference itself) are drawn as hollow markers at the bottom
 of the axis.
 
+With --load, reads the CSV of mdrmap_bench_load (out/bench/load.csv) instead
+and draws the load-control work-precision comparison: one panel per history
+of its side-by-side part, the fixed-step load baseline's a0/dx ladder against
+the load solver's rtol ladder and fixed-resolution settings, each baseline
+point annotated with its cost ratio at equal error.
+
 Usage:
     tools/pyrun tools/plot_bench.py out/bench/bench.csv -o out/bench/work_precision.png
+    tools/pyrun tools/plot_bench.py --load out/bench/load.csv -o out/bench/load_work_precision.png
 """
 
 import argparse
@@ -101,6 +108,72 @@ def panel(ax, rows, subset, column, title):
                 transform=ax.transAxes, fontsize=7, color="0.3")
 
 
+LOAD_STYLE = {  # (part, rtol given): (label, colour, marker)
+    ("baseline", False): ("fixed-step load baseline, a0/dx ladder", "tab:purple", "X"),
+    ("load", True): ("load solver, rtol ladder (with estimate)", "tab:green", "s"),
+    ("load", False): ("load solver, fixed a/dx and h/tau", "tab:orange", "^"),
+}
+
+
+def load_label(row):
+    """'baseline a0/dx=400' -> '400', 'load rtol=1e-3' -> '1e-3', 'load a/dx=4 h/tau=0.01' -> '4,0.01'."""
+    parts = row["setting"].split()[1:]
+    return ",".join(p.split("=", 1)[-1] for p in parts)
+
+
+def plot_load(args, plt):
+    with open(args.csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    need = {"part", "setting", "case", "rtol", "error", "median_seconds", "failed", "ratio",
+            "ratio_how"}
+    if not rows or need - set(rows[0]):
+        raise SystemExit(f"plot_bench: {args.csv} is not a load.csv of mdrmap_bench_load")
+    rows = [r for r in rows if r["failed"] == "0" and r["part"] in ("load", "baseline")]
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    if not cases:
+        raise SystemExit(f"plot_bench: {args.csv} has no side-by-side rows")
+    fig, axes = plt.subplots(1, len(cases), figsize=(6 * len(cases), 5.6), squeeze=False)
+    for ax, case in zip(axes[0], cases):
+        for (part, adaptive), (label, colour, marker) in LOAD_STYLE.items():
+            pts = [r for r in rows if r["case"] == case and r["part"] == part and
+                   (number(r["rtol"]) > 0) == adaptive]
+            pts = [r for r in pts if number(r["error"]) > 0]
+            if not pts:
+                continue
+            t = [1e3 * number(r["median_seconds"]) for r in pts]
+            e = [number(r["error"]) for r in pts]
+            ax.plot(t, e, color=colour, lw=1.2, alpha=0.7, zorder=2,
+                    ls="-" if part == "baseline" or adaptive else ":")
+            ax.scatter(t, e, color=colour, marker=marker, s=34, label=label, zorder=3)
+            for ti, ei, r in zip(t, e, pts):
+                text = load_label(r)
+                if part == "baseline" and r["ratio"]:
+                    how = r["ratio_how"]
+                    ratio = float(r["ratio"])
+                    text += f" ({'>=' if how == 'bound' else ''}{ratio:.3g}x" + \
+                        (", extrap." if how == "extrap" else "") + ")"
+                ax.annotate(text, (ti, ei), textcoords="offset points", xytext=(4, 3),
+                            fontsize=6.5, color=colour)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("median wall time per call [ms]")
+        ax.set_ylabel("case error against the reference")
+        ax.set_title(case, fontsize=10)
+        ax.grid(True, which="major", alpha=0.3)
+        ax.grid(True, which="minor", alpha=0.08)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8.5, frameon=False)
+    title = ("mdrmap load control: load solver vs fixed-step load baseline "
+             "(baseline points: cost ratio at equal error)")
+    if args.title:
+        title += "\n" + args.title
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout(rect=(0, 0.07, 1, 0.93))
+    fig.savefig(args.output, dpi=args.dpi)
+    print(f"plot_bench: wrote {args.output}")
+    return 0
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(
         description="Work-precision plot (error vs time, log-log) of mdrmap_bench's CSV.")
@@ -108,12 +181,17 @@ def main(argv=None):
     ap.add_argument("-o", "--output", default="work_precision.png", help="PNG to write")
     ap.add_argument("--title", default="", help="figure title (e.g. the machine)")
     ap.add_argument("--dpi", type=int, default=110)
+    ap.add_argument("--load", action="store_true",
+                    help="the CSV is mdrmap_bench_load's load.csv: plot the load-control comparison")
     args = ap.parse_args(argv)
 
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    if args.load:
+        return plot_load(args, plt)
 
     rows = read_rows(args.csv)
     n_all = max((int(r["cases"]) for r in rows if r["subset"] == "all"), default=0)

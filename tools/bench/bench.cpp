@@ -47,6 +47,7 @@
 #include "core/mdr.hpp"
 #include "core/solver.hpp"
 #include "mdrmap/version.hpp"
+#include "stats.hpp"
 
 namespace {
 
@@ -231,12 +232,7 @@ struct CaseResult {
   long elements = 0;
 };
 
-double median(std::vector<double> x) {
-  if (x.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
+using mdrmap::bench::median;
 
 CaseResult measure(const Setting& st, const BenchCase& c, const TimingPolicy& pol) {
   CaseResult r;

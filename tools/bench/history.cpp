@@ -23,6 +23,7 @@
 #include "core/error_metric.hpp"
 #include "core/exact.hpp"
 #include "core/mdr.hpp"
+#include "stats.hpp"
 
 namespace {
 
@@ -41,12 +42,7 @@ struct CaseRow {
   bool failed = false;
 };
 
-double median(std::vector<double> x) {
-  if (x.empty()) return std::nan("");
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
+using mdrmap::bench::median;
 
 /// Median wall time of `reps` calls, at least 20 ms of calls in all.
 double time_median(const std::function<void()>& f, int reps) {
