@@ -43,13 +43,12 @@ import os
 import re
 import sys
 
-from maplib import CASE_COLS, SCHEMA, Parser, UserError, open_map, run_tool, text
+from maplib import CASE_COLS, SCHEMA, Parser, UserError, case_columns, open_map, run_tool, text
 
 PROG = "map_summary"
 QUANT = ["FN", "Fx", "mu", "a2"]
 WHEN = ["pre", "jump", "post"]
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
-PARAMS = set(["case"] + CASE_COLS + DERIVED)
 MAX_FAILED = 20  # failed cases listed
 
 
@@ -78,7 +77,10 @@ def load(path, np, h5py):
         m["status"] = f["results/status"][()].astype(int)
         m["message"] = ([text(x).rstrip("\0").strip() for x in f["results/message"][()]]
                         if "results/message" in f else [""] * n)
-        for c in CASE_COLS:
+        # the /cases columns: from /schema (older maps: CASE_COLS); the derived
+        # variables need those of CASE_COLS in any case
+        m["case_cols"] = case_columns(f)
+        for c in m["case_cols"] + [c for c in CASE_COLS if c not in m["case_cols"]]:
             m[c] = f[f"cases/{c}"][()].astype(float) if f"cases/{c}" in f else np.ones(n)
         m["groups"] = {}
         for grp in ["results", "analytic", "residuals"]:
@@ -125,7 +127,7 @@ def ordered(names):
 
 def columns(m):
     """(header, getter) for the CSV, in order."""
-    cols = [("case", None)] + [(c, m[c]) for c in CASE_COLS + DERIVED]
+    cols = [("case", None)] + [(c, m[c]) for c in m["case_cols"] + DERIVED]
     cols.append(("status", m["status"]))
     for grp, prefix in [("results", ""), ("analytic", "analytic_"), ("residuals", "residual_")]:
         for name in ordered(m["groups"][grp]):
@@ -217,7 +219,7 @@ def summary(m, keep, args, np, out):
             p(f"  {a:<{w}}  {vals.size} values{' (log)' if lg else ''}: {listing}")
     else:
         p(f"case list (no /grid): {n} cases")
-        for c in CASE_COLS:
+        for c in m["case_cols"]:
             u = np.unique(m[c])
             listing = ", ".join(fmt(v) for v in u) if u.size <= 8 else \
                 f"{fmt(u.min())} .. {fmt(u.max())}"
@@ -317,6 +319,7 @@ def summary(m, keep, args, np, out):
 
 def write_csv(m, keep, path, np):
     cols = columns(m)
+    params = set(["case"] + m["case_cols"] + DERIVED)
     header = [c for c, _ in cols] + ["message"]
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
@@ -328,7 +331,7 @@ def write_csv(m, keep, path, np):
                 x = arr[i]
                 if name == "status":
                     row.append(str(int(x)))
-                elif not done and name not in PARAMS and name != "wall_seconds":
+                elif not done and name not in params and name != "wall_seconds":
                     row.append("")  # not computed: empty, not the stored 0
                 else:
                     row.append(repr(float(x)))

@@ -8,6 +8,7 @@ import os
 import sys
 
 SCHEMA = "mdrmap-map/1"
+# The /cases columns of maps written before /schema (the fallback of case_columns)
 CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
 
 
@@ -54,6 +55,29 @@ def open_map(path, h5py, prog):
             f.close()
             raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
     return f
+
+
+def schema(f):
+    """{"group/name": (unit, meaning)} from the map's /schema group, in the map's
+    order; {} for a map written before /schema."""
+    out = {}
+    if "schema" not in f or not hasattr(f["schema"], "keys"):
+        return out
+    for group, g in f["schema"].items():
+        if not hasattr(g, "keys"):
+            continue
+        for name, entry in g.items():
+            out[f"{group}/{name}"] = (text(entry.attrs.get("unit", "")),
+                                      text(entry.attrs.get("meaning", "")))
+    return out
+
+
+def case_columns(f, described=None):
+    """The /cases columns of an open map: those /schema lists (map order) when the
+    map has it, else CASE_COLS. `described`: schema(f), when already read."""
+    described = schema(f) if described is None else described
+    cols = [p.split("/", 1)[1] for p in described if p.startswith("cases/")]
+    return [c for c in cols if f"cases/{c}" in f] or list(CASE_COLS)
 
 
 def save_figure(fig, output, dpi):

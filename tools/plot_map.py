@@ -44,7 +44,8 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, save_figure, text
+from maplib import (CASE_COLS, Parser, UserError, case_columns, open_map, run_tool, save_figure,
+                    schema, text)
 
 PROG = "plot_map"
 GROUPS = ["results", "analytic", "residuals"]
@@ -84,7 +85,11 @@ def load(path, np, h5py):
         n = f["results/status"].shape[0]
         m["n"] = n
         m["status"] = f["results/status"][()].astype(int)
-        for c in CASE_COLS:
+        # units and meanings from /schema ({} for older maps); the /cases columns
+        # from it too (older maps: CASE_COLS), with those the derived variables need
+        m["schema"] = schema(f)
+        m["case_cols"] = case_columns(f, m["schema"])
+        for c in m["case_cols"] + [c for c in CASE_COLS if c not in m["case_cols"]]:
             m[c] = f[f"cases/{c}"][()].astype(float) if f"cases/{c}" in f else np.ones(n)
         for grp in GROUPS:
             if grp not in f:
@@ -140,13 +145,17 @@ def base_of(key):
     return grp, parts[0], parts[1] if len(parts) > 1 else ""
 
 
-def describe(key, scaled):
-    """Colour bar label and short title for a dataset."""
+def describe(key, scaled, described=None):
+    """Colour bar label and short title for a dataset (one this tool does not know:
+    its meaning and unit from the map's /schema, `described`)."""
     grp, q, when = base_of(key)
     name = key.split("/", 1)[1]
     if q not in SYMBOL:
         extra = {"error_estimate": "solver error estimate", "wall_seconds": "wall time per case [s]",
                  "status": "status (1 done, 0 pending, -1 failed)"}
+        if name not in extra and key in (described or {}):
+            unit, meaning = described[key]
+            return f"{meaning} [{unit}]" if unit else meaning, name
         return extra.get(name, name), name
     what = {
         "pre": "stationary before the step (at v)",
@@ -167,6 +176,18 @@ def describe(key, scaled):
     src = "analytic " if grp == "analytic" else ""
     label = f"{src}{sym} {what} {unit}".strip()
     return label, f"{src}{NAME[q]} {name}"
+
+
+def colname(m, c):
+    """Axis label of a grid axis or /cases column: the tool's own, else the
+    meaning and unit the map's /schema gives, else the name."""
+    if c in COLNAME:
+        return COLNAME[c]
+    for key in (f"grid/{c}", f"cases/{c}"):
+        if key in m["schema"]:
+            unit, meaning = m["schema"][key]
+            return f"{c}: {meaning}" + (f" [{unit}]" if unit else "")
+    return c
 
 
 def scale_of(m, key):
@@ -440,7 +461,7 @@ def main(argv=None):
             slice_text.append(f"{a}={fmt(vals[j])}")
         plan.update(x=x, y=y, index=tuple(index), slice_text=slice_text)
     else:
-        cols = CASE_COLS + DERIVED
+        cols = m["case_cols"] + DERIVED
         if mode == "similarity":
             x, y = "zeta", "zeta1"
             if args.x or args.y:
@@ -451,7 +472,7 @@ def main(argv=None):
                     raise UserError(f"--x/--y {name!r}: not a /cases column "
                                     f"(valid: {', '.join(cols)})")
             distinct = {c: len(np.unique(m[c][np.isfinite(m[c])])) for c in cols}
-            order = sorted(CASE_COLS, key=lambda c: (-distinct[c], CASE_COLS.index(c)))
+            order = sorted(m["case_cols"], key=lambda c: (-distinct[c], m["case_cols"].index(c)))
             x = args.x or next(c for c in order if c != args.y)
             y = args.y or next(c for c in order if c != x)
         sel = np.ones(m["n"], dtype=bool)
@@ -507,7 +528,7 @@ def main(argv=None):
                         f"failed or pending)")
 
     for ax, key in zip(axs, keys):
-        label, short = describe(key, scaled)
+        label, short = describe(key, scaled, m["schema"])
         vals = m["data"][key].copy()
         sc = scale_of(m, key) if scaled else None
         if sc is not None:
@@ -530,7 +551,7 @@ def main(argv=None):
                     ax.set_yscale("log")
                 if xkind == "category":
                     ax.set_xticks(np.arange(len(xv)), [fmt(v) for v in xv])
-                ax.set_xlabel(COLNAME.get(plan["x"], plan["x"]))
+                ax.set_xlabel(colname(m, plan["x"]))
                 ax.set_ylabel(label)
                 ax.grid(True, alpha=0.3)
             else:
@@ -582,9 +603,9 @@ def main(argv=None):
                         axis.set_ticks(np.arange(len(v)), [fmt(t) for t in v])
                         if axis is ax.xaxis and len(v) > 6:
                             plt.setp(axis.get_ticklabels(), rotation=45, ha="right")
-                ax.set_xlabel(COLNAME.get(plan["x"], plan["x"])
+                ax.set_xlabel(colname(m, plan["x"])
                               + (" (categories)" if xkind == "category" else ""))
-                ax.set_ylabel(COLNAME.get(plan["y"], plan["y"])
+                ax.set_ylabel(colname(m, plan["y"])
                               + (" (categories)" if ykind == "category" else ""))
         else:
             base = plan["sel"]
@@ -659,8 +680,8 @@ def main(argv=None):
                                       (ax.yaxis, ykind, ys_all, yfloor)]:
                 if kind == "log":
                     log10_axis(axis, float(c.min()), float(c.max()), np, ticker, zero_at=fl)
-            ax.set_xlabel(COLNAME.get(plan["x"], plan["x"]))
-            ax.set_ylabel(COLNAME.get(plan["y"], plan["y"]))
+            ax.set_xlabel(colname(m, plan["x"]))
+            ax.set_ylabel(colname(m, plan["y"]))
             ax.grid(True, alpha=0.25)
         title = short
         if scaled and scale_of(m, key) is not None:

@@ -48,7 +48,7 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, open_map, run_tool, save_figure, text
+from maplib import CASE_COLS, Parser, UserError, case_columns, open_map, run_tool, save_figure, text
 
 PROG = "plot_timeseries"
 QUANT = ["FN", "Fx", "mu", "a2"]
@@ -84,7 +84,10 @@ def load(path, np, h5py):
         m["status"] = f["results/status"][()].astype(int)
         m["message"] = ([text(x).strip("\0 ") for x in f["results/message"][()]]
                         if "results/message" in f else [""] * n)
-        for c in CASE_COLS:
+        # the /cases columns: from /schema (older maps: CASE_COLS), with those
+        # the derived variables need
+        m["case_cols"] = case_columns(f)
+        for c in m["case_cols"] + [c for c in CASE_COLS if c not in m["case_cols"]]:
             m[c] = f[f"cases/{c}"][()] if f"cases/{c}" in f else np.ones(n)
         for grp in ["results", "analytic"]:
             for name in f[grp] if grp in f else []:
@@ -100,7 +103,7 @@ def load(path, np, h5py):
     return m
 
 
-def parse_select(spec):
+def parse_select(spec, names):
     out = {}
     for part in spec.split(","):
         part = part.strip()
@@ -109,9 +112,9 @@ def parse_select(spec):
         if "=" not in part:
             raise UserError(f"--select {spec}: expected NAME=VALUE[,NAME=VALUE...]")
         k, v = (s.strip() for s in part.split("=", 1))
-        if k not in CASE_COLS + DERIVED:
+        if k not in names:
             raise UserError(f"--select {spec}: unknown parameter {k!r} "
-                            f"(valid: {', '.join(CASE_COLS + DERIVED)})")
+                            f"(valid: {', '.join(names)})")
         try:
             out[k] = float(v)
         except ValueError:
@@ -168,7 +171,7 @@ def choose_cases(args, m, np):
             raise UserError(f"--case {c}: the map has {n} cases (0..{n - 1})")
         wanted.append(i)
     for spec in args.select or []:
-        sel = parse_select(spec)
+        sel = parse_select(spec, m["case_cols"] + DERIVED)
         i = nearest_case(m, sel, np)
         if i is None:
             break  # reported below: no done case

@@ -26,8 +26,8 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
   # C++ libraries
   libboost-program-options-dev libgtest-dev libbenchmark-dev
-  # post-processing (tools/*.py)
-  python3-numpy python3-h5py python3-matplotlib
+  # post-processing (tools/*.py; tools/mapxr.py: xarray)
+  python3-numpy python3-h5py python3-matplotlib python3-xarray python3-h5netcdf
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
 )

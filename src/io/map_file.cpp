@@ -1,15 +1,19 @@
 #include "io/map_file.hpp"
 
 #include <fcntl.h>
+#include <hdf5_hl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <iterator>
 #include <stdexcept>
 #include <utility>
+
+#include "core/params.hpp"
 
 namespace mdrmap::io {
 namespace {
@@ -40,6 +44,72 @@ Handle create_dataset(hid_t loc, const std::string& name, hid_t type, std::vecto
   Handle dcpl = dataset_plist(what);
   return make_dataset(
       H5Dcreate2(loc, name.c_str(), type, space.id(), H5P_DEFAULT, dcpl.id(), H5P_DEFAULT), what);
+}
+
+// ---- self-description: /schema, CF attributes, dimension scales ----------------
+
+// Unit and meaning of a /cases column or a grid axis: the core's parameter
+// table, plus the step's v1 (its one history segment) and the axis v1_over_v.
+FieldInfo case_column_info(const std::string& group, const std::string& name) {
+  if (const ParamSpec* p = find_parameter(name))
+    return {group + "/" + name, dim_name(p->dim), p->meaning};
+  if (name == "v1") {
+    const ParamSpec& w = segment_velocity_spec();
+    return {group + "/v1", dim_name(w.dim),
+            std::string("after the step at t = 0, the history's one segment: ") + w.meaning};
+  }
+  if (name == "v1_over_v")
+    return {group + "/v1_over_v", "number", "velocity ratio v1 / v of the step"};
+  throw std::logic_error("map: no unit and meaning for the case column " + name);
+}
+
+// A group whose links iterate in creation order (h5py and xarray list them so).
+Handle create_ordered_group(hid_t loc, const std::string& name) {
+  const std::string what = "creating group /" + name;
+  Handle gcpl = make_plist(H5Pcreate(H5P_GROUP_CREATE), what);
+  check_status(H5Pset_link_creation_order(gcpl.id(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+               what);
+  return make_group(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, gcpl.id(), H5P_DEFAULT), what);
+}
+
+// Describes dataset `dset` (at info.path): CF attributes `units` and
+// `long_name` on it (what xarray shows), and /schema/<path> with string
+// attributes `unit` and `meaning` (the map's table of contents).
+void describe(hid_t file, hid_t dset, const FieldInfo& info) {
+  write_string_attr(dset, "units", info.unit);
+  write_string_attr(dset, "long_name", info.meaning);
+  Handle g = create_ordered_group(file, "schema/" + info.path);
+  write_string_attr(g.id(), "unit", info.unit);
+  write_string_attr(g.id(), "meaning", info.meaning);
+  g.close("closing /schema/" + info.path);
+}
+
+// A netCDF-4 dimension without a variable (xarray's named dimension): an
+// HDF5 dimension scale of extent 0 and unlimited maximum, so that it holds no
+// data whatever the number of cases; its size is that of the datasets
+// attached to it. Named `name` in `loc`.
+Handle create_dimension(hid_t loc, const std::string& name, hsize_t size) {
+  const std::string what = "creating dimension scale /" + name;
+  const hsize_t zero = 0, unlimited = H5S_UNLIMITED, chunk = 1;
+  Handle space = make_space(H5Screate_simple(1, &zero, &unlimited), what);
+  Handle dcpl = make_plist(H5Pcreate(H5P_DATASET_CREATE), what);
+  check_status(H5Pset_chunk(dcpl.id(), 1, &chunk), what);
+  check_status(H5Pset_fill_time(dcpl.id(), H5D_FILL_TIME_NEVER), what);
+  check_status(H5Pset_obj_track_times(dcpl.id(), 0), what);
+  Handle d = make_dataset(H5Dcreate2(loc, name.c_str(), H5T_IEEE_F32BE, space.id(), H5P_DEFAULT,
+                                     dcpl.id(), H5P_DEFAULT),
+                          what);
+  // netCDF-4's mark of a dimension that is not a variable, with its length
+  char len[32];
+  std::snprintf(len, sizeof len, "%10llu", static_cast<unsigned long long>(size));
+  const std::string label =
+      std::string("This is a netCDF dimension but not a netCDF variable.") + len;
+  check_status(H5DSset_scale(d.id(), label.c_str()), what);
+  return d;
+}
+
+void attach(hid_t dset, hid_t scale, unsigned axis, const std::string& path) {
+  check_status(H5DSattach_scale(dset, scale, axis), "attaching a dimension scale to /" + path);
 }
 
 Handle message_type() {
@@ -88,8 +158,9 @@ std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
   std::uint64_t grid = 0;
   for (const auto& v : spec.grid.values)
     grid += 8 * v.size();
-  // superblock, object headers, attributes and B-trees: about 32 KiB measured
-  return n * per_case + grid + 2 * static_cast<std::uint64_t>(text_bytes) + 64 * 1024;
+  // superblock, object headers, attributes and B-trees: about 32 KiB measured,
+  // plus about 40 KiB for /schema, the datasets' units and dimension scales
+  return n * per_case + grid + 2 * static_cast<std::uint64_t>(text_bytes) + 128 * 1024;
 }
 
 void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
@@ -127,36 +198,71 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   }
   // every object is closed before the file: a map is closed complete
   for (const char* group : {"cases", "results", "analytic", "residuals"})
-    create_group(f, group).close(std::string("closing /") + group);
+    create_ordered_group(f, group).close(std::string("closing /") + group);
+  // /schema/<group>/<name>: unit and meaning of every per-case dataset
+  {
+    Handle schema = create_ordered_group(f, "schema");
+    for (const char* group : {"cases", "results", "analytic", "residuals", "timeseries", "grid"})
+      if ((std::strcmp(group, "timeseries") != 0 || spec.timeseries) &&
+          (std::strcmp(group, "grid") != 0 || !spec.grid.names.empty()))
+        create_ordered_group(f, std::string("schema/") + group)
+            .close(std::string("closing /schema/") + group);
+    schema.close("closing /schema");
+  }
+  // named dimensions (xarray): /case for every per-case dataset, /sample for
+  // the time series' second axis
+  Handle case_dim = create_dimension(f, "case", n);
   std::vector<Handle> case_sets;
-  for (const char* c : kCaseColumns)
-    case_sets.push_back(create_dataset(f, std::string("cases/") + c, H5T_IEEE_F64LE, {n}));
+  for (const char* c : kCaseColumns) {
+    const std::string dpath = std::string("cases/") + c;
+    case_sets.push_back(create_dataset(f, dpath, H5T_IEEE_F64LE, {n}));
+    describe(f, case_sets.back().id(), case_column_info("cases", c));
+    attach(case_sets.back().id(), case_dim.id(), 0, dpath);
+  }
+  const auto per_case = [&](const std::string& dpath, hid_t type) {
+    Handle d = create_dataset(f, dpath, type, {n});
+    describe(f, d.id(), result_info(dpath));
+    attach(d.id(), case_dim.id(), 0, dpath);
+    d.close("closing /" + dpath);
+  };
   for (const auto& name : row_fields())
-    create_dataset(f, name, H5T_IEEE_F64LE, {n}).close("closing /" + name);
-  create_dataset(f, "results/status", H5T_STD_I8LE, {n}).close("closing /results/status");
+    per_case(name, H5T_IEEE_F64LE);
+  per_case("results/status", H5T_STD_I8LE);
   {
     Handle t = message_type();
-    create_dataset(f, "results/message", t.id(), {n}).close("closing /results/message");
+    per_case("results/message", t.id());
   }
   if (spec.timeseries) {
-    Handle g = create_group(f, "timeseries");
-    for (const char* s : kSeriesNames)
-      create_dataset(f, std::string("timeseries/") + s, H5T_IEEE_F64LE,
-                     {n, static_cast<hsize_t>(spec.samples)})
-          .close(std::string("closing /timeseries/") + s);
+    Handle g = create_ordered_group(f, "timeseries");
+    Handle sample_dim = create_dimension(f, "sample", static_cast<hsize_t>(spec.samples));
+    for (const char* s : kSeriesNames) {
+      const std::string dpath = std::string("timeseries/") + s;
+      Handle d = create_dataset(f, dpath, H5T_IEEE_F64LE, {n, static_cast<hsize_t>(spec.samples)});
+      describe(f, d.id(), result_info(dpath));
+      attach(d.id(), case_dim.id(), 0, dpath);
+      attach(d.id(), sample_dim.id(), 1, dpath);
+      d.close("closing /" + dpath);
+    }
+    sample_dim.close("closing /sample");
     g.close("closing /timeseries");
   }
+  case_dim.close("closing /case");
   std::vector<Handle> grid_sets;
   if (!spec.grid.names.empty()) {
-    Handle g = create_group(f, "grid");
+    Handle g = create_ordered_group(f, "grid");
     std::string axes;
     std::vector<long long> shape, logs;
     for (std::size_t i = 0; i < spec.grid.names.size(); ++i) {
-      axes += (i ? "," : "") + spec.grid.names[i];
+      const std::string& a = spec.grid.names[i];
+      axes += (i ? "," : "") + a;
       shape.push_back(static_cast<long long>(spec.grid.values[i].size()));
       logs.push_back(spec.grid.logarithmic[i]);
-      grid_sets.push_back(create_dataset(f, "grid/" + spec.grid.names[i], H5T_IEEE_F64LE,
-                                         {spec.grid.values[i].size()}));
+      grid_sets.push_back(
+          create_dataset(f, "grid/" + a, H5T_IEEE_F64LE, {spec.grid.values[i].size()}));
+      // a coordinate variable: the dimension `a` of group /grid, with its values
+      describe(f, grid_sets.back().id(), case_column_info("grid", a));
+      check_status(H5DSset_scale(grid_sets.back().id(), a.c_str()),
+                   "making /grid/" + a + " a dimension scale");
     }
     write_string_attr(g.id(), "axes", axes);
     write_int_array_attr(g.id(), "shape", shape);

@@ -17,6 +17,22 @@
 //   root attributes: mdrmap_schema, program_version, git_commit, created_utc,
 //   command_line, mpi_size, units, config_text (when short), n_cases, samples
 //
+// Self-description (compatible additions to mdrmap-map/1; maps without them
+// are still maps of this schema):
+//   /schema/<group>/<name>                  group, attributes unit, meaning (strings)
+//       for every dataset of /cases, /results, /analytic, /residuals,
+//       /timeseries and /grid, in the order of creation; units are dimension
+//       names ("length", "force", "number", ...): the case parameters' from
+//       the core's parameter table (core/params.hpp), the results' from
+//       io/case_row.hpp's table
+//   the same on each of those datasets as CF attributes units, long_name
+//   /case, /sample                          HDF5 dimension scales (netCDF-4
+//       dimensions without a variable; extent 0, unlimited: no data), attached
+//       to axis 0 of every per-case dataset and axis 1 of the time series, so
+//       that xarray (engine h5netcdf) names the dimensions case and sample
+//   /grid/<axis>                            also a dimension scale named <axis>:
+//       xarray shows the axes as coordinates of group /grid
+//
 // Crash and fault safety: the file is created collectively with parallel
 // HDF5, every dataset allocated (early, contiguous, zero-filled) and the file
 // closed before any case runs: the whole map is on disk and valid from then
@@ -61,7 +77,7 @@ struct MapSpec {
 
 /// Bytes the map file of `spec` takes on disk (all datasets are allocated and
 /// zero-filled at creation), with `text_bytes` of provenance text; an upper
-/// bound within 64 KiB. The file is written in full before any case runs, so
+/// bound within 128 KiB. The file is written in full before any case runs, so
 /// a map that fits at creation cannot run out of space later.
 std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes);
 

@@ -1,0 +1,235 @@
+#!/usr/bin/env bash
+# Test of the map's self-description through xarray (tools/mapxr.py): maps made
+# here with `mpirun -np 2 mdrmap study` open with xarray.open_dataset(engine=
+# "h5netcdf", group=...) with named dimensions (case, sample) and the grid's
+# axes as coordinates of /grid; mapxr.open_map merges the groups with the
+# /schema units; to_grid turns a 5-axis grid (d, R, tau, v, v1_over_v:
+# 2 x 2 x 2 x 3 x 2 = 48 cases) into a 5-dimensional Dataset whose coordinates
+# are the axis values and whose values are the 1-D rows. A copy of the map
+# without /schema and dimension scales (as older maps are) still opens, and
+# map_summary says the same of it. One-line errors.
+#
+#   bash tests/tools/test_mapxr.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
+set -euo pipefail
+
+if (($# != 4)); then
+  echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
+  exit 2
+fi
+MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
+[[ -x "$MDRMAP" ]] || { echo "FAIL: no executable $MDRMAP" >&2; exit 1; }
+export OMPI_MCA_rmaps_base_oversubscribe=1
+if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+
+W="$WORKDIR/mapxr_test"
+rm -rf "$W"
+mkdir -p "$W"
+XR="$SRCDIR/tools/mapxr.py"
+MS="$SRCDIR/tools/map_summary.py"
+# shellcheck source=tests/tools/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+study() {
+  mpirun -np 2 "$MDRMAP" study --quiet "$@" >"$W/study.log" 2>&1 || {
+    cat "$W/study.log" >&2
+    fail "mdrmap study $*"
+  }
+}
+
+cat >"$W/grid5.ini" <<'EOF'
+; 2 x 2 x 2 x 3 x 2 = 48 cases, with time series
+[grid]
+d         = 1e-3, 1e-2
+R         = 1, 2
+tau       = 0.5, 2
+v         = 0.1, 1, 10
+v1_over_v = 1e-3, 0.5
+[run]
+samples    = 7
+timeseries = true
+EOF
+cat >"$W/cases.csv" <<'EOF'
+d,R,tau,v,v1
+1e-3,1,1,10,0
+1e-2,2,0.5,100,1
+EOF
+printf '[cases]\nfile = cases.csv\n[run]\nsamples = 5\n' >"$W/cases.ini"
+study --config "$W/grid5.ini" --output "$W/grid5.h5"
+study --config "$W/cases.ini" --output "$W/cases.h5"
+ok "made grid5.h5 (48 cases, np = 2) and cases.h5"
+
+# a copy as maps were before /schema: the same data and root attributes, no
+# /schema, no dimension scales, no dataset attributes
+cat >"$W/strip.py" <<'EOF'
+# pyrun-needs: h5py
+import sys
+import h5py
+with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "w") as b:
+    for k, v in a.attrs.items():
+        b.attrs[k] = v
+    def copy(name, obj):
+        if name.startswith("schema") or name in ("case", "sample"):
+            return
+        if isinstance(obj, h5py.Group):
+            b.require_group(name)
+        else:
+            b.create_dataset(name, data=obj[()])
+    a.visititems(copy)
+    for k, v in a["grid"].attrs.items():
+        if k in ("axes", "shape", "log"):
+            b["grid"].attrs[k] = v
+EOF
+run strip py "$W/strip.py" "$W/grid5.h5" "$W/old.h5"
+
+cat >"$W/check.py" <<'EOF'
+# pyrun-needs: numpy h5py xarray h5netcdf
+"""check.py TOOLS GRID5 CASES OLD: xarray sees named dimensions; to_grid is right."""
+import sys
+import warnings
+
+import h5py
+import numpy as np
+import xarray as xr
+
+sys.path.insert(0, sys.argv[1])
+import mapxr  # noqa: E402
+from maplib import CASE_COLS, case_columns, schema  # noqa: E402
+
+grid5, cases, old = sys.argv[2:5]
+warnings.simplefilter("error")  # no phony-dimension or decoding warnings either
+AXES = {"d": [1e-3, 1e-2], "R": [1.0, 2.0], "tau": [0.5, 2.0], "v": [0.1, 1.0, 10.0],
+        "v1_over_v": [1e-3, 0.5]}
+N = 48
+
+
+def fail(msg):
+    sys.exit(f"check: {msg}")
+
+
+# 1. plain xarray, group by group: named dimensions, units from /schema
+with h5py.File(grid5, "r") as f:
+    described = schema(f)
+for group, dims in [("cases", {"case": N}), ("results", {"case": N}), ("analytic", {"case": N}),
+                    ("residuals", {"case": N}), ("timeseries", {"case": N, "sample": 7})]:
+    with xr.open_dataset(grid5, engine="h5netcdf", group=group) as ds:
+        if dict(ds.sizes) != dims:
+            fail(f"group {group}: dimensions {dict(ds.sizes)}, expected {dims}")
+        for name, var in ds.data_vars.items():
+            unit, meaning = described[f"{group}/{name}"]
+            if var.attrs.get("units") != unit or var.attrs.get("long_name") != meaning:
+                fail(f"/{group}/{name}: attributes {var.attrs} vs /schema {unit!r} {meaning!r}")
+    print(f"group {group}: {dims}")
+with xr.open_dataset(grid5, engine="h5netcdf", group="grid") as g:
+    if list(g.dims) != list(AXES) or set(g.coords) != set(AXES):
+        fail(f"group grid: dimensions {dict(g.sizes)}, coordinates {list(g.coords)}")
+    for a, vals in AXES.items():
+        if not np.array_equal(g[a].values, vals):
+            fail(f"/grid/{a} = {g[a].values}, expected {vals}")
+    print(f"group grid: coordinates {dict(g.sizes)}")
+if [p for p in described if p.startswith("cases/")] != [f"cases/{c}" for c in CASE_COLS]:
+    fail(f"/schema/cases lists {[p for p in described if p.startswith('cases/')]}")
+if described["cases/d"][0] != "length" or described["cases/v"][0] != "length/time":
+    fail(f"/schema units of d, v: {described['cases/d']}, {described['cases/v']}")
+
+# 2. mapxr: one Dataset, and the 5-dimensional grid
+ds = mapxr.open_map(grid5)
+if dict(ds.sizes) != {"case": N, "sample": 7}:
+    fail(f"open_map: dimensions {dict(ds.sizes)}")
+for name in ["d", "v1", "G"]:
+    if name not in ds.coords:
+        fail(f"open_map: /cases/{name} is not a coordinate")
+for name in ["mu_jump", "status", "analytic_mu_jump", "residual_mu_post_drop", "ts_mu"]:
+    if name not in ds.data_vars:
+        fail(f"open_map: no variable {name}")
+if ds["FN_pre"].attrs.get("units") != "force" or ds["d"].attrs.get("units") != "length":
+    fail(f"open_map: units {ds['FN_pre'].attrs} {ds['d'].attrs}")
+g = mapxr.to_grid(ds)
+want_dims = dict({a: len(v) for a, v in AXES.items()}, sample=7)
+if dict(g.sizes) != want_dims or list(g["mu_jump"].dims) != list(AXES):
+    fail(f"to_grid: dimensions {dict(g.sizes)} ({g['mu_jump'].dims}), expected {want_dims}")
+for a, vals in AXES.items():
+    if not np.array_equal(g[a].values, vals) or a not in g.indexes:
+        fail(f"to_grid: coordinate {a} = {g[a].values}, expected {vals}")
+if g["ts_mu"].dims != tuple(AXES) + ("sample",):
+    fail(f"to_grid: ts_mu dimensions {g['ts_mu'].dims}")
+for name, var in ds.variables.items():
+    if name in AXES:
+        continue
+    flat = g[name].values.reshape((N,) + var.shape[1:])
+    if not np.array_equal(flat, var.values):
+        fail(f"to_grid: {name} differs from the 1-D rows")
+# and point by point: the case at given axis values is the row with those parameters
+pick = g.sel(d=1e-2, R=2.0, tau=0.5, v=10.0, v1_over_v=1e-3)
+i = int(pick["case"])
+row = ds.isel(case=i)
+for a in ["d", "R", "tau", "v"]:
+    if float(row[a]) != float(pick[a]):
+        fail(f"to_grid: case {i} has {a} = {float(row[a])}, the grid point {float(pick[a])}")
+if float(row["mu_jump"]) != float(pick["mu_jump"]):
+    fail("to_grid: mu_jump at a grid point is not its row's")
+print(f"to_grid: {dict(g.sizes)}; coordinates {', '.join(g.indexes)}; "
+      f"{len(g.data_vars)} variables equal the 1-D rows")
+ds.close()
+
+# 3. a [cases] map: merged, but no grid
+c = mapxr.open_map(cases)
+if dict(c.sizes) != {"case": 2}:
+    fail(f"cases map: dimensions {dict(c.sizes)}")
+try:
+    mapxr.to_grid(c)
+    fail("to_grid accepted a [cases] map")
+except mapxr.UserError as e:
+    print(f"cases map: to_grid refuses: {e}")
+c.close()
+
+# 4. a map as written before /schema and the dimension scales
+with h5py.File(old, "r") as f:
+    if schema(f) or case_columns(f) != CASE_COLS:
+        fail(f"old map: schema {schema(f)} columns {case_columns(f)}")
+warnings.simplefilter("default")
+o = mapxr.open_map(old)
+if dict(o.sizes) != {"case": N, "sample": 7}:
+    fail(f"old map: dimensions {dict(o.sizes)}")
+go = mapxr.to_grid(o)
+if not np.array_equal(go["mu_jump"].values, g["mu_jump"].values):
+    fail("old map: to_grid differs from the new map's")
+print("old map (no /schema, no scales): opens with dimensions case, sample; same grid")
+o.close()
+EOF
+run check py "$W/check.py" "$SRCDIR/tools" "$W/grid5.h5" "$W/cases.h5" "$W/old.h5"
+cat "$W/check.out"
+ok "xarray: named dimensions in every group, /grid coordinates; mapxr.to_grid: 5-d, coordinates" \
+  "= axis values, values = rows; old maps open"
+
+# map_summary reads /schema, and says the same of the map without it
+run ms_new py "$MS" "$W/grid5.h5" --no-config --csv "$W/new.csv"
+run ms_old py "$MS" "$W/old.h5" --no-config --csv "$W/old.csv"
+diff <(sed '1d;$d' "$W/ms_new.out") <(sed '1d;$d' "$W/ms_old.out") >"$W/ms.diff" ||
+  { cat "$W/ms.diff" >&2; fail "map_summary: the map without /schema is summarised differently"; }
+cmp -s "$W/new.csv" "$W/old.csv" || fail "map_summary: the CSVs differ"
+ok "map_summary: same summary and CSV with and without /schema"
+
+# the command line
+run help py "$XR" --help
+expect() { grep -qF -- "$3" "$2" || { cat "$2" >&2; fail "$1: '$3' not in $2"; }; }
+expect help "$W/help.out" "to_grid(ds)"
+run cli py "$XR" "$W/grid5.h5" --grid --var mu_jump
+expect cli "$W/cli.out" "(d, R, tau, v, v1_over_v) float64"
+bad() {
+  local name=$1 expected=$2 rc=0
+  shift 2
+  "$@" >"$W/$name.out" 2>"$W/$name.err" || rc=$?
+  if ((rc != 2)) || (($(wc -l <"$W/$name.err") != 1)) || ! grep -qF -- "$expected" "$W/$name.err"
+  then
+    cat "$W/$name.err" >&2
+    fail "$name: expected exit 2 and one line with '$expected' (exit $rc)"
+  fi
+  ok "$name: exit 2: $(cat "$W/$name.err")"
+}
+bad cli_missing "no such file" py "$XR" "$W/absent.h5"
+bad cli_not_map "is not a readable HDF5 file" py "$XR" "$W/grid5.ini"
+bad cli_cases_grid "not a grid study" py "$XR" "$W/cases.h5" --grid
+bad cli_var "--var foo: no such variable" py "$XR" "$W/grid5.h5" --var foo
+ok "mapxr.py: --help, --grid --var, one-line errors"
+
+echo "PASS: xarray view of maps ($checks checks)"
