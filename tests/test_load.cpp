@@ -300,6 +300,30 @@ TEST(RunLoadSet, TheFixedStepSolverConvergesToIt) {
   }
 }
 
+// The window is sized for the deepest stationary contact of the history; a
+// run whose edge leaves it is rerun with the Hertz contact's window. Forced
+// here (a window for 0.3 a0 on a slide-hold-slide, where the hold creeps
+// towards a0): the same series as with the window sized for it (to
+// rounding), and a
+// zeta0 = 1e6 history holds ~100x fewer elements than a0 would need.
+TEST(RunLoad, WindowFromTheHistoryWidensWhenLeft) {
+  const Case c = load_case(1.0, {{1.0, 1.0}, {0.0, 10.0}, {1.0, 3.0}}, 11);
+  LoadOptions o;
+  o.rtol = 1e-4;
+  const RunResult ref = run_load(c, o);
+  o.window_a0 = 0.3;
+  const RunResult r = run_load(c, o);
+  EXPECT_LT(case_error(r.series, ref.series, c, 1e-12).max(), 1e-14); // (a0 vs alpha(0) a0)
+  EXPECT_EQ(r.info.elements, ref.info.elements);
+  const Case fast = load_case(1e6, {{0.1, 0.2}, {1.0, 0.2}}, 5);
+  o.window_a0 = 0.0;
+  const RunResult f = run_load(fast, o);
+  o.window_a0 = 1.0;
+  const RunResult g = run_load(fast, o);
+  EXPECT_LT(100 * f.info.elements, g.info.elements);
+  EXPECT_LT(case_error(f.series, g.series, fast, 1e-12).max(), 1e-12);
+}
+
 TEST(RunLoad, DispatchAndRefusals) {
   const Case c = load_case(1.0, {{0.1, 1.0}}, 5);
   EXPECT_EQ(run_case(c, SolverKind::Auto, 1e-3).info.solver, "mdr");

@@ -21,8 +21,22 @@ struct SingleRun {
 struct RunSettings {
   double cells, phase, time_tol, dt_over_tau;
   LoadStart start;
-  int split = 1; ///< adaptive steps per sample interval, at least
+  int split = 1;         ///< adaptive steps per sample interval, at least
+  double window_a = 0.0; ///< the window is 1.6 window_a (+ 4 dx) on either side
 };
+
+/// The deepest stationary contact of the history (its slowest velocity; a0
+/// for a hold or a rest start), and the start: the window is sized for it. A
+/// transient that goes deeper is caught (WindowExceeded) and rerun with the
+/// window of the Hertz contact, the deepest state under load.
+double history_radius(const Case& c, LoadStart start) {
+  const double a0 = c.a0();
+  if (start != LoadStart::Stationary) return a0;
+  double wmin = c.history.v0;
+  for (const auto& seg : c.history.segments)
+    wmin = std::min(wmin, seg.w);
+  return stationary_alpha(wmin * c.material.tau / a0) * a0;
+}
 
 /// The shallowest contact the history reaches in a stationary state: the
 /// stationary a1 at its largest velocity (a0 at rest). Sets dx.
@@ -61,11 +75,20 @@ public:
   }
 
 private:
+  // A trial outside the window is a rejected step; but when the edge already
+  // sits at the window's limit, smaller steps only creep closer: the run
+  // needs a wider window.
+  void reject_outside(const LoadRow::Trial& a, const LoadRow::Trial& b) const {
+    if (row_.at_window_edge() && (std::isfinite(a.d) || std::isfinite(b.d)))
+      throw WindowExceeded("load: the leading edge reached the element window's limit");
+  }
+
   void adaptive_step(double h, bool to_target, double target) {
     // (a trial that leaves the window is a rejected step, e.g. an undeformed
     // start, where D is unbounded as d -> 0)
     const LoadRow::Trial big = row_.trial(h), half = row_.trial(0.5 * h);
     if (!row_.fits(big) || !row_.fits(half)) {
+      reject_outside(big, half);
       h_ = 0.25 * h;
       return;
     }
@@ -74,6 +97,7 @@ private:
     const LoadRow::Trial two = row_.trial(0.5 * h);
     if (!row_.fits(two)) {
       row_.rollback();
+      reject_outside(two, two);
       h_ = 0.25 * h;
       return;
     }
@@ -128,12 +152,8 @@ SingleRun run_elastic(const Case& c) {
 
 SingleRun run_once(const Case& c, const RunSettings& s) {
   if (!(c.material.tau > 0.0)) return run_elastic(c);
-  const double a0 = c.a0();
   const double dx = reference_radius(c, s.start) / s.cells;
-  const double a_start = s.start == LoadStart::Stationary
-                             ? stationary_alpha(c.history.v0 * c.material.tau / a0) * a0
-                             : a0;
-  const double A = 1.6 * std::max(a0, a_start) + 4.0 * dx;
+  const double A = 1.6 * s.window_a + 4.0 * dx;
   if (!(2.0 * A / dx < 2e8))
     throw std::runtime_error("load: the element window would hold " + format_number(2.0 * A / dx) +
                              " elements (more than 2e8)");
@@ -171,10 +191,22 @@ SingleRun run_once(const Case& c, const RunSettings& s) {
 // Starting resolution and local time tolerance from rtol (refined below if
 // the companion disagrees by more than rtol).
 RunSettings initial_settings(const LoadOptions& o) {
-  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1};
+  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1, 0.0};
   if (!(s.cells > 0.0)) s.cells = std::clamp(std::ceil(0.5 / std::sqrt(o.rtol)), 16.0, 1e6);
   if (!(s.time_tol > 0.0)) s.time_tol = 0.05 * o.rtol;
   return s;
+}
+
+// run_once; if the edge leaves a window sized below the Hertz contact, again
+// with the Hertz contact's window (s.window_a then says which was used).
+SingleRun run_widening(const Case& c, RunSettings& s) {
+  try {
+    return run_once(c, s);
+  } catch (const WindowExceeded&) {
+    if (!(s.window_a < c.a0())) throw;
+    s.window_a = c.a0();
+    return run_once(c, s);
+  }
 }
 
 void merge(LoadChecks& a, const LoadChecks& b) {
@@ -194,10 +226,11 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   res.info.solver = "mdr";
   res.info.rtol = opt.rtol;
   RunSettings s = initial_settings(opt);
+  s.window_a = opt.window_a0 > 0.0 ? opt.window_a0 * c.a0() : history_radius(c, s.start);
   const bool adaptive = !(opt.cells > 0.0);
   LoadChecks all;
   for (int attempt = 0;; ++attempt) {
-    SingleRun fine = run_once(c, s);
+    SingleRun fine = run_widening(c, s);
     res.info.steps += fine.steps;
     res.info.element_updates += fine.updates;
     res.info.refinements = attempt + 1;
@@ -214,7 +247,8 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
       cs.time_tol = 4.0 * s.time_tol;
       cs.split = 2;
       if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
-      SingleRun coarse = run_once(c, cs);
+      SingleRun coarse = run_widening(c, cs);
+      s.window_a = cs.window_a;
       res.info.steps += coarse.steps;
       res.info.element_updates += coarse.updates;
       // floored at the local step tolerance: below it the two runs' difference

@@ -24,11 +24,17 @@ struct LoadOptions {
   double phase = 0.5;         ///< element offset at t = 0, in cells
   bool estimate_error = true; ///< companion run (half resolution, shifted phase, looser steps)
   LoadStart start = LoadStart::Stationary;
+  /// The window is sized for a contact radius of window_a0 a0 (0: the deepest
+  /// stationary contact of the history); a run that goes deeper is rerun with
+  /// the Hertz contact's window.
+  double window_a0 = 0.0;
 };
 
 /// Runs a load-controlled case (c.loading.by_force()). The resolution is set
 /// by a_ref = the stationary a1 at the largest velocity of the history (the
-/// shallowest contact); the window is 1.6 max(a0, a1(0)) wide on each side.
+/// shallowest contact); the window is 1.6 times the deepest stationary contact
+/// of the history wide on each side (a0 with a hold), widened to 1.6 a0 if the
+/// edge leaves it.
 /// `checks`, if given, receives what the run detected about the model's
 /// structure (leading edge, one contact interval, deepest state).
 RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks = nullptr);

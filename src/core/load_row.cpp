@@ -260,6 +260,10 @@ bool LoadRow::fits(const Trial& tr) const {
   return std::isfinite(tr.d) && std::sqrt(R_ * tr.d) <= A_ - 3.0 * dx_;
 }
 
+bool LoadRow::at_window_edge() const {
+  return a1() > A_ - 3.5 * dx_;
+}
+
 void LoadRow::commit(const Trial& tr) {
   if (!std::isfinite(tr.d))
     throw std::runtime_error("load: no depth balances the load over a step of " +
@@ -275,9 +279,8 @@ void LoadRow::commit(const Trial& tr) {
   const double a = a1(), L = w_ * tau_;
   checks_.max_a1_over_a0 = std::max(checks_.max_a1_over_a0, a / a0_);
   if (!(a <= A_ - 3.0 * dx_))
-    throw std::runtime_error("load: the leading edge a1 = " + format_number(a) +
-                             " left the element window (" + format_number(A_) +
-                             "); the window is sized for a1 <= 1.6 a0");
+    throw WindowExceeded("load: the leading edge a1 = " + format_number(a) +
+                         " left the element window (" + format_number(A_) + ")");
   // p(-a1) / 4G = D - d + 2 L a1 / R: the leading edge stays attached while >= 0
   if ((D_ - d_) + 2.0 * L * a / R_ < -1e-12 * d_) ++checks_.leading_edge_detached;
 }

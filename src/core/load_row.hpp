@@ -38,6 +38,7 @@
 // element (exact for material that left at the cap). In material coordinates
 // the front never moves back.
 #include <cstddef>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -52,6 +53,12 @@ struct LoadChecks {
   long leading_edge_detached = 0; ///< steps where p(-a1) < 0 (the leading edge would lift)
   long second_contact = 0;        ///< samples with free material touching beyond the front
   double max_a1_over_a0 = 0.0;    ///< deepest state reached (the window is sized for it)
+};
+
+/// The leading edge would leave the element window (the run needs a wider one).
+class WindowExceeded : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
 };
 
 class LoadRow {
@@ -76,6 +83,8 @@ public:
   Trial trial(double h) const;
   /// Whether a trial has a depth and its leading edge stays inside the window.
   bool fits(const Trial& tr) const;
+  /// Whether the leading edge is within half a cell of the window's limit.
+  bool at_window_edge() const;
   /// Apply a trial step (recorded for rollback while a checkpoint is open).
   void commit(const Trial& tr);
   void checkpoint();
