@@ -3,8 +3,10 @@
 #include "app/study_cmd.hpp"
 
 #include <mpi.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <csignal>
@@ -53,6 +55,34 @@ std::string format_duration(double s) {
     std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
   else
     std::snprintf(buf, sizeof buf, "%ld:%02ld", t / 60, t % 60);
+  return buf;
+}
+
+// Collective: the peak resident memory (getrusage's ru_maxrss) of rank 0
+// and the largest of the other ranks', for rank 0's summary.
+std::string peak_memory(MPI_Comm comm) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  struct rusage ru {};
+  ::getrusage(RUSAGE_SELF, &ru);
+  const long long mine = ru.ru_maxrss; // KiB on Linux
+  std::vector<long long> all(rank == 0 ? static_cast<std::size_t>(size) : 1);
+  MPI_Gather(&mine, 1, MPI_LONG_LONG, all.data(), 1, MPI_LONG_LONG, 0, comm);
+  if (rank != 0) return "";
+  char buf[160];
+  long long others = 0;
+  for (int r = 1; r < size; ++r)
+    others = std::max(others, all[static_cast<std::size_t>(r)]);
+  int n = std::snprintf(buf, sizeof buf, "peak memory (max RSS): rank 0 %.1f MiB",
+                        static_cast<double>(all[0]) / 1024.0);
+  const double others_mib = static_cast<double>(others) / 1024.0;
+  if (size == 2)
+    std::snprintf(buf + n, sizeof buf - static_cast<std::size_t>(n), ", rank 1 %.1f MiB",
+                  others_mib);
+  else if (size > 2)
+    std::snprintf(buf + n, sizeof buf - static_cast<std::size_t>(n),
+                  ", ranks 1-%d at most %.1f MiB", size - 1, others_mib);
   return buf;
 }
 
@@ -287,6 +317,7 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
     req.command_line = cl;
     StderrProgress progress(a.quiet);
     const auto sum = study::run_study(MPI_COMM_WORLD, req, rank == 0 ? &progress : nullptr);
+    const std::string memory = peak_memory(MPI_COMM_WORLD);
     const std::string resume_hint = "mpirun -np " + std::to_string(size) +
                                     " mdrmap study --config " + shell_quote(a.config) +
                                     " --output " + shell_quote(a.output) + " --resume";
@@ -321,6 +352,7 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
             sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size,
             sum.chunks, sum.messages);
       }
+      if (sum.write_failure.empty()) std::fprintf(stderr, "mdrmap study: %s\n", memory.c_str());
     }
     code = !sum.write_failure.empty() ? kExitRuntime : sum.interrupted ? kExitInterrupted : kExitOk;
   } catch (const InvalidInput& e) {

@@ -124,6 +124,37 @@ void write_doubles(hid_t dset, hid_t dxpl, const double* data, const std::string
   check_status(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, dxpl, data), what);
 }
 
+// /cases/<column> from the cases, taken by range in blocks of 65536 rows
+// (memory independent of the number of cases).
+void write_case_columns(const std::vector<Handle>& sets, hid_t dxpl, std::size_t n,
+                        const MapFile::CaseRange& cases) {
+  constexpr std::size_t kBlock = 65536;
+  std::vector<study::StepRow> rows;
+  std::vector<double> col;
+  for (std::size_t i0 = 0; i0 < n; i0 += kBlock) {
+    const std::size_t i1 = std::min(n, i0 + kBlock);
+    cases(i0, i1, rows);
+    if (rows.size() != i1 - i0) throw std::invalid_argument("MapFile::create: case count");
+    const hsize_t start = i0, count = i1 - i0;
+    col.resize(rows.size());
+    for (std::size_t c = 0; c < sets.size(); ++c) {
+      const std::string what = std::string("writing /cases/") + kCaseColumns[c];
+      for (std::size_t i = 0; i < rows.size(); ++i) {
+        const study::StepRow& s = rows[i];
+        const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
+        col[i] = vals[c];
+      }
+      Handle fspace = make_space(H5Dget_space(sets[c].id()), what);
+      check_status(
+          H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &start, nullptr, &count, nullptr), what);
+      Handle mspace = make_space(H5Screate_simple(1, &count, nullptr), what);
+      check_status(
+          H5Dwrite(sets[c].id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), dxpl, col.data()),
+          what);
+    }
+  }
+}
+
 void write_text_dataset(hid_t loc, const std::string& name, const std::string& text) {
   Handle d = create_dataset(loc, name, H5T_STD_U8LE, {std::max<std::size_t>(text.size(), 1)});
   std::string buf = text.empty() ? std::string(1, '\0') : text;
@@ -166,6 +197,15 @@ std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
 void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const std::vector<study::StepRow>& cases) {
   if (cases.size() != spec.n_cases) throw std::invalid_argument("MapFile::create: case count");
+  create(comm, path, spec, prov,
+         [&cases](std::size_t i0, std::size_t i1, std::vector<study::StepRow>& out) {
+           out.assign(cases.begin() + static_cast<std::ptrdiff_t>(i0),
+                      cases.begin() + static_cast<std::ptrdiff_t>(i1));
+         });
+}
+
+void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
+                     const Provenance& prov, const CaseRange& cases) {
   if (spec.n_cases == 0) throw std::invalid_argument("MapFile::create: no cases");
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -273,16 +313,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   Handle dxpl = make_plist(H5Pcreate(H5P_DATASET_XFER), "transfer property list");
   check_status(H5Pset_dxpl_mpio(dxpl.id(), H5FD_MPIO_INDEPENDENT), "independent transfer");
   if (rank == 0) {
-    std::vector<double> col(cases.size());
-    for (std::size_t c = 0; c < 6; ++c) {
-      for (std::size_t i = 0; i < cases.size(); ++i) {
-        const study::StepRow& s = cases[i];
-        const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
-        col[i] = vals[c];
-      }
-      write_doubles(case_sets[c].id(), dxpl.id(), col.data(),
-                    std::string("writing /cases/") + kCaseColumns[c]);
-    }
+    write_case_columns(case_sets, dxpl.id(), spec.n_cases, cases);
     for (std::size_t i = 0; i < grid_sets.size(); ++i)
       write_doubles(grid_sets[i].id(), dxpl.id(), spec.grid.values[i].data(), "writing /grid");
   }

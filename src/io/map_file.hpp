@@ -44,6 +44,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -98,9 +99,16 @@ struct MapLayout {
 
 class MapFile {
 public:
+  /// Cases [i0, i1) of the study into `out` (replacing its contents).
+  using CaseRange =
+      std::function<void(std::size_t i0, std::size_t i1, std::vector<study::StepRow>& out)>;
   /// Collective. Creates `path` (which must not exist) with every dataset
-  /// allocated and zero-filled; rank 0 writes /cases (the rows' fields) and
-  /// /grid. The file is closed (complete and valid) on return.
+  /// allocated and zero-filled; rank 0 writes /cases (the rows' fields, taken
+  /// by range in blocks: no rank holds every case) and /grid. The file is
+  /// closed (complete and valid) on return.
+  static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
+                     const Provenance& prov, const CaseRange& cases);
+  /// The same from a list of all the cases (tests, small studies).
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const std::vector<study::StepRow>& cases);
   /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema?

@@ -1,5 +1,6 @@
 #include "study/case_list.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -31,15 +32,9 @@ int field_index(const std::string& name) {
   return f;
 }
 
-/// Where each field is in a case list's lines, from its header.
-struct Columns {
-  int column_of_field[5] = {-1, -1, -1, -1, -1}; ///< StepRow field -> CSV column index
-  std::vector<int> field_of_column;              ///< CSV column -> StepRow field
-};
-
 /// Reads the header line (split at commas); `at` is "FILE:LINE".
-Columns read_header(const std::vector<std::string>& fields, const std::string& at) {
-  Columns cols;
+CaseColumns read_header(const std::vector<std::string>& fields, const std::string& at) {
+  CaseColumns cols;
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const std::string name = trim(fields[k]);
     const std::string here = at + ":" + std::to_string(k + 1) + ": ";
@@ -56,7 +51,7 @@ Columns read_header(const std::vector<std::string>& fields, const std::string& a
                                           std::to_string(cols.column_of_field[f] + 1) +
                                           "); give each of " + kAllColumns + " once");
     cols.column_of_field[f] = static_cast<int>(k);
-    cols.field_of_column.push_back(f);
+    cols.field_of_column[k] = f; // k < 5: a sixth column is unknown or a repeat
   }
   for (int j = 0; j < 5; ++j)
     if (cols.column_of_field[j] < 0)
@@ -67,8 +62,8 @@ Columns read_header(const std::vector<std::string>& fields, const std::string& a
 }
 
 /// Reads one case line (split at commas), validated; `at` is "FILE:LINE".
-StepRow read_row(const std::vector<std::string>& fields, const std::string& at, const Columns& cols,
-                 double G) {
+StepRow read_row(const std::vector<std::string>& fields, const std::string& at,
+                 const CaseColumns& cols, double G) {
   if (fields.size() != 5)
     throw ConfigError("cases.file", at + ": " + std::to_string(fields.size()) +
                                         " fields, the header has 5; give one value per column");
@@ -134,6 +129,139 @@ std::string resolve_cases_file(const std::string& file, const std::string& base_
   return resolved;
 }
 
+void no_cases_after_header(const std::string& path) {
+  throw ConfigError("cases.file",
+                    path + ": no cases after the header; add one line of values per case");
+}
+
+CaseListReader::CaseListReader(const std::string& path, double G) : path_(path), G_(G) {
+  if (!std::isfinite(G) || !(G > 0.0))
+    throw ConfigError("run.G", "G must be a finite number > 0, got " + format_number(G));
+  in_ = open_cases(path);
+  std::string line;
+  if (!next_line(line))
+    throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
+                                        kAllColumns + " (in any order)");
+  cols_ = read_header(split(line, ','), path + ":" + std::to_string(line_));
+}
+
+bool CaseListReader::next_line(std::string& line) {
+  std::string raw;
+  while (true) {
+    const std::uint64_t start = offset_;
+    if (!std::getline(in_, raw)) break;
+    offset_ += raw.size() + (in_.eof() ? 0 : 1);
+    ++line_;
+    if (line_ == 1 && starts_with(raw, "\xEF\xBB\xBF")) raw.erase(0, 3); // UTF-8 BOM
+    line = trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    case_offset_ = start;
+    case_line_ = line_;
+    return true;
+  }
+  if (in_.bad()) cannot_read(path_, "read error");
+  return false;
+}
+
+bool CaseListReader::next(StepRow& s) {
+  std::string line;
+  if (!next_line(line)) return false;
+  s = read_row(split(line, ','), path_ + ":" + std::to_string(line_), cols_, G_);
+  return true;
+}
+
+void CaseListReader::seek(std::uint64_t offset, std::uint64_t line_before) {
+  in_.clear();
+  in_.seekg(static_cast<std::streamoff>(offset));
+  if (!in_) cannot_read(path_, "cannot seek to byte " + std::to_string(offset));
+  offset_ = offset;
+  line_ = line_before;
+}
+
+// ---- SHA-256 ------------------------------------------------------------------
+
+namespace {
+
+constexpr std::uint32_t kSha256K[64] = {
+    0x428a2f98, 0x71374491, 0xb5c0fbcf, 0xe9b5dba5, 0x3956c25b, 0x59f111f1, 0x923f82a4, 0xab1c5ed5,
+    0xd807aa98, 0x12835b01, 0x243185be, 0x550c7dc3, 0x72be5d74, 0x80deb1fe, 0x9bdc06a7, 0xc19bf174,
+    0xe49b69c1, 0xefbe4786, 0x0fc19dc6, 0x240ca1cc, 0x2de92c6f, 0x4a7484aa, 0x5cb0a9dc, 0x76f988da,
+    0x983e5152, 0xa831c66d, 0xb00327c8, 0xbf597fc7, 0xc6e00bf3, 0xd5a79147, 0x06ca6351, 0x14292967,
+    0x27b70a85, 0x2e1b2138, 0x4d2c6dfc, 0x53380d13, 0x650a7354, 0x766a0abb, 0x81c2c92e, 0x92722c85,
+    0xa2bfe8a1, 0xa81a664b, 0xc24b8b70, 0xc76c51a3, 0xd192e819, 0xd6990624, 0xf40e3585, 0x106aa070,
+    0x19a4c116, 0x1e376c08, 0x2748774c, 0x34b0bcb5, 0x391c0cb3, 0x4ed8aa4a, 0x5b9cca4f, 0x682e6ff3,
+    0x748f82ee, 0x78a5636f, 0x84c87814, 0x8cc70208, 0x90befffa, 0xa4506ceb, 0xbef9a3f7, 0xc67178f2};
+
+std::uint32_t rotr(std::uint32_t x, int n) {
+  return (x >> n) | (x << (32 - n));
+}
+
+} // namespace
+
+Sha256::Sha256()
+    : h_{0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a,
+         0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19},
+      buf_{} {}
+
+void Sha256::block(const unsigned char* p) {
+  std::uint32_t w[64];
+  for (int i = 0; i < 16; ++i)
+    w[i] = static_cast<std::uint32_t>(p[4 * i]) << 24 |
+           static_cast<std::uint32_t>(p[4 * i + 1]) << 16 |
+           static_cast<std::uint32_t>(p[4 * i + 2]) << 8 | static_cast<std::uint32_t>(p[4 * i + 3]);
+  for (int i = 16; i < 64; ++i) {
+    const std::uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
+    const std::uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
+    w[i] = w[i - 16] + s0 + w[i - 7] + s1;
+  }
+  std::uint32_t a = h_[0], b = h_[1], c = h_[2], d = h_[3], e = h_[4], f = h_[5], g = h_[6],
+                h = h_[7];
+  for (int i = 0; i < 64; ++i) {
+    const std::uint32_t t1 =
+        h + (rotr(e, 6) ^ rotr(e, 11) ^ rotr(e, 25)) + ((e & f) ^ (~e & g)) + kSha256K[i] + w[i];
+    const std::uint32_t t2 =
+        (rotr(a, 2) ^ rotr(a, 13) ^ rotr(a, 22)) + ((a & b) ^ (a & c) ^ (b & c));
+    h = g, g = f, f = e, e = d + t1, d = c, c = b, b = a, a = t1 + t2;
+  }
+  const std::uint32_t out[8] = {a, b, c, d, e, f, g, h};
+  for (int i = 0; i < 8; ++i)
+    h_[i] += out[i];
+}
+
+void Sha256::add(const void* data, std::size_t n) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  bytes_ += n;
+  while (n > 0) {
+    const std::size_t k = std::min(n, sizeof buf_ - used_);
+    std::memcpy(buf_ + used_, p, k);
+    used_ += k, p += k, n -= k;
+    if (used_ == sizeof buf_) {
+      block(buf_);
+      used_ = 0;
+    }
+  }
+}
+
+std::string Sha256::hex() {
+  const std::uint64_t bits = bytes_ * 8;
+  const unsigned char pad = 0x80, zero = 0;
+  add(&pad, 1);
+  while (used_ != 56)
+    add(&zero, 1);
+  unsigned char len[8];
+  for (int i = 0; i < 8; ++i)
+    len[i] = static_cast<unsigned char>(bits >> (56 - 8 * i));
+  add(len, 8);
+  std::string out;
+  char two[3];
+  for (const std::uint32_t x : h_)
+    for (int i = 3; i >= 0; --i) {
+      std::snprintf(two, sizeof two, "%02x", static_cast<unsigned>((x >> (8 * i)) & 0xff));
+      out += two;
+    }
+  return out;
+}
+
 } // namespace mdrmap::study::detail
 
 namespace mdrmap::study {
@@ -141,35 +269,12 @@ namespace mdrmap::study {
 using namespace detail;
 
 std::vector<StepRow> read_cases_csv(const std::string& path, double G) {
-  if (!std::isfinite(G) || !(G > 0.0))
-    throw ConfigError("run.G", "G must be a finite number > 0, got " + format_number(G));
-  std::ifstream in = open_cases(path);
-  Columns cols;
+  CaseListReader reader(path, G);
   std::vector<StepRow> cases;
-  bool have_header = false;
-  int line_no = 0;
-  std::string raw;
-  while (std::getline(in, raw)) {
-    ++line_no;
-    if (line_no == 1 && starts_with(raw, "\xEF\xBB\xBF")) raw.erase(0, 3); // UTF-8 BOM
-    const std::string line = trim(raw);
-    if (line.empty() || line[0] == '#') continue;
-    const std::string at = path + ":" + std::to_string(line_no);
-    const auto fields = split(line, ',');
-    if (have_header) {
-      cases.push_back(read_row(fields, at, cols, G));
-    } else {
-      cols = read_header(fields, at);
-      have_header = true;
-    }
-  }
-  if (in.bad()) cannot_read(path, "read error");
-  if (!have_header)
-    throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
-                                        kAllColumns + " (in any order)");
-  if (cases.empty())
-    throw ConfigError("cases.file",
-                      path + ": no cases after the header; add one line of values per case");
+  StepRow s;
+  while (reader.next(s))
+    cases.push_back(s);
+  if (cases.empty()) no_cases_after_header(path);
   return cases;
 }
 

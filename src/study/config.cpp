@@ -10,6 +10,7 @@
 #include "core/params.hpp"
 #include "core/solver.hpp"
 #include "study/axes.hpp"
+#include "study/case_source.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
 
@@ -132,23 +133,13 @@ void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
 
 std::vector<StepRow> expand_case_list(const StudyConfig& c) {
   std::vector<StepRow> cases = read_cases_csv(c.cases_file, c.run.G);
-  check_timeseries_memory(c.run, static_cast<double>(cases.size()));
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    try {
-      validate_case(c, cases[i]);
-    } catch (const InvalidInput& e) {
-      const std::string o = e.option() == "t-end" && cases[i].tau > 0.0 ? "run.t_end_over_tau"
-                            : e.option() == "samples"                   ? "run.samples"
-                                                                        : "cases." + e.option();
-      throw ConfigError(o, c.cases_file + ": case " + std::to_string(i + 1) + ": " +
-                               case_problem(e, cases[i], "v1"));
-    }
-  }
+  check_case_list_size(c, cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    check_listed_case(c, i, cases[i]);
   return cases;
 }
 
 std::vector<StepRow> expand_grid(const StudyConfig& c) {
-  const Where src{c.source_path.empty() ? "config" : c.source_path, 0};
   check_axes_shape(c);
   const std::size_t count = case_count(c);
   const auto& A = c.axes;
@@ -157,14 +148,7 @@ std::vector<StepRow> expand_grid(const StudyConfig& c) {
   out.reserve(count);
   for_each_combination(A[0].values, A[1].values, A[2].values, A[3].values, A[4].values, ratio,
                        c.run.G, [&](const StepRow& s) {
-                         try {
-                           validate_case(c, s);
-                         } catch (const InvalidInput& e) {
-                           throw ConfigError(grid_option(e.option(), s, A[4].name),
-                                             src.prefix() + "case " +
-                                                 std::to_string(out.size() + 1) + ": " +
-                                                 case_problem(e, s, A[4].name));
-                         }
+                         check_grid_case(c, out.size(), s);
                          out.push_back(s);
                        });
   return out;
@@ -179,15 +163,6 @@ std::string canonical_grid(const StudyConfig& c) {
       out += (i == 0 ? " " : ", ") + format_number(a.values[i]);
     out += "\n";
   }
-  return out;
-}
-
-std::string canonical_cases(const StudyConfig& c) {
-  const std::vector<StepRow> cases = read_cases_csv(c.cases_file, c.run.G);
-  std::string out = "[cases]\ncount = " + std::to_string(cases.size()) + "\nd,R,tau,v,v1\n";
-  for (const StepRow& s : cases)
-    out += format_number(s.d) + "," + format_number(s.R) + "," + format_number(s.tau) + "," +
-           format_number(s.v) + "," + format_number(s.v1) + "\n";
   return out;
 }
 
@@ -206,6 +181,44 @@ std::string canonical_run(const RunSettings& r) {
 
 } // namespace
 
+void detail::check_listed_case(const StudyConfig& c, std::size_t i, const StepRow& s) {
+  try {
+    validate_case(c, s);
+  } catch (const InvalidInput& e) {
+    const std::string o = e.option() == "t-end" && s.tau > 0.0 ? "run.t_end_over_tau"
+                          : e.option() == "samples"            ? "run.samples"
+                                                               : "cases." + e.option();
+    throw ConfigError(o, c.cases_file + ": case " + std::to_string(i + 1) + ": " +
+                             case_problem(e, s, "v1"));
+  }
+}
+
+void detail::check_case_list_size(const StudyConfig& c, std::size_t n) {
+  check_timeseries_memory(c.run, static_cast<double>(n));
+}
+
+void detail::check_grid_case(const StudyConfig& c, std::size_t i, const StepRow& s) {
+  try {
+    validate_case(c, s);
+  } catch (const InvalidInput& e) {
+    const Where src{c.source_path.empty() ? "config" : c.source_path, 0};
+    throw ConfigError(grid_option(e.option(), s, c.axes[4].name),
+                      src.prefix() + "case " + std::to_string(i + 1) + ": " +
+                          case_problem(e, s, c.axes[4].name));
+  }
+}
+
+std::string detail::canonical_row(const StepRow& s) {
+  return format_number(s.d) + "," + format_number(s.R) + "," + format_number(s.tau) + "," +
+         format_number(s.v) + "," + format_number(s.v1) + "\n";
+}
+
+std::string detail::canonical_case_list(const StudyConfig& c, std::uint64_t count,
+                                        const std::string& sha256) {
+  return "mdrmap study 1\n[cases]\ncount = " + std::to_string(count) +
+         "\nsha256 of d,R,tau,v,v1 rows = " + sha256 + "\n" + canonical_run(c.run);
+}
+
 void detail::check_study(const StudyConfig& c, const WhereFn& where) {
   if (c.kind != StudyConfig::Kind::Grid) return; // case lists: checked when read
   try {
@@ -223,7 +236,7 @@ std::vector<StepRow> expand_cases(const StudyConfig& c) {
 }
 
 std::size_t case_count(const StudyConfig& c) {
-  if (c.kind == StudyConfig::Kind::Cases) return read_cases_csv(c.cases_file, c.run.G).size();
+  if (c.kind == StudyConfig::Kind::Cases) return scan_case_list(c, false).count;
   check_axes_shape(c);
   check_grid_size(c);
   std::size_t n = 1;
@@ -260,9 +273,11 @@ Case case_for(const StudyConfig& c, const StepRow& r) {
 }
 
 std::string canonical(const StudyConfig& c) {
-  std::string out = "mdrmap study 1\n";
-  out += c.kind == StudyConfig::Kind::Grid ? canonical_grid(c) : canonical_cases(c);
-  return out + canonical_run(c.run);
+  if (c.kind == StudyConfig::Kind::Cases) {
+    const CaseListIndex index = scan_case_list(c, false);
+    return canonical_case_list(c, index.count, index.sha256);
+  }
+  return "mdrmap study 1\n" + canonical_grid(c) + canonical_run(c.run);
 }
 
 } // namespace mdrmap::study

@@ -95,9 +95,12 @@ Axis parse_axis(const std::string& name, const std::string& spec);
 
 /// The cases in study order, each validated (case_for); G from [run].
 /// Throws ConfigError naming the axis, or the CSV file, line and column.
+/// Holds every case: for tests and small uses (the runner takes them by
+/// index from a CaseSource, study/case_source.hpp).
 std::vector<StepRow> expand_cases(const StudyConfig& c);
 
-/// Number of cases without building them (grid: product of axis sizes).
+/// Number of cases without building them (grid: product of axis sizes; a
+/// case list is read through).
 std::size_t case_count(const StudyConfig& c);
 
 /// Checks a row as the seed's scene was checked, in its order: d, R, tau, v,
@@ -116,7 +119,10 @@ Case case_for(const StudyConfig& c, const StepRow& r);
 
 /// Canonical text of everything that determines the results (axes values or
 /// the case list's contents, and the [run] settings), normalized so that
-/// formatting, comments and key order do not matter. Resume compares it.
+/// formatting, comments and key order do not matter. Resume compares it. A
+/// case list's contents are its number of cases and the SHA-256 of its rows
+/// in normalized text (every value, in order): its size does not grow with
+/// the list.
 std::string canonical(const StudyConfig& c);
 
 /// Reads a CSV case list (header d,R,tau,v,v1 in any column order; extra

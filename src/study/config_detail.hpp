@@ -3,6 +3,7 @@
 // case lists) share beyond strings and locations (study/ini.hpp): strict
 // number parsing, the range of each case field, and the checks of a whole
 // study.
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -46,5 +47,24 @@ using WhereFn = std::function<Where(const std::string& option)>;
 /// time series' memory and every case; case lists are checked when read).
 /// Throws ConfigError located by where(option). Defined in study/config.cpp.
 void check_study(const StudyConfig& c, const WhereFn& where);
+
+/// Checks grid case i (0-based) as expand_cases does: the row, the window
+/// and the samples. Throws ConfigError naming the axis and "case i+1".
+void check_grid_case(const StudyConfig& c, std::size_t i, const StepRow& s);
+
+/// Checks the window and samples of a case list's case i (0-based; its row
+/// was checked when read), as expand_cases does. Throws ConfigError naming
+/// the file and "case i+1".
+void check_listed_case(const StudyConfig& c, std::size_t i, const StepRow& s);
+
+/// Refuses a case list of n cases whose time series would not fit in 64 GiB.
+void check_case_list_size(const StudyConfig& c, std::size_t n);
+
+/// A case list's row in canonical text ("d,R,tau,v,v1\n", numbers normalized).
+std::string canonical_row(const StepRow& s);
+
+/// canonical() of a case list of `count` cases whose canonical rows hash to `sha256`.
+std::string canonical_case_list(const StudyConfig& c, std::uint64_t count,
+                                const std::string& sha256);
 
 } // namespace mdrmap::study::detail

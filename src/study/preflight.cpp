@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -10,7 +9,6 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/statvfs.h>
-#include <utility>
 
 namespace mdrmap::study::detail {
 namespace {
@@ -85,31 +83,19 @@ double available_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
 }
 
-// Cases of the study and the memory one rank needs for them, without
-// building them: per case the row (6 doubles), its place in the to-do list,
-// its status and rank 0's column buffer at creation; a case list's canonical
-// text besides. Counting a case list streams its file.
-std::pair<std::size_t, double> study_memory(const StudyConfig& cfg) {
-  if (cfg.kind == StudyConfig::Kind::Grid) {
-    const std::size_t n = case_count(cfg);
-    return {n, 72.0 * static_cast<double>(n)};
-  }
-  std::ifstream in(cfg.cases_file, std::ios::binary);
-  std::size_t lines = 0;
-  std::vector<char> buf(1 << 16);
-  while (in) {
-    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    lines += static_cast<std::size_t>(
-        std::count(buf.begin(), buf.begin() + static_cast<long>(in.gcount()), '\n'));
-  }
-  return {lines, 200.0 * static_cast<double>(lines)}; // unreadable: 0, expand_cases says why
-}
+// Memory a study needs per case, beyond what every rank needs anyway: rank 0
+// holds the status of every case (1 byte) during the run; the map's /cases
+// columns are written from the cases taken by range, the other ranks hold
+// nothing per case. The sparse index of a case list (16 bytes per 4096
+// cases) is negligible.
+constexpr double kCreateBytesPerCase = 0.0;
+constexpr double kRootBytesPerCase = 1.0;
 
-// Refuses, before anything is built or written, a study whose cases would
-// not fit in the memory of this node (ranks_here ranks each hold them all).
-void check_memory(const StudyConfig& cfg, int ranks_here) {
-  const auto [n_cases, per_rank] = study_memory(cfg);
-  const double need = per_rank * ranks_here;
+// Refuses, before the map is created, a study whose cases would not fit in
+// the memory of this node (ranks_here ranks).
+void check_memory(std::size_t n_cases, int ranks_here) {
+  const double need = static_cast<double>(n_cases) *
+                      (kCreateBytesPerCase * static_cast<double>(ranks_here) + kRootBytesPerCase);
   const double have = available_memory_bytes();
   if (have > 0.0 && need > 0.5 * have)
     throw InvalidInput("config", "the study has " + std::to_string(n_cases) + " cases; its " +
@@ -205,18 +191,38 @@ std::string parent_dir(const std::string& path) {
   return path.substr(0, pos);
 }
 
+void bcast_from_root(MPI_Comm comm, std::vector<std::uint64_t>& v) {
+  unsigned long long n = v.size();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
+  v.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(v.data(), static_cast<int>(n), MPI_UINT64_T, 0, comm);
+}
+
 StudyPlan preflight(MPI_Comm comm, const StudyRequest& req) {
-  int rank = 0;
+  int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
   const StudyConfig& cfg = req.config;
   const int ranks_here = ranks_on_this_node(comm);
   StudyPlan plan;
   collectively(comm, [&] {
     plan.kind = parse_solver(cfg.run.solver);
-    check_memory(cfg, ranks_here);
-    plan.cases = expand_cases(cfg);
-    plan.canon = canonical(cfg);
-    plan.spec = map_spec(cfg, plan.cases.size());
+    if (cfg.kind != StudyConfig::Kind::Grid) return;
+    plan.cases.emplace(cfg);
+    check_memory(plan.cases->size(), ranks_here); // (<= 1e9 cases: no overflow)
+  });
+  if (cfg.kind == StudyConfig::Kind::Cases) {
+    std::vector<std::uint64_t> index;
+    collectively(comm, [&] {
+      if (rank == 0) index = scan_case_list(cfg, true).pack();
+    });
+    bcast_from_root(comm, index);
+    plan.cases.emplace(cfg, CaseListIndex::unpack(index));
+    collectively(comm, [&] { check_memory(plan.cases->size(), ranks_here); });
+  }
+  collectively(comm, [&] {
+    plan.canon = plan.cases->canonical();
+    plan.spec = map_spec(cfg, plan.cases->size());
     if (rank == 0) {
       check_output(req);
       if (req.resume)
@@ -227,6 +233,15 @@ StudyPlan preflight(MPI_Comm comm, const StudyRequest& req) {
                                                       req.command_line.size()));
     }
   });
+  // every case of a grid checked (after the cheap size checks: 1e9 cases take
+  // a while), each rank its share: the lowest failing rank's first failure is
+  // the grid's first
+  if (cfg.kind == StudyConfig::Kind::Grid)
+    collectively(comm, [&] {
+      const std::size_t n = plan.cases->size();
+      const auto r = static_cast<std::size_t>(rank), p = static_cast<std::size_t>(size);
+      check_grid_cases(cfg, n * r / p, n * (r + 1) / p);
+    });
   return plan;
 }
 

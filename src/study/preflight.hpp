@@ -4,12 +4,15 @@
 // the memory of this node, the space on the map's file system).
 #include <mpi.h>
 
+#include <cstdint>
 #include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/solver.hpp"
 #include "io/map_file.hpp"
+#include "study/case_source.hpp"
 #include "study/config.hpp"
 #include "study/runner.hpp"
 
@@ -48,6 +51,8 @@ template <class F> void collectively(MPI_Comm comm, F fn) {
 
 /// Rank 0's s on every rank (collective).
 std::string bcast_from_root(MPI_Comm comm, std::string s);
+/// Rank 0's v on every rank (collective).
+void bcast_from_root(MPI_Comm comm, std::vector<std::uint64_t>& v);
 
 /// The directory a path's file is in ("." for a bare name).
 std::string parent_dir(const std::string& path);
@@ -55,15 +60,17 @@ std::string parent_dir(const std::string& path);
 /// What the checks established, alike on every rank.
 struct StudyPlan {
   SolverKind kind = SolverKind::Auto;
-  std::vector<StepRow> cases;
-  std::string canon; ///< canonical(config), stored in the map and compared on resume
-  io::MapSpec spec;  ///< the map the study needs
+  std::optional<CaseSource> cases; ///< the cases by index (refers to the request's config)
+  std::string canon;               ///< canonical(config), stored in the map and compared on resume
+  io::MapSpec spec;                ///< the map the study needs
 };
 
 /// Collective. Parses the solver, refuses a study too large for this node's
-/// memory, expands the cases; rank 0 checks the output path and, on resume,
-/// that the map holds this study, or else that a new map fits on its file
-/// system. Throws InvalidInput on every rank alike.
+/// memory, checks every case as expand_cases does without storing them (a
+/// grid's cases split among the ranks, a case list read by rank 0, which
+/// sends the others its index); rank 0 checks the output path and, on
+/// resume, that the map holds this study, or else that a new map fits on its
+/// file system. Throws InvalidInput on every rank alike.
 StudyPlan preflight(MPI_Comm comm, const StudyRequest& req);
 
 } // namespace mdrmap::study::detail

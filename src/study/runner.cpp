@@ -3,17 +3,18 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <functional>
-#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <sys/statvfs.h>
+#include <utility>
 #include <vector>
 
 #include "mdrmap/version.hpp"
@@ -34,6 +35,19 @@ double seconds_since(Clock::time_point t0) {
 
 constexpr int kTagRequest = 11;
 constexpr int kTagAssign = 12;
+
+// A chunk of work: ranges [begin, end) of case indices, in order, at most
+// kMaxRanges of them (pending cases are contiguous but for a resume's gaps).
+constexpr std::size_t kMaxRanges = 64;
+struct Chunk {
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  std::size_t size() const {
+    std::size_t n = 0;
+    for (const auto& [begin, end] : ranges)
+      n += end - begin;
+    return n;
+  }
+};
 
 std::string utc_now() {
   const std::time_t t = std::time(nullptr);
@@ -72,7 +86,13 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   const std::string tmp =
       bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));
   try {
-    collectively(comm, [&] { io::MapFile::create(comm, tmp, plan.spec, prov, plan.cases); });
+    collectively(comm, [&] {
+      // rank 0 writes /cases taking the cases by range (no rank holds them all)
+      io::MapFile::create(comm, tmp, plan.spec, prov,
+                          [&](std::size_t i0, std::size_t i1, std::vector<StepRow>& out) {
+                            plan.cases->rows(i0, i1, out);
+                          });
+    });
     collectively(comm, [&] {
       if (rank == 0 && std::rename(tmp.c_str(), req.output.c_str()) != 0)
         throw std::runtime_error("cannot rename '" + tmp + "' to '" + req.output +
@@ -84,17 +104,49 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   }
 }
 
-// What is left to do: indices of the pending cases, and how many are not.
-struct Pending {
-  std::vector<std::size_t> todo;
-  std::size_t already_done = 0;
+// Rank 0's view of what is left to do: the status of every case (0 pending,
+// 1 byte per case; the other ranks hold nothing per case), handed out from
+// the front in chunks of ranges.
+class PendingCases {
+public:
+  PendingCases() = default;
+  explicit PendingCases(std::vector<std::int8_t> status) : status_(std::move(status)) {
+    left_ = static_cast<std::size_t>(std::count(status_.begin(), status_.end(), 0));
+    total_ = left_;
+  }
+  std::size_t total() const { return total_; } ///< pending at the start
+  std::size_t left() const { return left_; }   ///< pending and not handed out yet
+
+  // The next pending cases, at most k of them in at most kMaxRanges ranges.
+  Chunk take(std::size_t k) {
+    Chunk c;
+    std::size_t taken = 0;
+    const std::size_t n = status_.size();
+    while (taken < k && cursor_ < n) {
+      if (status_[cursor_] != 0) {
+        ++cursor_;
+        continue;
+      }
+      if (c.ranges.size() == kMaxRanges) break;
+      const std::size_t begin = cursor_;
+      while (cursor_ < n && status_[cursor_] == 0 && taken < k)
+        ++cursor_, ++taken;
+      c.ranges.push_back({begin, cursor_});
+    }
+    left_ -= taken;
+    return c;
+  }
+
+private:
+  std::vector<std::int8_t> status_;
+  std::size_t cursor_ = 0, left_ = 0, total_ = 0;
 };
 
 // Collective. Where the rows go, and what is left to do: every rank gets rank
-// 0's read of the map's layout and status column and opens the map for its
-// rows; rank 0 locks it (one job at a time).
-Pending open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
-                 std::optional<io::RowWriter>& map) {
+// 0's read of the map's layout and opens the map for its rows; rank 0 keeps
+// the status column and locks the map (one job at a time).
+PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
+                      std::optional<io::RowWriter>& map) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::int8_t> status;
@@ -113,12 +165,7 @@ Pending open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
                                        " cases, the study " + std::to_string(n_cases) +
                                        "; refusing to touch it");
   });
-  unsigned long long n_packed = packed.size();
-  MPI_Bcast(&n_packed, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
-  packed.resize(static_cast<std::size_t>(n_packed));
-  MPI_Bcast(packed.data(), static_cast<int>(n_packed), MPI_UINT64_T, 0, comm);
-  status.resize(n_cases);
-  MPI_Bcast(status.data(), static_cast<int>(status.size()), MPI_INT8_T, 0, comm);
+  bcast_from_root(comm, packed);
   collectively(comm, [&] {
     map.emplace(req.output, io::MapLayout::unpack(packed));
     // one job at a time: a second --resume of a map in use is refused
@@ -129,27 +176,26 @@ Pending open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
                              (holder > 0 ? " (process " + std::to_string(holder) + ")" : "") +
                              "; refusing to touch it");
   });
-  Pending p;
-  for (std::size_t i = 0; i < status.size(); ++i) {
-    if (status[i] == 0)
-      p.todo.push_back(i);
-    else
-      ++p.already_done;
-  }
-  return p;
+  return PendingCases(std::move(status));
 }
 
 // ---- scheduling ---------------------------------------------------------------
 
-// What every rank computes with: its share of the cases, computed
-// (compute_case) and written into the map in chunks of the to-do list.
-struct Worker {
+// What every rank computes with: its share of the cases, read by range from
+// the study's cases (CaseSource), computed (compute_case) and written into
+// the map in batches of at most kBatch rows, so that its memory does not
+// grow with the size of a chunk.
+class Worker {
+public:
+  static constexpr std::size_t kBatch = 1024;
+
+  Worker(MPI_Comm communicator, const StudyRequest& request, const CaseSource& source,
+         io::RowWriter& map, SolverKind kind)
+      : comm(communicator), req(request), cases(source), map_(map), kind_(kind) {}
+
   MPI_Comm comm;
   const StudyRequest& req;
-  const std::vector<StepRow>& cases;
-  const std::vector<std::size_t>& todo;
-  io::RowWriter& map;
-  SolverKind kind;
+  const CaseSource& cases;
   std::size_t done = 0, failed = 0; ///< rows written by this rank
   double compute_seconds = 0.0;
   std::string write_error; ///< why writing the map failed here ("" if it did not)
@@ -157,59 +203,74 @@ struct Worker {
   // A stop signal, or a failed write: either way this rank takes no more work.
   bool stop_requested() const { return (req.stop && *req.stop != 0) || !write_error.empty(); }
 
-  // Computes todo[pos, pos+count) (stops early on a stop request) and writes
-  // the finished rows; returns how many were finished.
-  std::size_t run_chunk(std::size_t pos, std::size_t count,
-                        const std::function<void()>& between_cases) {
-    std::vector<io::CaseRow> rows;
-    rows.reserve(count);
+  // Computes the chunk's cases in order (stops early on a stop request) and
+  // writes the finished rows; returns how many were finished.
+  std::size_t run_chunk(const Chunk& chunk, const std::function<void()>& between_cases) {
     std::size_t finished = 0;
-    for (; finished < count; ++finished) {
-      if (stop_requested()) break;
-      const auto t0 = Clock::now();
-      rows.push_back(compute_case(req.config, cases[todo[pos + finished]], kind, map.timeseries()));
-      compute_seconds += seconds_since(t0);
-      if (between_cases) between_cases();
-    }
-    // write runs of consecutive case indices; a row counts once it is written
-    std::size_t i = 0;
-    while (i < rows.size()) {
-      std::size_t j = i + 1;
-      while (j < rows.size() && todo[pos + j] == todo[pos + j - 1] + 1)
-        ++j;
-      std::vector<io::CaseRow> run(std::make_move_iterator(rows.begin() + static_cast<long>(i)),
-                                   std::make_move_iterator(rows.begin() + static_cast<long>(j)));
-      try {
-        map.write_rows(todo[pos + i], run);
-      } catch (const std::exception& e) {
-        // The rows of this run stay pending (their status is written last);
-        // this rank stops, the others finish their chunks, the study ends.
-        write_error = describe_write_failure(req.output, e.what());
-        return finished;
+    for (const auto& [begin, end] : chunk.ranges) {
+      for (std::size_t first = begin; first < end; first += kBatch) {
+        cases.rows(first, std::min(end, first + kBatch), in_);
+        out_.clear();
+        for (const StepRow& r : in_) {
+          if (stop_requested()) break;
+          const auto t0 = Clock::now();
+          out_.push_back(compute_case(req.config, r, kind_, map_.timeseries()));
+          compute_seconds += seconds_since(t0);
+          if (between_cases) between_cases();
+        }
+        finished += out_.size();
+        if (!write(first) || out_.size() < in_.size()) return finished;
       }
-      for (const auto& r : run)
-        ++(r.status == 1 ? done : failed);
-      i = j;
     }
     return finished;
   }
+
+  void close_map() { map_.close(); }
+
+private:
+  // Writes out_ as the rows from case `first` on; a row counts once written.
+  bool write(std::size_t first) {
+    if (out_.empty()) return true;
+    try {
+      map_.write_rows(first, out_);
+    } catch (const std::exception& e) {
+      // The rows of this batch stay pending (their status is written last);
+      // this rank stops, the others finish their chunks, the study ends.
+      write_error = describe_write_failure(req.output, e.what());
+      return false;
+    }
+    for (const auto& r : out_)
+      ++(r.status == 1 ? done : failed);
+    return true;
+  }
+
+  io::RowWriter& map_;
+  SolverKind kind_;
+  std::vector<StepRow> in_;      ///< the batch's cases
+  std::vector<io::CaseRow> out_; ///< and their rows
 };
+
+// An assignment message: the number of ranges, then each range's begin and
+// end (0 ranges dismisses the worker).
+using Assignment = std::array<long long, 1 + 2 * kMaxRanges>;
 
 // Rank 0's side of the dispatch: answers the workers' requests for chunks
 // (pull-based, guided self-scheduling), and computes its own small chunks in
 // between, serving requests after every case.
 class Master {
 public:
-  Master(Worker& w, ProgressSink* sink, StudySummary& sum)
-      : w_(w), sink_(sink), sum_(sum), size_(comm_size(w.comm)), active_(size_ - 1) {}
+  Master(Worker& w, PendingCases pending, ProgressSink* sink, StudySummary& sum)
+      : w_(w), pending_(std::move(pending)), sink_(sink), sum_(sum), size_(comm_size(w.comm)),
+        active_(size_ - 1) {}
 
   // Runs until every case is handed out (or a stop) and every worker is
   // dismissed; fills sum's counts, and reports a last time.
   void run() {
+    sum_.already_done = sum_.total - pending_.total();
     while (true) {
       if (w_.stop_requested()) stopping_ = true;
       serve(false);
-      if (!stopping_ && pos_ < w_.todo.size()) {
+      if (!stopping_ && pending_.left() > 0) {
         run_own_chunk();
         continue;
       }
@@ -219,7 +280,7 @@ public:
     sum_.done = w_.done + others_done_;
     sum_.failed = w_.failed + others_failed_;
     sum_.wall_seconds = seconds_since(t_start_);
-    sum_.pending = w_.todo.size() - sum_.done - sum_.failed;
+    sum_.pending = pending_.total() - sum_.done - sum_.failed;
     sum_.interrupted = sum_.pending > 0;
     report(true);
   }
@@ -232,7 +293,7 @@ private:
   }
 
   std::size_t chunk_size(int share) const {
-    const std::size_t remaining = w_.todo.size() - pos_;
+    const std::size_t remaining = pending_.left();
     // guided self-scheduling: a quarter of the fair share of what is left,
     // capped so that one chunk takes about chunk_seconds
     std::size_t k = (remaining + 4 * static_cast<std::size_t>(share) - 1) /
@@ -259,8 +320,8 @@ private:
     Progress p;
     p.done = w_.done + others_done_;
     p.failed = w_.failed + others_failed_;
-    p.todo = w_.todo.size();
-    p.total = w_.cases.size();
+    p.todo = pending_.total();
+    p.total = sum_.total;
     p.already_done = sum_.already_done;
     p.elapsed = seconds_since(t_start_);
     p.final = final;
@@ -285,8 +346,8 @@ private:
   }
 
   // One request: the worker's report of its last chunk (done, failed, compute
-  // nanoseconds, stop asked), answered with the next chunk (start, count), or
-  // count 0 to dismiss it.
+  // nanoseconds, stop asked), answered with the next chunk (its ranges), or
+  // none to dismiss it.
   void answer(int source) {
     long long msg[4];
     MPI_Recv(msg, 4, MPI_LONG_LONG, source, kTagRequest, w_.comm, MPI_STATUS_IGNORE);
@@ -296,40 +357,44 @@ private:
       add_cost(static_cast<double>(msg[2]) * 1e-9 / static_cast<double>(msg[0] + msg[1]));
     if (msg[3] != 0) stopping_ = true; // that worker was asked to stop
     if (w_.stop_requested()) stopping_ = true;
-    long long assign[2] = {0, 0};
+    Assignment assign{};
     ++sum_.messages;
-    if (!stopping_ && pos_ < w_.todo.size()) {
-      const std::size_t k = chunk_size(size_);
-      assign[0] = static_cast<long long>(pos_), assign[1] = static_cast<long long>(k);
-      pos_ += k;
+    if (!stopping_ && pending_.left() > 0) {
+      const Chunk c = pending_.take(chunk_size(size_));
+      assign[0] = static_cast<long long>(c.ranges.size());
+      for (std::size_t i = 0; i < c.ranges.size(); ++i) {
+        assign[1 + 2 * i] = static_cast<long long>(c.ranges[i].first);
+        assign[2 + 2 * i] = static_cast<long long>(c.ranges[i].second);
+      }
       ++sum_.chunks;
     } else {
       --active_;
     }
-    MPI_Send(assign, 2, MPI_LONG_LONG, source, kTagAssign, w_.comm);
+    MPI_Send(assign.data(), static_cast<int>(1 + 2 * assign[0]), MPI_LONG_LONG, source, kTagAssign,
+             w_.comm);
   }
 
   // A chunk of rank 0's own (at most 64 cases when there are workers to serve).
   void run_own_chunk() {
     const std::size_t k =
         (size_ == 1) ? chunk_size(1) : std::min<std::size_t>(chunk_size(size_), 64);
-    const std::size_t p0 = pos_;
-    pos_ += k;
+    const Chunk c = pending_.take(k);
     ++sum_.chunks;
     const double before = w_.compute_seconds;
     const std::size_t n_before = w_.done + w_.failed;
-    const std::size_t finished = w_.run_chunk(p0, k, [&] { serve(false); });
-    if (finished < k) stopping_ = true; // stop request mid-chunk: the rest stays pending
+    const std::size_t finished = w_.run_chunk(c, [&] { serve(false); });
+    if (finished < c.size()) stopping_ = true; // stop request mid-chunk: the rest stays pending
     const std::size_t n = w_.done + w_.failed - n_before;
     if (n > 0) add_cost((w_.compute_seconds - before) / static_cast<double>(n));
   }
 
   Worker& w_;
+  PendingCases pending_;
   ProgressSink* sink_;
   StudySummary& sum_;
   int size_;
   int active_; ///< workers not yet dismissed
-  std::size_t pos_ = 0, others_done_ = 0, others_failed_ = 0;
+  std::size_t others_done_ = 0, others_failed_ = 0;
   bool stopping_ = false;
   double case_seconds_ = 0.0; ///< running mean cost of a case, from all reports
   std::size_t cost_samples_ = 0;
@@ -341,15 +406,22 @@ private:
 // did, and computes it, until rank 0 dismisses it.
 void pull_work(Worker& w) {
   long long report_msg[4] = {0, 0, 0, 0};
+  Chunk chunk;
   while (true) {
     report_msg[3] = w.stop_requested() ? 1 : 0;
     MPI_Send(report_msg, 4, MPI_LONG_LONG, 0, kTagRequest, w.comm);
-    long long assign[2];
-    MPI_Recv(assign, 2, MPI_LONG_LONG, 0, kTagAssign, w.comm, MPI_STATUS_IGNORE);
-    if (assign[1] == 0) break;
+    Assignment assign{};
+    MPI_Recv(assign.data(), static_cast<int>(assign.size()), MPI_LONG_LONG, 0, kTagAssign, w.comm,
+             MPI_STATUS_IGNORE);
+    if (assign[0] == 0) break;
+    chunk.ranges.clear();
+    for (long long i = 0; i < assign[0]; ++i)
+      chunk.ranges.emplace_back(
+          static_cast<std::size_t>(assign[static_cast<std::size_t>(1 + 2 * i)]),
+          static_cast<std::size_t>(assign[static_cast<std::size_t>(2 + 2 * i)]));
     const std::size_t d0 = w.done, f0 = w.failed;
     const double c0 = w.compute_seconds;
-    w.run_chunk(static_cast<std::size_t>(assign[0]), static_cast<std::size_t>(assign[1]), {});
+    w.run_chunk(chunk, {});
     report_msg[0] = static_cast<long long>(w.done - d0);
     report_msg[1] = static_cast<long long>(w.failed - f0);
     report_msg[2] = static_cast<long long>((w.compute_seconds - c0) * 1e9);
@@ -360,13 +432,15 @@ void pull_work(Worker& w) {
 
 // Everyone agrees on rank 0's counts.
 void share_outcome(MPI_Comm comm, StudySummary& sum) {
-  long long counts[4] = {static_cast<long long>(sum.done), static_cast<long long>(sum.failed),
-                         static_cast<long long>(sum.pending), sum.interrupted ? 1 : 0};
-  MPI_Bcast(counts, 4, MPI_LONG_LONG, 0, comm);
+  long long counts[5] = {static_cast<long long>(sum.done), static_cast<long long>(sum.failed),
+                         static_cast<long long>(sum.pending), sum.interrupted ? 1 : 0,
+                         static_cast<long long>(sum.already_done)};
+  MPI_Bcast(counts, 5, MPI_LONG_LONG, 0, comm);
   sum.done = static_cast<std::size_t>(counts[0]);
   sum.failed = static_cast<std::size_t>(counts[1]);
   sum.pending = static_cast<std::size_t>(counts[2]);
   sum.interrupted = counts[3] != 0;
+  sum.already_done = static_cast<std::size_t>(counts[4]);
   MPI_Bcast(&sum.wall_seconds, 1, MPI_DOUBLE, 0, comm);
 }
 
@@ -386,7 +460,7 @@ void close_map(Worker& w, StudySummary& sum) {
   try {
     collectively(w.comm, [&] {
       try {
-        w.map.close();
+        w.close_map();
       } catch (const std::exception& e) {
         throw std::runtime_error("rank " + std::to_string(rank) + ": " + e.what());
       }
@@ -408,14 +482,13 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   const detail::StudyPlan plan = detail::preflight(comm, req);
   if (!req.resume) create_map(comm, req, plan);
   std::optional<io::RowWriter> map;
-  const Pending pending = open_map(comm, req, plan.cases.size(), map);
+  PendingCases pending = open_map(comm, req, plan.cases->size(), map);
 
-  Worker w{comm, req, plan.cases, pending.todo, *map, plan.kind, 0, 0, 0.0, {}};
+  Worker w(comm, req, *plan.cases, *map, plan.kind);
   StudySummary sum;
-  sum.total = plan.cases.size();
-  sum.already_done = pending.already_done;
+  sum.total = plan.cases->size();
   if (rank == 0)
-    Master(w, sink, sum).run();
+    Master(w, std::move(pending), sink, sum).run();
   else
     pull_work(w);
   share_outcome(comm, sum);
