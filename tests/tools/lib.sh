@@ -1,10 +1,39 @@
+# shellcheck shell=bash
 # Shared helpers of the tool tests (sourced; W, PYRUN set by the caller).
 #   fail MSG        print FAIL: MSG on stderr, exit 1
 #   ok MSG          count a passed check and print it
 #   py ARGS...      run a Python tool through tools/pyrun
 #   run NAME CMD... CMD must exit 0 without a traceback; stdout in $W/NAME.out,
 #                   stderr in $W/NAME.err
+#   tool_test_args SUBDIR MDRMAP_EXE PYRUN SRCDIR WORKDIR
+#                   checks and sets MDRMAP, PYRUN (relative to SRCDIR if need
+#                   be), SRCDIR, WORKDIR, and W = WORKDIR/SUBDIR, made empty
+#   allow_mpi_here  mpirun may oversubscribe and run as root (these tests only)
 checks=0
+
+tool_test_args() {
+  local sub=$1
+  shift
+  if (($# != 4)); then
+    echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
+    exit 2
+  fi
+  MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
+  if [[ "$PYRUN" != /* && ! -e "$PYRUN" && -e "$SRCDIR/$PYRUN" ]]; then
+    PYRUN="$SRCDIR/$PYRUN"
+  fi
+  [[ -x "$MDRMAP" ]] || fail "no executable $MDRMAP"
+  [[ -e "$PYRUN" ]] || fail "no $PYRUN"
+  W="$WORKDIR/$sub"
+  rm -rf "$W"
+  mkdir -p "$W"
+}
+
+allow_mpi_here() {
+  command -v mpirun >/dev/null || fail "no mpirun on PATH"
+  export OMPI_MCA_rmaps_base_oversubscribe=1
+  if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+}
 
 fail() {
   echo "FAIL: $*" >&2

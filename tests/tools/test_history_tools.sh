@@ -21,20 +21,11 @@
 #     and write no PNG.
 set -euo pipefail
 
-if (($# != 4)); then
-  echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
-  exit 2
-fi
-MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
-[[ -x "$MDRMAP" ]] || { echo "FAIL: no executable $MDRMAP" >&2; exit 1; }
-W="$WORKDIR/history_tools_test"
-rm -rf "$W"
-mkdir -p "$W"
-ST="$SRCDIR/tools/steps.py"
-HE="$SRCDIR/tools/healing.py"
-
 # shellcheck source=tests/tools/lib.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+tool_test_args history_tools_test "$@"
+ST="$SRCDIR/tools/steps.py"
+HE="$SRCDIR/tools/healing.py"
 
 # bad NAME EXPECTED CMD...: exit 2, one stderr line containing EXPECTED, no PNG
 bad() {

@@ -12,22 +12,12 @@
 #   bash tests/tools/test_mapxr.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
 set -euo pipefail
 
-if (($# != 4)); then
-  echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
-  exit 2
-fi
-MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
-[[ -x "$MDRMAP" ]] || { echo "FAIL: no executable $MDRMAP" >&2; exit 1; }
-export OMPI_MCA_rmaps_base_oversubscribe=1
-if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-
-W="$WORKDIR/mapxr_test"
-rm -rf "$W"
-mkdir -p "$W"
-XR="$SRCDIR/tools/mapxr.py"
-MS="$SRCDIR/tools/map_summary.py"
 # shellcheck source=tests/tools/lib.sh
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+tool_test_args mapxr_test "$@"
+allow_mpi_here
+XR="$SRCDIR/tools/mapxr.py"
+MS="$SRCDIR/tools/map_summary.py"
 
 study() {
   mpirun -np 2 "$MDRMAP" study --quiet "$@" >"$W/study.log" 2>&1 || {

@@ -29,34 +29,16 @@
 # Oversubscription and running as root are allowed here, for the test only.
 set -euo pipefail
 
-if (($# != 4)); then
-  echo "usage: bash $0 MDRMAP_EXE PYRUN SRCDIR WORKDIR" >&2
-  exit 2
-fi
-MDRMAP=$1 PYRUN=$2 SRCDIR=$3 WORKDIR=$4
-# PYRUN may be given relative to the source tree (tools/pyrun)
-if [[ "$PYRUN" != /* && ! -e "$PYRUN" && -e "$SRCDIR/$PYRUN" ]]; then
-  PYRUN="$SRCDIR/$PYRUN"
-fi
-[[ -x "$MDRMAP" ]] || { echo "FAIL: no executable $MDRMAP" >&2; exit 1; }
-[[ -e "$PYRUN" ]] || { echo "FAIL: no $PYRUN" >&2; exit 1; }
-command -v mpirun >/dev/null || { echo "FAIL: no mpirun on PATH" >&2; exit 1; }
-
-export OMPI_MCA_rmaps_base_oversubscribe=1
-if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
-
-W="$WORKDIR/tools_test"
-rm -rf "$W"
-mkdir -p "$W"
+# shellcheck source=tests/tools/lib.sh
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+tool_test_args tools_test "$@"
+allow_mpi_here
 TS="$SRCDIR/tools/plot_timeseries.py"
 PM="$SRCDIR/tools/plot_map.py"
 MS="$SRCDIR/tools/map_summary.py"
 JOBS=${TOOLS_TEST_JOBS:-2}
 started=()
 bad_names=()
-
-# shellcheck source=tests/tools/lib.sh
-source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # bad NAME EXPECTED CMD...: must exit 2 with exactly one stderr line containing EXPECTED
 bad() {
