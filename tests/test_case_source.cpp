@@ -22,6 +22,7 @@
 #include "study/config.hpp"
 
 namespace fs = std::filesystem;
+using mdrmap::Case;
 using mdrmap::InvalidInput;
 using namespace mdrmap::study;
 
@@ -54,23 +55,28 @@ std::pair<std::string, std::string> failure(const std::function<void()>& f) {
   return {"", "(no error)"};
 }
 
-void expect_same(const StepRow& a, const StepRow& b, std::size_t i) {
-  EXPECT_EQ(a.d, b.d) << "case " << i;
-  EXPECT_EQ(a.R, b.R) << "case " << i;
-  EXPECT_EQ(a.tau, b.tau) << "case " << i;
-  EXPECT_EQ(a.v, b.v) << "case " << i;
-  EXPECT_EQ(a.v1, b.v1) << "case " << i;
-  EXPECT_EQ(a.G, b.G) << "case " << i;
+void expect_same(const Row& a, const Row& b, std::size_t i) {
+  EXPECT_EQ(a, b) << "case " << i;
+}
+
+/// Sets the one value of column `name` (a hand-made config).
+void set_column(StudyConfig& c, const std::string& name, double x) {
+  for (Axis& a : c.axes)
+    if (a.name == name) {
+      a.values = {x};
+      return;
+    }
+  ADD_FAILURE() << "no column " << name;
 }
 
 /// Every case by row(i), and random ranges by rows(), against expand_cases.
 void expect_matches_expansion(const StudyConfig& c, const CaseSource& s) {
-  const std::vector<StepRow> all = expand_cases(c);
+  const std::vector<Row> all = expand_cases(c);
   ASSERT_EQ(s.size(), all.size());
   for (std::size_t i = 0; i < all.size(); ++i)
     expect_same(s.row(i), all[i], i);
   std::mt19937_64 rng(7);
-  std::vector<StepRow> got;
+  std::vector<Row> got;
   for (int k = 0; k < 50; ++k) {
     std::size_t i0 = rng() % all.size(), i1 = rng() % (all.size() + 1);
     if (i1 < i0) std::swap(i0, i1);
@@ -158,7 +164,7 @@ TEST(CaseSource, ACaseListChangedAfterTheScanIsRefused) {
       parse_config("[cases]\nfile = changing.csv\n", fs::path(p).parent_path().string(), "x.ini");
   const CaseSource s(c);
   file_with("changing.csv", csv_of(50));
-  std::vector<StepRow> rows;
+  std::vector<Row> rows;
   EXPECT_EQ(failure([&] { s.rows(0, 10, rows); }).first, "cases.file");
 }
 
@@ -167,7 +173,7 @@ TEST(CaseSource, StreamedChecksFailAsExpandCases) {
   // parse_config would refuse it from the grid's corners)
   StudyConfig g =
       parse_config("[grid]\nd = 1e-3\nR = 1\ntau = 1, 1e300\nv = 1, 2\nv1 = 0, 1\n", "", "g.ini");
-  g.run.t_end_over_tau = 1e10;
+  set_column(g, "t_end_over_tau", 1e10);
   const auto expanded = failure([&] { expand_cases(g); });
   ASSERT_NE(expanded.first, "");
   EXPECT_NE(expanded.second.find("case 5:"), std::string::npos) << expanded.second;
@@ -184,7 +190,7 @@ TEST(CaseSource, StreamedChecksFailAsExpandCases) {
   file_with("both.csv", "d,R,tau,v,v1\n1e-3,1,1,1,0\n1e-3,1,1e300,1,0\n1e-3,1,x,1,0\n");
   for (const char* f : {"window.csv", "both.csv"}) {
     StudyConfig c = parse_config(std::string("[cases]\nfile = ") + f + "\n", dir, "l.ini");
-    c.run.t_end_over_tau = 1e10;
+    set_column(c, "t_end_over_tau", 1e10);
     const auto want = failure([&] { expand_cases(c); });
     ASSERT_NE(want.first, "") << f;
     EXPECT_EQ(failure([&] { scan_case_list(c, true); }), want) << f;
@@ -194,11 +200,11 @@ TEST(CaseSource, StreamedChecksFailAsExpandCases) {
   t.run.samples = 1'000'000'000'000;
   EXPECT_EQ(failure([&] { scan_case_list(t, true); }), failure([&] { expand_cases(t); }));
   EXPECT_EQ(failure([&] { scan_case_list(t, true); }).first, "run.timeseries");
-  // an empty list, as read_cases_csv says it
+  // an empty list, as expand_cases says it
   file_with("empty.csv", "d,R,tau,v,v1\n# nothing\n");
   const StudyConfig e = parse_config("[cases]\nfile = empty.csv\n", dir, "e.ini");
-  EXPECT_EQ(failure([&] { scan_case_list(e, true); }),
-            failure([&] { read_cases_csv(e.cases_file, 1.0); }));
+  EXPECT_EQ(failure([&] { scan_case_list(e, true); }), failure([&] { expand_cases(e); }));
+  EXPECT_NE(failure([&] { expand_cases(e); }).second.find("no cases"), std::string::npos);
 }
 
 TEST(CaseSource, Sha256KnownAnswers) {
@@ -220,4 +226,39 @@ TEST(CaseSource, Sha256KnownAnswers) {
     left -= k;
   }
   EXPECT_EQ(million.hex(), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST(CaseSource, HistoryGridRowsAsExpansion) {
+  const StudyConfig c =
+      parse_config("[grid]\nFN = 1e-3, 2e-3\nR = 1\ntau = 0.5, 2\nv = 0.1, 1\n"
+                   "[history]\nw1_over_v = 0, 0.5\nT1_over_tau = logspace:1:100:3\nw2_over_v = 1\n"
+                   "T2_over_tau = 5, 20\n",
+                   "", "h.ini");
+  const CaseSource s(c);
+  ASSERT_EQ(s.size(), 2u * 2 * 2 * 2 * 3 * 2);
+  const std::vector<Row> all = expand_cases(c);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    ASSERT_EQ(s.row(i), all[i]) << i;
+  expect_matches_expansion(c, s);
+  EXPECT_EQ(s.canonical(), canonical(c));
+  // the last column fastest: T2_over_tau, then T1_over_tau
+  EXPECT_EQ(s.row(0).back(), 5.0);
+  EXPECT_EQ(s.row(1).back(), 20.0);
+  EXPECT_EQ(s.row(2)[c.axes.size() - 3], 10.0); // T1_over_tau's second value
+}
+
+TEST(CaseSource, CaseListWithHistoryColumnsByRange) {
+  std::string text = "w1,T1,w2,T2,FN,R,tau,v\n";
+  const std::size_t n = CaseListIndex::kStride + 5;
+  for (std::size_t i = 0; i < n; ++i)
+    text += "0," + std::to_string(1 + i) + ",0.5,3,1e-3,1,1,0.5\n";
+  const std::string p = file_with("hist.csv", text);
+  const StudyConfig c =
+      parse_config("[cases]\nfile = hist.csv\n", fs::path(p).parent_path().string(), "h.ini");
+  EXPECT_EQ(c.segments(), 2u);
+  const CaseSource s(c);
+  expect_matches_expansion(c, s);
+  const Case k = case_for(c, s.row(n - 1));
+  EXPECT_EQ(k.history.segments.at(0).T, static_cast<double>(n));
+  EXPECT_EQ(k.history.segments.at(1).w, 0.5);
 }

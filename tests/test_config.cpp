@@ -112,6 +112,35 @@ double at(const StudyConfig& c, std::size_t axis, std::size_t i) {
   return c.axes.at(axis).values.at(i);
 }
 
+/// The names of a study's columns, in column order.
+std::vector<std::string> names(const StudyConfig& c) {
+  std::vector<std::string> out;
+  for (const Axis& a : c.axes)
+    out.push_back(a.name);
+  return out;
+}
+
+/// Index of the column `name` (c.axes.size() and a test failure when there is none).
+std::size_t col(const StudyConfig& c, const std::string& name) {
+  for (std::size_t i = 0; i < c.axes.size(); ++i)
+    if (c.axes[i].name == name) return i;
+  ADD_FAILURE() << "no column " << name;
+  return c.axes.size();
+}
+
+/// The value of column `name` in a row.
+double val(const StudyConfig& c, const Row& r, const std::string& name) {
+  return r.at(col(c, name));
+}
+
+/// The cases of a study as Cases.
+std::vector<mdrmap::Case> cases_of(const StudyConfig& c) {
+  std::vector<mdrmap::Case> out;
+  for (const Row& r : expand_cases(c))
+    out.push_back(case_for(c, r));
+  return out;
+}
+
 // --- Bad configs ----------------------------------------------------------------
 
 struct BadConfig {
@@ -140,12 +169,15 @@ std::vector<BadConfig> bad_configs() {
       {"grid and cases", base({}, "[cases]\nfile = x.csv\n"), "config", {"t.ini:10:", "[grid]"}},
       {"neither grid nor cases", "[run]\nsamples = 11\n", "config", {"t.ini:", "[grid]"}},
       {"section twice", base({}, "[run]\nG = 2\n"), "config", {"t.ini:10:", "line 7"}},
-      {"missing axis tau", base({{4, ""}}), "grid.tau", {"t.ini:1:", "'tau'"}},
-      {"missing v1", base({{6, ""}}), "grid.v1", {"t.ini:1:", "v1_over_v"}},
+      {"missing axis tau",
+       base({{4, ""}}),
+       "grid.tau",
+       {"t.ini:1:", "no tau", "d or FN, R, tau and v"}},
+      {"missing v1", base({{6, ""}}), "history.w1", {"t.ini:1:", "w1_over_v", "v1"}},
       {"both v1 and v1_over_v",
        base({{6, "v1_over_v = 0.5\nv1 = 1"}}),
        "grid.v1",
-       {"t.ini:7:", "line 6"}},
+       {"t.ini:7:", "both v1_over_v (grid.v1_over_v) and v1 are given", "give only one"}},
       {"missing cases file key",
        "[cases]\n[run]\nsamples = 5\n",
        "cases.file",
@@ -276,30 +308,40 @@ TEST(StudyConfigGood, AllAxisFormsAndExactEnds) {
                               "v = logspace:1e-2:1e2:5\n"
                               "v1_over_v = 0, 1e-4\n");
   EXPECT_EQ(c.kind, StudyConfig::Kind::Grid);
-  ASSERT_EQ(c.axes.size(), 5u);
-  EXPECT_EQ(c.axes[0].name, "d");
+  // the seed's form: G (default 1) and its window t_end_over_tau (default 6) are columns too
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"d", "R", "tau", "G", "v", "v1_over_v", "t_end_over_tau"}));
   EXPECT_EQ(c.axes[0].values, std::vector<double>({1e-3}));
+  EXPECT_EQ(c.axes[0].section, "grid");
   EXPECT_EQ(c.axes[1].values, std::vector<double>({1, 2, 5}));
   EXPECT_EQ(c.axes[1].spec, "1, 2 ,5");
   EXPECT_EQ(c.axes[2].values, std::vector<double>({0.5, 1.0, 1.5, 2.0}));
   EXPECT_FALSE(c.axes[2].logarithmic);
-  ASSERT_EQ(c.axes[3].values.size(), 5u);
-  EXPECT_TRUE(c.axes[3].logarithmic);
-  EXPECT_EQ(at(c, 3, 0), 1e-2); // exactly the ends
-  EXPECT_EQ(at(c, 3, 4), 1e2);
-  EXPECT_NEAR(at(c, 3, 1), 0.1, 1e-15);
-  EXPECT_NEAR(at(c, 3, 2), 1.0, 1e-15);
-  EXPECT_NEAR(at(c, 3, 3), 10.0, 1e-13);
-  EXPECT_EQ(c.axes[4].name, "v1_over_v");
-  EXPECT_EQ(c.axes[4].values, std::vector<double>({0, 1e-4}));
+  ASSERT_EQ(c.axes[4].values.size(), 5u);
+  EXPECT_TRUE(c.axes[4].logarithmic);
+  EXPECT_EQ(at(c, 4, 0), 1e-2); // exactly the ends
+  EXPECT_EQ(at(c, 4, 4), 1e2);
+  EXPECT_NEAR(at(c, 4, 1), 0.1, 1e-15);
+  EXPECT_NEAR(at(c, 4, 2), 1.0, 1e-15);
+  EXPECT_NEAR(at(c, 4, 3), 10.0, 1e-13);
+  EXPECT_EQ(c.axes[5].values, std::vector<double>({0, 1e-4}));
+  EXPECT_EQ(c.axes[5].column.kind, Column::Kind::VelocityOverV);
+  EXPECT_EQ(c.axes[5].column.segment, 1u);
   EXPECT_EQ(case_count(c), 1u * 3 * 4 * 5 * 2);
-  // [run] defaults
+  EXPECT_EQ(c.segments(), 1u);
+  EXPECT_FALSE(c.by_force());
+  // defaults
+  EXPECT_EQ(c.axes[3].values, std::vector<double>({1.0})); // G
+  EXPECT_EQ(c.axes[6].values, std::vector<double>({6.0})); // t_end_over_tau
+  EXPECT_EQ(c.axes[6].section, "run");
+  EXPECT_EQ(c.axes[6].option(), "run.t_end_over_tau");
+  EXPECT_EQ(c.axes[6].column.kind, Column::Kind::DurationOverTau);
   EXPECT_EQ(c.run.samples, 201);
-  EXPECT_EQ(c.run.t_end_over_tau, 6.0);
   EXPECT_EQ(c.run.rtol, 1e-4);
   EXPECT_EQ(c.run.solver, "auto");
   EXPECT_FALSE(c.run.timeseries);
-  EXPECT_EQ(c.run.G, 1.0);
+  EXPECT_EQ(c.run.spacing, mdrmap::Spacing::Linear);
+  EXPECT_EQ(c.run.decades, 4.0);
 }
 
 TEST(StudyConfigGood, LinspaceAndLogspaceEndsAreExact) {
@@ -310,7 +352,7 @@ TEST(StudyConfigGood, LinspaceAndLogspaceEndsAreExact) {
       spec.precision(17);
       spec << form << ":" << lo << ":" << hi << ":" << n;
       SCOPED_TRACE(spec.str());
-      const Axis a = parse_axis("v", spec.str());
+      const Axis a = parse_axis("grid", "v", spec.str());
       ASSERT_EQ(a.values.size(), static_cast<std::size_t>(n));
       EXPECT_EQ(a.values.front(), lo);
       EXPECT_EQ(a.values.back(), hi);
@@ -318,16 +360,16 @@ TEST(StudyConfigGood, LinspaceAndLogspaceEndsAreExact) {
         EXPECT_TRUE(std::isfinite(a.values[i]));
     }
   }
-  const Axis g = parse_axis("v", "logspace:1e-300:1e300:7");
+  const Axis g = parse_axis("grid", "v", "logspace:1e-300:1e300:7");
   EXPECT_NEAR(std::log10(g.values[3]), 0.0, 1e-12); // no overflow of hi/lo
 }
 
 TEST(StudyConfigGood, DescendingLinspace) {
-  const Axis a = parse_axis("tau", "linspace:2:0.5:4");
+  const Axis a = parse_axis("grid", "tau", "linspace:2:0.5:4");
   EXPECT_EQ(a.values, std::vector<double>({2.0, 1.5, 1.0, 0.5}));
-  const Axis b = parse_axis("tau", "linspace:1:0:3");
+  const Axis b = parse_axis("grid", "tau", "linspace:1:0:3");
   EXPECT_EQ(b.values, std::vector<double>({1.0, 0.5, 0.0}));
-  const Axis l = parse_axis("v", "logspace:100:1:3");
+  const Axis l = parse_axis("grid", "v", "logspace:100:1:3");
   EXPECT_EQ(l.values.front(), 100.0);
   EXPECT_NEAR(l.values[1], 10.0, 1e-13);
   EXPECT_EQ(l.values.back(), 1.0);
@@ -343,12 +385,16 @@ TEST(StudyConfigGood, CaseOrderLastAxisFastest) {
     for (double tau : {0.0, 5.0})
       for (double v1 : {0.0, 11.0}) {
         SCOPED_TRACE(k);
-        EXPECT_EQ(cases[k].d, d);
-        EXPECT_EQ(cases[k].R, 3.0);
-        EXPECT_EQ(cases[k].tau, tau);
-        EXPECT_EQ(cases[k].v, 7.0);
-        EXPECT_EQ(cases[k].v1, v1);
-        EXPECT_EQ(cases[k].G, 1.0);
+        EXPECT_EQ(val(c, cases[k], "d"), d);
+        EXPECT_EQ(val(c, cases[k], "R"), 3.0);
+        EXPECT_EQ(val(c, cases[k], "tau"), tau);
+        EXPECT_EQ(val(c, cases[k], "v"), 7.0);
+        EXPECT_EQ(val(c, cases[k], "v1"), v1);
+        EXPECT_EQ(val(c, cases[k], "G"), 1.0);
+        EXPECT_EQ(val(c, cases[k], "t_end_over_tau"), 6.0);
+        const mdrmap::Case x = case_for(c, cases[k]);
+        EXPECT_EQ(x.loading.d, d);
+        EXPECT_EQ(x.history.segments.at(0).w, v1);
         ++k;
       }
 }
@@ -356,14 +402,16 @@ TEST(StudyConfigGood, CaseOrderLastAxisFastest) {
 TEST(StudyConfigGood, V1OverVMultipliesV) {
   const StudyConfig c =
       parse("[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 2, 4\nv1_over_v = 0.5, 3\n[run]\nG = 2.5\n");
-  const auto cases = expand_cases(c);
+  const auto cases = cases_of(c);
   ASSERT_EQ(cases.size(), 4u);
-  EXPECT_EQ(cases[0].v1, 1.0);
-  EXPECT_EQ(cases[1].v1, 6.0);
-  EXPECT_EQ(cases[2].v1, 2.0);
-  EXPECT_EQ(cases[3].v1, 12.0);
-  for (const StepRow& s : cases)
-    EXPECT_EQ(s.G, 2.5);
+  EXPECT_EQ(cases[0].history.segments[0].w, 1.0);
+  EXPECT_EQ(cases[1].history.segments[0].w, 6.0);
+  EXPECT_EQ(cases[2].history.segments[0].w, 2.0);
+  EXPECT_EQ(cases[3].history.segments[0].w, 12.0);
+  for (const mdrmap::Case& k : cases)
+    EXPECT_EQ(k.material.G, 2.5);
+  EXPECT_EQ(c.axes[col(c, "G")].section, "run"); // the seed's [run] G
+  EXPECT_EQ(c.axes[col(c, "G")].option(), "run.G");
 }
 
 TEST(StudyConfigGood, RunSettingsAndNormalization) {
@@ -374,14 +422,18 @@ TEST(StudyConfigGood, RunSettingsAndNormalization) {
                               "solver = mdr\r\n"
                               "timeseries = YES\r\n"
                               "G = 0x10\r\n"
+                              "spacing = LOG\r\n"
+                              "decades = 6\r\n"
                               "[grid]\r\n"
                               "d=1e-3\r\nR=1\r\ntau=2, 0\r\nv=1\r\nv1=1 #comment\r\n");
-  EXPECT_EQ(c.run.t_end_over_tau, 3.0);
+  EXPECT_EQ(c.axes[col(c, "t_end_over_tau")].values, std::vector<double>({3.0}));
   EXPECT_EQ(c.run.samples, 401);
   EXPECT_EQ(c.run.rtol, 1e-6);
   EXPECT_EQ(c.run.solver, "mdr");
   EXPECT_TRUE(c.run.timeseries);
-  EXPECT_EQ(c.run.G, 16.0);
+  EXPECT_EQ(c.run.spacing, mdrmap::Spacing::Log);
+  EXPECT_EQ(c.run.decades, 6.0);
+  EXPECT_EQ(c.axes[col(c, "G")].values, std::vector<double>({16.0}));
   for (const auto& [text, want] : std::vector<std::pair<std::string, bool>>{{"true", true},
                                                                             {"false", false},
                                                                             {"yes", true},
@@ -398,44 +450,77 @@ TEST(StudyConfigGood, TrailingCommentNeedsWhitespace) {
   const auto [option, message] = error_of([] { parse(base({{6, "v1 = 1#x"}})); });
   EXPECT_EQ(option, "grid.v1");
   EXPECT_NE(message.find("'1#x'"), std::string::npos) << message;
-  EXPECT_EQ(parse(base({{6, "v1 = 1 #x"}})).axes[4].values, std::vector<double>({1.0}));
-  EXPECT_EQ(parse(base({{6, "v1 = 1\t;x"}})).axes[4].values, std::vector<double>({1.0}));
+  const StudyConfig a = parse(base({{6, "v1 = 1 #x"}}));
+  EXPECT_EQ(a.axes[col(a, "v1")].values, std::vector<double>({1.0}));
+  const StudyConfig b = parse(base({{6, "v1 = 1\t;x"}}));
+  EXPECT_EQ(b.axes[col(b, "v1")].values, std::vector<double>({1.0}));
 }
 
 TEST(StudyConfigGood, CaseForIsTheSeedStep) {
   const StudyConfig c = parse(base({{4, "tau = 0, 2"}}, "t_end_over_tau = 3\n"));
-  const auto cases = expand_cases(c);
-  ASSERT_EQ(cases.size(), 2u);
-  for (const StepRow& r : cases) {
+  const auto rows = expand_cases(c);
+  ASSERT_EQ(rows.size(), 2u);
+  for (const Row& r : rows) {
     // one segment v -> v1 over the window, [run] samples, linear
     const mdrmap::Case k = case_for(c, r);
-    EXPECT_EQ(k.loading.d, r.d);
-    EXPECT_EQ(k.indenter.R, r.R);
-    EXPECT_EQ(k.material.tau, r.tau);
-    EXPECT_EQ(k.material.G, r.G);
-    EXPECT_EQ(k.history.v0, r.v);
+    EXPECT_EQ(k.loading.d, val(c, r, "d"));
+    EXPECT_EQ(k.loading.F0, 0.0);
+    EXPECT_EQ(k.indenter.R, val(c, r, "R"));
+    EXPECT_EQ(k.material.tau, val(c, r, "tau"));
+    EXPECT_EQ(k.material.G, val(c, r, "G"));
+    EXPECT_EQ(k.history.v0, val(c, r, "v"));
     ASSERT_EQ(k.history.size(), 1u);
-    EXPECT_EQ(k.history.segments[0].w, r.v1);
-    EXPECT_EQ(k.history.segments[0].T, step_duration(c, r));
+    EXPECT_EQ(k.history.segments[0].w, val(c, r, "v1_over_v") * val(c, r, "v"));
     EXPECT_EQ(k.sampling.samples, 11);
     EXPECT_EQ(k.sampling.spacing, mdrmap::Spacing::Linear);
   }
-  const StepRow& r0 = cases[0]; // tau = 0: the default window
-  EXPECT_EQ(step_duration(c, r0), mdrmap::default_step_duration(r0.d, r0.R, r0.tau, r0.v, r0.v1));
-  EXPECT_EQ(step_duration(c, cases[1]), 6.0); // t_end_over_tau * tau
+  // tau = 0: the seed's default window, six contact half-widths at the slower velocity
+  const mdrmap::Case k0 = case_for(c, rows[0]);
+  EXPECT_DOUBLE_EQ(k0.history.segments[0].T,
+                   mdrmap::default_step_duration(1e-3, 1.0, 0.0, 1.0, 0.5));
+  EXPECT_EQ(case_for(c, rows[1]).history.segments[0].T, 6.0); // t_end_over_tau * tau
 }
 
 TEST(StudyConfigGood, ParseAxisErrorsNameTheAxis) {
-  EXPECT_EQ(error_of([] { parse_axis("R", "0"); }).first, "grid.R");
-  EXPECT_EQ(error_of([] { parse_axis("v1_over_v", "-1"); }).first, "grid.v1_over_v");
-  EXPECT_EQ(error_of([] { parse_axis("q", "1"); }).first, "grid.q");
-  EXPECT_EQ(error_of([] { parse_axis("v", "linspace:1:2:100000000"); }).first, "grid.v");
-  EXPECT_EQ(error_of([] { parse_axis("v", ""); }).first, "grid.v");
-  EXPECT_EQ(parse_axis("tau", "-0").values, std::vector<double>({0.0}));
-  EXPECT_FALSE(std::signbit(parse_axis("tau", "-0").values[0])); // -0 normalized
+  EXPECT_EQ(error_of([] { parse_axis("grid", "R", "0"); }).first, "grid.R");
+  EXPECT_EQ(error_of([] { parse_axis("grid", "v1_over_v", "-1"); }).first, "grid.v1_over_v");
+  EXPECT_EQ(error_of([] { parse_axis("grid", "q", "1"); }).first, "grid.q");
+  EXPECT_EQ(error_of([] { parse_axis("grid", "v", "linspace:1:2:100000000"); }).first, "grid.v");
+  EXPECT_EQ(error_of([] { parse_axis("grid", "v", ""); }).first, "grid.v");
+  EXPECT_EQ(error_of([] { parse_axis("history", "T1_over_tau", "0"); }).first,
+            "history.T1_over_tau");
+  EXPECT_EQ(error_of([] { parse_axis("history", "w0", "1"); }).first, "history.w0");
+  EXPECT_EQ(parse_axis("grid", "tau", "-0").values, std::vector<double>({0.0}));
+  EXPECT_FALSE(std::signbit(parse_axis("grid", "tau", "-0").values[0])); // -0 normalized
+}
+
+TEST(StudyConfigGood, ParseColumnNames) {
+  Column k;
+  ASSERT_TRUE(parse_column("FN", k));
+  EXPECT_EQ(k.kind, Column::Kind::Param);
+  EXPECT_EQ(std::string(k.param->name), "FN");
+  ASSERT_TRUE(parse_column("w12_over_v", k));
+  EXPECT_EQ(k.kind, Column::Kind::VelocityOverV);
+  EXPECT_EQ(k.segment, 12u);
+  ASSERT_TRUE(parse_column("T3", k));
+  EXPECT_EQ(k.kind, Column::Kind::Duration);
+  EXPECT_EQ(k.segment, 3u);
+  ASSERT_TRUE(parse_column("T2_over_tau", k));
+  EXPECT_EQ(k.kind, Column::Kind::DurationOverTau);
+  ASSERT_TRUE(parse_column("v1", k));
+  EXPECT_EQ(k.kind, Column::Kind::Velocity);
+  EXPECT_EQ(k.segment, 1u);
+  for (const char* bad : {"w0", "T01", "w", "T", "w1_over_tau", "T1_over_v", "samples",
+                          "log-decades", "x", "", "w1x", "v2"})
+    EXPECT_FALSE(parse_column(bad, k)) << bad;
 }
 
 // --- Case lists ------------------------------------------------------------------
+
+/// A case list `csv` read through a [cases] config with `extra` lines: its rows.
+StudyConfig list_config(const std::string& csv, const std::string& extra = "") {
+  return parse_config("[cases]\nfile = " + csv + "\n" + extra, "", "l.ini");
+}
 
 TEST(StudyCases, GoodCsvAnyColumnOrder) {
   const std::string p = tmp().write("good.csv", "v1, tau ,d,R,v\r\n"
@@ -444,19 +529,30 @@ TEST(StudyCases, GoodCsvAnyColumnOrder) {
                                                 "  0 , 0 , 2e-3 , 3 , 4  \r\n"
                                                 "\n"
                                                 "7,2,1e-2,1,7\n");
-  const auto cases = read_cases_csv(p, 2.0);
-  ASSERT_EQ(cases.size(), 3u);
-  EXPECT_EQ(cases[0].d, 1e-3);
-  EXPECT_EQ(cases[0].R, 1.0);
-  EXPECT_EQ(cases[0].tau, 1.0);
-  EXPECT_EQ(cases[0].v, 2.0);
-  EXPECT_EQ(cases[0].v1, 0.5);
-  EXPECT_EQ(cases[0].G, 2.0);
-  EXPECT_EQ(cases[1].d, 2e-3);
-  EXPECT_EQ(cases[1].tau, 0.0);
-  EXPECT_EQ(cases[1].v1, 0.0);
-  EXPECT_EQ(cases[2].v1, 7.0);
-  EXPECT_EQ(cases[2].tau, 2.0);
+  const StudyConfig c = list_config(p, "[run]\nG = 2\n");
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"d", "R", "tau", "G", "v", "v1", "t_end_over_tau"}));
+  for (const char* listed : {"d", "R", "tau", "v", "v1"}) {
+    EXPECT_TRUE(c.axes[col(c, listed)].listed) << listed;
+    EXPECT_EQ(c.axes[col(c, listed)].option(), std::string("cases.") + listed);
+  }
+  EXPECT_FALSE(c.axes[col(c, "G")].listed);
+  const auto rows = expand_cases(c);
+  ASSERT_EQ(rows.size(), 3u);
+  const auto cases = cases_of(c);
+  EXPECT_EQ(cases[0].loading.d, 1e-3);
+  EXPECT_EQ(cases[0].indenter.R, 1.0);
+  EXPECT_EQ(cases[0].material.tau, 1.0);
+  EXPECT_EQ(cases[0].history.v0, 2.0);
+  EXPECT_EQ(cases[0].history.segments.at(0).w, 0.5);
+  EXPECT_EQ(cases[0].history.segments.at(0).T, 6.0); // the seed's window: 6 tau
+  EXPECT_EQ(cases[0].material.G, 2.0);
+  EXPECT_EQ(cases[1].loading.d, 2e-3);
+  EXPECT_EQ(cases[1].material.tau, 0.0);
+  EXPECT_EQ(cases[1].history.segments.at(0).w, 0.0);
+  EXPECT_EQ(cases[2].history.segments.at(0).w, 7.0);
+  EXPECT_EQ(cases[2].material.tau, 2.0);
+  EXPECT_EQ(cases[2].history.segments.at(0).T, 12.0);
 }
 
 TEST(StudyCases, BadCsvNamesLineAndColumn) {
@@ -482,9 +578,17 @@ TEST(StudyCases, BadCsvNamesLineAndColumn) {
       {"nan cell", "d,R,tau,v,v1\n1e-3,nan,1,1,0\n", "cases.R", {"bad.csv:2:2:", "finite"}},
       {"empty cell", "d,R,tau,v,v1\n1e-3,1,,1,0\n", "cases.tau", {"bad.csv:2:3:", "empty"}},
       {"trailing junk", "d,R,tau,v,v1\n1e-3,1,1,1 m/s,0\n", "cases.v", {"bad.csv:2:4:", "'1 m/s'"}},
-      {"missing column", "d,R,tau,v\n1e-3,1,1,1\n", "cases.file", {"bad.csv:1:", "'v1'"}},
+      {"missing column",
+       "d,R,tau,v\n1e-3,1,1,1\n",
+       "history.w1",
+       {"bad.csv' and the config: no history", "w1_over_v", "v1"}},
+      {"missing column R", "d,tau,v,v1\n1e-3,1,1,1\n", "grid.R", {"bad.csv' and the config: no R"}},
       {"unknown column", "d,R,tau,v,vv\n", "cases.file", {"bad.csv:1:5:", "'vv'"}},
       {"duplicate column", "d,R,tau,v,d,v1\n", "cases.file", {"bad.csv:1:5:", "twice"}},
+      {"same column twice over",
+       "d,R,tau,v,w1,v1,T1\n",
+       "cases.file",
+       {"bad.csv:1:6:", "'v1'", "'w1'"}},
       {"wrong field count", "d,R,tau,v,v1\n1e-3,1,1,1\n", "cases.file", {"bad.csv:2:", "4 fields"}},
       {"too many fields",
        "d,R,tau,v,v1\n1e-3,1,1,1,0,9\n",
@@ -495,24 +599,25 @@ TEST(StudyCases, BadCsvNamesLineAndColumn) {
       {"combined overflow",
        "d,R,tau,v,v1\n1e-3,1,1e300,1e300,0\n",
        "cases.tau",
-       {"bad.csv:2:3:", "overflow"}},
+       {"bad.csv: case 1:", "overflow", "(case d = 0.001"}},
   };
   for (const auto& b : table) {
     SCOPED_TRACE(b.name);
     const std::string p = tmp().write("bad.csv", b.text);
-    const auto [option, message] = error_of([&] { read_cases_csv(p, 1.0); });
+    const auto [option, message] = error_of([&] { expand_cases(list_config(p)); });
     EXPECT_EQ(option, b.option) << message;
     for (const auto& m : b.mentions)
       EXPECT_NE(message.find(m), std::string::npos) << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
-  const auto missing = error_of([] { read_cases_csv(tmp().path() + "/nope.csv", 1.0); });
+  const auto missing = error_of([] { list_config(tmp().path() + "/nope.csv"); });
   EXPECT_EQ(missing.first, "cases.file");
   EXPECT_NE(missing.second.find("cannot read"), std::string::npos) << missing.second;
-  const auto dir = error_of([] { read_cases_csv(tmp().path(), 1.0); });
+  const auto dir = error_of([] { list_config(tmp().path()); });
   EXPECT_EQ(dir.first, "cases.file");
   const std::string good = tmp().write("g.csv", "d,R,tau,v,v1\n1,1,1,1,1\n");
-  EXPECT_EQ(error_of([&] { read_cases_csv(good, 0.0); }).first, "run.G");
+  EXPECT_EQ(error_of([&] { list_config(good, "[run]\nG = 0\n"); }).first, "run.G");
+  EXPECT_EQ(cases_of(list_config(good)).at(0).material.G, 1.0); // G defaults to 1
 }
 
 TEST(StudyCases, CasesSectionResolvesRelativeToTheIni) {
@@ -524,11 +629,11 @@ TEST(StudyCases, CasesSectionResolvesRelativeToTheIni) {
   EXPECT_EQ(fs::path(c.cases_file), fs::path(tmp().path()) / "sub" / "list.csv");
   EXPECT_EQ(c.source_path, ini);
   EXPECT_NE(c.source_text.find("list.csv"), std::string::npos);
-  const auto cases = expand_cases(c);
+  const auto cases = cases_of(c);
   ASSERT_EQ(cases.size(), 3u); // file order
-  EXPECT_EQ(cases[0].d, 1e-3);
-  EXPECT_EQ(cases[1].d, 2e-3);
-  EXPECT_EQ(cases[2].v1, 9.0);
+  EXPECT_EQ(cases[0].loading.d, 1e-3);
+  EXPECT_EQ(cases[1].loading.d, 2e-3);
+  EXPECT_EQ(cases[2].history.segments.at(0).w, 9.0);
   EXPECT_EQ(case_count(c), 3u);
   // Absolute paths stay as they are.
   const std::string abs = (fs::path(tmp().path()) / "sub" / "list.csv").string();
@@ -617,13 +722,22 @@ TEST(StudyOverride, RunKeys) {
   apply_override(c, "run.solver", "baseline");
   apply_override(c, "run.timeseries", "true");
   apply_override(c, "run.G", "3");
+  apply_override(c, "run.spacing", "log");
+  apply_override(c, "run.decades", "3");
   EXPECT_EQ(c.run.samples, 401);
-  EXPECT_EQ(c.run.t_end_over_tau, 2.5);
+  EXPECT_EQ(c.axes[col(c, "t_end_over_tau")].values, std::vector<double>({2.5}));
   EXPECT_EQ(c.run.rtol, 1e-5);
   EXPECT_EQ(c.run.solver, "baseline");
   EXPECT_TRUE(c.run.timeseries);
-  EXPECT_EQ(c.run.G, 3.0);
-  EXPECT_EQ(expand_cases(c).front().G, 3.0);
+  EXPECT_EQ(c.run.spacing, mdrmap::Spacing::Log);
+  EXPECT_EQ(c.run.decades, 3.0);
+  EXPECT_EQ(c.axes[col(c, "G")].values, std::vector<double>({3.0}));
+  const mdrmap::Case k = cases_of(c).front();
+  EXPECT_EQ(k.material.G, 3.0);
+  EXPECT_EQ(k.history.segments.at(0).T, 2.5); // tau = 1
+  EXPECT_EQ(k.sampling.spacing, mdrmap::Spacing::Log);
+  EXPECT_EQ(k.sampling.decades, 3.0);
+  EXPECT_EQ(names(c).size(), 7u); // replaced, not added
 }
 
 TEST(StudyOverride, GridAxesAndV1Switch) {
@@ -635,13 +749,16 @@ TEST(StudyOverride, GridAxesAndV1Switch) {
   apply_override(c, "grid.v", "2");
   apply_override(c, "grid.R", "3");
   apply_override(c, "grid.v1", "0.25");
-  EXPECT_EQ(c.axes.size(), 5u);
-  EXPECT_EQ(c.axes[4].name, "v1");
-  EXPECT_EQ(expand_cases(c).front().v1, 0.25);
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"d", "R", "tau", "G", "v", "v1", "t_end_over_tau"}));
+  EXPECT_EQ(cases_of(c).front().history.segments.at(0).w, 0.25);
   apply_override(c, "grid.v1_over_v", "0.25");
-  EXPECT_EQ(c.axes[4].name, "v1_over_v");
-  EXPECT_EQ(expand_cases(c).front().v1, 0.5);
+  EXPECT_EQ(c.axes[5].name, "v1_over_v");
+  EXPECT_EQ(cases_of(c).front().history.segments.at(0).w, 0.5);
   EXPECT_EQ(case_count(c), 6u);
+  apply_override(c, "grid.G", "2, 4"); // G as a grid axis replaces the default
+  EXPECT_EQ(c.axes[3].option(), "grid.G");
+  EXPECT_EQ(case_count(c), 12u);
 }
 
 TEST(StudyOverride, ErrorsSayCommandLineAndLeaveConfigUnchanged) {
@@ -688,6 +805,392 @@ TEST(StudyOverride, ErrorsSayCommandLineAndLeaveConfigUnchanged) {
   EXPECT_EQ(error_of([&] { apply_override(k, "grid.d", "1"); }).first, "grid.d");
   apply_override(k, "run.samples", "7");
   EXPECT_EQ(k.run.samples, 7);
+}
+
+// --- Histories, loading by force, G -------------------------------------------------
+
+/// A [grid] at fixed depth d = 1e-2 (a1 = 0.1), R = 1, and `rest` (tau, v, [history] ...).
+StudyConfig depth_study(const std::string& rest) {
+  return parse("[grid]\nd = 1e-2\nR = 1\n" + rest);
+}
+
+TEST(StudyHistory, HoldTimeSweepIsAnAxis) {
+  const StudyConfig c = depth_study("tau = 2\nv = 0.5\n[history]\nw1_over_v = 0\n"
+                                    "T1_over_tau = logspace:0.1:100:4\nw2_over_v = 1\n"
+                                    "T2_over_tau = 20\n");
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "v", "w1_over_v",
+                                                "T1_over_tau", "w2_over_v", "T2_over_tau"}));
+  EXPECT_EQ(c.segments(), 2u);
+  const std::size_t T1 = col(c, "T1_over_tau");
+  EXPECT_EQ(c.axes[T1].section, "history");
+  EXPECT_EQ(c.axes[T1].option(), "history.T1_over_tau");
+  EXPECT_TRUE(c.axes[T1].logarithmic);
+  EXPECT_EQ(c.axes[T1].column.kind, Column::Kind::DurationOverTau);
+  EXPECT_EQ(c.axes[T1].column.segment, 1u);
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 4u);
+  const double holds[] = {0.1, 1.0, 10.0, 100.0};
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    ASSERT_EQ(cases[i].history.size(), 2u);
+    EXPECT_EQ(cases[i].history.segments[0].w, 0.0);
+    EXPECT_NEAR(cases[i].history.segments[0].T, 2.0 * holds[i], 1e-12 * holds[i]);
+    EXPECT_EQ(cases[i].history.segments[1].w, 0.5);
+    EXPECT_EQ(cases[i].history.segments[1].T, 40.0);
+  }
+  EXPECT_EQ(cases[0].history.segments[0].T, 0.2); // the ends exactly
+  EXPECT_EQ(cases[3].history.segments[0].T, 200.0);
+}
+
+TEST(StudyHistory, RelativeColumnsResolveAgainstVAndTau) {
+  const StudyConfig c = depth_study("tau = 0.5, 3\nv = 0.25, 2\n[history]\nw1_over_v = 4\n"
+                                    "T1_over_tau = 1.5\n");
+  const auto rows = expand_cases(c);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const Row& r : rows) {
+    const mdrmap::Case k = case_for(c, r);
+    EXPECT_EQ(k.history.segments.at(0).w, 4.0 * val(c, r, "v"));
+    EXPECT_EQ(k.history.segments.at(0).T, 1.5 * val(c, r, "tau"));
+  }
+  // absolute columns are taken as they are
+  const StudyConfig a = depth_study("tau = 0.5, 3\nv = 0.25, 2\n[history]\nw1 = 4\nT1 = 1.5\n");
+  for (const mdrmap::Case& k : cases_of(a)) {
+    EXPECT_EQ(k.history.segments.at(0).w, 4.0);
+    EXPECT_EQ(k.history.segments.at(0).T, 1.5);
+  }
+  EXPECT_NE(canonical(a), canonical(c));
+  // a resolved value out of its range names the relative column and how it was resolved
+  const auto [option, message] =
+      error_of([] { depth_study("tau = 1e300\nv = 1\n[history]\nw1 = 1\nT1_over_tau = 1e10\n"); });
+  EXPECT_EQ(option, "history.T1_over_tau");
+  EXPECT_NE(message.find("T1 = T1_over_tau * tau"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("t.ini:", 0), 0u) << message;
+  EXPECT_TRUE(one_line(message)) << message;
+}
+
+TEST(StudyHistory, ThreeSegmentsInAnyKeyOrder) {
+  const StudyConfig c = parse("[history]\nT3 = 7\nw2_over_v = 0\nT1_over_tau = 2\n"
+                              "w3 = 0.25\nT2 = 5\nw1 = 3\n[grid]\ntau = 1.5\nv = 0.5\nR = 1\n"
+                              "d = 1e-2\n");
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "v", "w1", "T1_over_tau",
+                                                "w2_over_v", "T2", "w3", "T3"}));
+  EXPECT_EQ(c.segments(), 3u);
+  const mdrmap::Case k = cases_of(c).at(0);
+  ASSERT_EQ(k.history.size(), 3u);
+  EXPECT_EQ(k.history.segments[0].w, 3.0);
+  EXPECT_EQ(k.history.segments[0].T, 3.0);
+  EXPECT_EQ(k.history.segments[1].w, 0.0);
+  EXPECT_EQ(k.history.segments[1].T, 5.0);
+  EXPECT_EQ(k.history.segments[2].w, 0.25);
+  EXPECT_EQ(k.history.segments[2].T, 7.0);
+  EXPECT_EQ(k.history.v0, 0.5);
+}
+
+TEST(StudyHistory, CaseOrderIsColumnOrderWhateverTheFileOrder) {
+  const StudyConfig c = parse("[history]\nT2 = 1, 2\nw2 = 0, 1\nT1 = 3, 4\nw1 = 5, 6\n"
+                              "[grid]\nv = 7, 8\nG = 9, 10\ntau = 11, 12\nR = 13, 14\n"
+                              "FN = 1e-3, 2e-3\n");
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"FN", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
+  const auto rows = expand_cases(c);
+  ASSERT_EQ(rows.size(), 512u);
+  // C order over the columns: the last (T2) fastest, the loading slowest
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::size_t rest = i;
+    for (std::size_t j = c.axes.size(); j-- > 0;) {
+      EXPECT_EQ(rows[i][j], c.axes[j].values[rest % 2]) << i << " " << c.axes[j].name;
+      rest /= 2;
+    }
+  }
+  EXPECT_EQ(rows[1][8], 2.0);    // T2
+  EXPECT_EQ(rows[2][7], 1.0);    // w2
+  EXPECT_EQ(rows[256][0], 2e-3); // FN
+}
+
+TEST(StudyHistory, MissingOrDuplicatedSegmentColumns) {
+  struct Bad {
+    const char* name;
+    std::string history;
+    std::string option;
+    std::vector<std::string> mentions;
+  };
+  const std::vector<Bad> table = {
+      {"no history", "", "history.w1", {"no history", "w1", "T1_over_tau"}},
+      {"segment 2 missing",
+       "w1 = 1\nT1 = 1\nw3 = 1\nT3 = 1\n",
+       "history.w2",
+       {"segment 2 of 3 has no velocity", "give w2 or w2_over_v"}},
+      {"duration missing",
+       "w1 = 1\nT1 = 1\nw2_over_v = 1\n",
+       "history.T2",
+       {"segment 2 of 2 has no duration", "give T2 or T2_over_tau"}},
+      {"velocity missing",
+       "T1_over_tau = 1\n",
+       "history.w1",
+       {"segment 1 of 1 has no velocity", "give w1 or w1_over_v"}},
+      {"w1 and w1_over_v",
+       "w1 = 1\nT1 = 1\nw1_over_v = 2\n",
+       "history.w1_over_v",
+       {"both w1 (history.w1) and w1_over_v are given", "give only one"}},
+      {"T1 and T1_over_tau",
+       "T1_over_tau = 1\nw1 = 1\nT1 = 2\n",
+       "history.T1",
+       {"both T1_over_tau (history.T1_over_tau) and T1 are given"}},
+      {"key twice", "w1 = 1\nT1 = 1\nw1 = 2\n", "history.w1", {"line"}},
+      {"segment 0", "w0 = 1\nT1 = 1\n", "history.w0", {"w0"}},
+      {"negative duration", "w1 = 1\nT1 = -1\n", "history.T1", {"got -1"}},
+      {"zero duration ratio", "w1 = 1\nT1_over_tau = 0\n", "history.T1_over_tau", {"got 0"}},
+      {"negative velocity ratio", "w1_over_v = -1\nT1 = 1\n", "history.w1_over_v", {"got -1"}},
+  };
+  for (const auto& b : table) {
+    SCOPED_TRACE(b.name);
+    const auto [option, message] =
+        error_of([&] { depth_study("tau = 1\nv = 1\n[history]\n" + b.history); });
+    EXPECT_EQ(option, b.option) << message;
+    for (const auto& m : b.mentions)
+      EXPECT_NE(message.find(m), std::string::npos) << message;
+    EXPECT_TRUE(one_line(message)) << message;
+    EXPECT_EQ(message.rfind("t.ini:", 0), 0u) << message;
+  }
+  // the seed's form and the new one say the same thing: both are refused
+  const auto seed_and_new =
+      error_of([] { depth_study("tau = 1\nv = 1\nv1 = 0.5\n[history]\nw1 = 1\nT1 = 1\n"); });
+  EXPECT_EQ(seed_and_new.first, "history.w1") << seed_and_new.second;
+  EXPECT_NE(seed_and_new.second.find("both v1 (grid.v1) and w1"), std::string::npos)
+      << seed_and_new.second;
+  const auto in_grid = error_of([] { parse(base({{6, "w1 = 1"}}, "[history]\nT1 = 1\n")); });
+  EXPECT_EQ(in_grid.first, "grid.w1") << in_grid.second;
+  EXPECT_NE(in_grid.second.find("[history]"), std::string::npos) << in_grid.second;
+  EXPECT_EQ(
+      error_of([] { parse(base({}, "t_end_over_tau = 3\n[history]\nT1_over_tau = 3\n")); }).first,
+      "history.T1_over_tau");
+}
+
+TEST(StudyLoading, ByForceAndByDepth) {
+  StudyConfig f = parse("[grid]\nFN = logspace:1e-4:1e-2:3\nR = 1\ntau = 1\nv = 0.1\n"
+                        "[history]\nw1_over_v = 10\nT1_over_tau = 10\n");
+  EXPECT_TRUE(f.by_force());
+  EXPECT_EQ(names(f).front(), "FN");
+  EXPECT_EQ(f.axes[0].option(), "grid.FN");
+  const auto cases = cases_of(f);
+  ASSERT_EQ(cases.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_TRUE(cases[i].loading.by_force());
+    EXPECT_EQ(cases[i].loading.d, 0.0);
+    EXPECT_EQ(cases[i].loading.F0, f.axes[0].values[i]);
+    EXPECT_EQ(cases[i].history.segments.at(0).w, 1.0);
+  }
+  EXPECT_FALSE(parse(base()).by_force());
+  EXPECT_NE(canonical(f).find("FN ="), std::string::npos);
+
+  const auto both = error_of([] { parse(base({}, "[grid]\nFN = 1e-3\n")); });
+  EXPECT_EQ(both.first, "config") << both.second; // [grid] twice
+  const auto d_and_fn = error_of([] { parse(base({{2, "d = 1e-3\nFN = 1e-3"}})); });
+  EXPECT_EQ(d_and_fn.first, "grid.FN") << d_and_fn.second;
+  EXPECT_NE(d_and_fn.second.find("both d (grid.d) and FN are given"), std::string::npos)
+      << d_and_fn.second;
+  EXPECT_EQ(d_and_fn.second.rfind("t.ini:3:", 0), 0u) << d_and_fn.second;
+  const auto neither = error_of([] { parse(base({{2, ""}})); });
+  EXPECT_EQ(neither.first, "grid.d") << neither.second;
+  EXPECT_NE(neither.second.find("no d or FN"), std::string::npos) << neither.second;
+  EXPECT_TRUE(one_line(neither.second));
+  const auto zero = error_of([] { parse(base({{2, "FN = 0"}})); });
+  EXPECT_EQ(zero.first, "grid.FN");
+  EXPECT_NE(zero.second.find("FN must be a finite number > 0, got 0"), std::string::npos)
+      << zero.second;
+  // an override of the loading replaces it, as grid.v1_over_v replaces v1
+  StudyConfig c = parse(base());
+  apply_override(c, "grid.FN", "1e-3");
+  EXPECT_TRUE(c.by_force());
+  EXPECT_EQ(names(c).front(), "FN");
+  EXPECT_EQ(cases_of(c).at(0).loading.F0, 1e-3);
+  apply_override(c, "grid.d", "1e-3");
+  EXPECT_FALSE(c.by_force());
+  apply_override(f, "grid.FN", "2e-3");
+  EXPECT_EQ(f.axes[0].values, std::vector<double>({2e-3}));
+}
+
+TEST(StudyLoading, GAsAGridColumnAndTheSeedsRunG) {
+  const StudyConfig g = parse(base({{3, "R = 1\nG = 0.5, 2"}}));
+  EXPECT_EQ(g.axes[3].name, "G");
+  EXPECT_EQ(g.axes[3].option(), "grid.G");
+  const auto cases = cases_of(g);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].material.G, 0.5);
+  EXPECT_EQ(cases[1].material.G, 2.0);
+  const StudyConfig r = parse(base({}, "G = 0.5\n"));
+  EXPECT_EQ(r.axes[3].option(), "run.G");
+  EXPECT_EQ(cases_of(r).at(0).material.G, 0.5);
+  // the same G either way: the same study
+  EXPECT_EQ(canonical(r), canonical(parse(base({{3, "R = 1\nG = 0.5"}}))));
+  const auto both = error_of([] { parse(base({{3, "R = 1\nG = 2"}}, "G = 2\n")); });
+  EXPECT_EQ(both.first, "run.G") << both.second;
+  EXPECT_NE(both.second.find("both G (grid.G) and G"), std::string::npos) << both.second;
+  EXPECT_EQ(error_of([] { parse(base({{3, "R = 1\nG = -1"}})); }).first, "grid.G");
+}
+
+TEST(StudyHistory, DurationOverTauWithTauZero) {
+  // depth control: a1 = sqrt(R d) = 0.1; six half-widths at the slower moving velocity
+  const StudyConfig c = depth_study("tau = 0\nv = 2\n[history]\nw1_over_v = 0.5\n"
+                                    "T1_over_tau = 3\nw2_over_v = 0\nT2_over_tau = 3\n"
+                                    "w3 = 4\nT3_over_tau = 1\n");
+  const mdrmap::Case k = cases_of(c).at(0);
+  EXPECT_DOUBLE_EQ(k.history.segments[0].T, 6.0 * 0.1 / 1.0); // min(v, w1) = 1
+  EXPECT_DOUBLE_EQ(k.history.segments[1].T, 6.0 * 0.1 / 1.0); // a hold after w1 = 1
+  EXPECT_DOUBLE_EQ(k.history.segments[2].T, 6.0 * 0.1 / 4.0); // after a hold: w3
+  // under load: the Hertz radius a0 (FN = 16/3 G a0^3 / R with a0 = 0.1)
+  const StudyConfig f = parse("[grid]\nFN = 5.3333333333333e-3\nR = 1\ntau = 0\nv = 2\n"
+                              "[history]\nw1 = 8\nT1_over_tau = 1\n");
+  const mdrmap::Case kf = cases_of(f).at(0);
+  EXPECT_NEAR(kf.a0(), 0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(kf.history.segments[0].T, 6.0 * kf.a0() / 2.0);
+  // a hold after a hold has no time scale
+  const auto [option, message] = error_of(
+      [] { depth_study("tau = 0\nv = 2\n[history]\nw1 = 0\nT1 = 1\nw2 = 0\nT2_over_tau = 3\n"); });
+  EXPECT_EQ(option, "history.T2_over_tau");
+  EXPECT_NE(message.find("a hold after a hold"), std::string::npos) << message;
+  EXPECT_NE(message.find("give T2 instead"), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("t.ini:", 0), 0u) << message;
+  EXPECT_TRUE(one_line(message));
+  // with tau > 0 in the same grid, only the tau = 0 cases are refused: the corners find them
+  const auto grid = error_of([] {
+    depth_study("tau = 0, 1\nv = 2\n[history]\nw1 = 0\nT1 = 1\nw2 = 0\nT2_over_tau = 3\n");
+  });
+  EXPECT_EQ(grid.first, "history.T2_over_tau") << grid.second;
+  EXPECT_NE(grid.second.find("tau = 0"), std::string::npos) << grid.second;
+}
+
+TEST(StudyCases, HistoryColumnsInTheCsv) {
+  const std::string p = tmp().write("hist.csv", "T2,w2,FN,R,tau,v,w1,T1,G\n"
+                                                "5,0.1,1e-3,1,1,0.1,0,2,1\n"
+                                                "6,1,2e-3,1,0,0.2,0.3,4,3\n");
+  const StudyConfig c = list_config(p);
+  EXPECT_TRUE(c.by_force());
+  EXPECT_EQ(c.segments(), 2u);
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"FN", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].loading.F0, 1e-3);
+  EXPECT_EQ(cases[0].history.segments[0].w, 0.0);
+  EXPECT_EQ(cases[0].history.segments[0].T, 2.0);
+  EXPECT_EQ(cases[0].history.segments[1].w, 0.1);
+  EXPECT_EQ(cases[0].history.segments[1].T, 5.0);
+  EXPECT_EQ(cases[1].material.G, 3.0);
+  EXPECT_EQ(cases[1].material.tau, 0.0);
+  EXPECT_EQ(cases[1].history.segments[1].T, 6.0);
+  // a history column missing from the header
+  const std::string q = tmp().write("hist_missing.csv", "d,R,tau,v,w1,T1,w2\n1e-3,1,1,1,0,1,1\n");
+  const auto e = error_of([&] { list_config(q); });
+  EXPECT_EQ(e.first, "history.T2");
+  EXPECT_NE(e.second.find("hist_missing.csv' and the config: segment 2 of 2 has no duration"),
+            std::string::npos)
+      << e.second;
+  // a bad history cell names its line and column
+  const std::string r = tmp().write("hist_bad.csv", "d,R,tau,v,w1,T1\n1e-3,1,1,1,0,1\n"
+                                                    "1e-3,1,1,1,0,-3\n");
+  const auto bad = error_of([&] { expand_cases(list_config(r)); });
+  EXPECT_EQ(bad.first, "cases.T1");
+  EXPECT_NE(bad.second.find("hist_bad.csv:3:6: T1 must be"), std::string::npos) << bad.second;
+}
+
+TEST(StudyCases, HistoryFromASingleValuedHistorySection) {
+  const std::string p = tmp().write("nohist.csv", "d,R,tau,v\n1e-3,1,2,1\n2e-3,1,0.5,3\n");
+  const StudyConfig c = list_config(p, "[history]\nw1_over_v = 0.5\nT1_over_tau = 3\n"
+                                       "w2 = 0\nT2 = 1\n");
+  EXPECT_EQ(c.segments(), 2u);
+  EXPECT_FALSE(c.axes[col(c, "w1_over_v")].listed);
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].history.segments[0].w, 0.5);
+  EXPECT_EQ(cases[0].history.segments[0].T, 6.0);
+  EXPECT_EQ(cases[1].history.segments[0].w, 1.5);
+  EXPECT_EQ(cases[1].history.segments[0].T, 1.5);
+  EXPECT_EQ(cases[1].history.segments[1].T, 1.0);
+  // more than one value is a grid, not a case list
+  const auto many = error_of([&] { list_config(p, "[history]\nw1 = 0\nT1_over_tau = 1, 2\n"); });
+  EXPECT_EQ(many.first, "history.T1_over_tau") << many.second;
+  EXPECT_NE(many.second.find("has 2 values; a case list takes one value per column"),
+            std::string::npos)
+      << many.second;
+  // a column the CSV has is not set again by the config
+  const std::string h = tmp().write("withw1.csv", "d,R,tau,v,w1\n1e-3,1,2,1,0\n");
+  const auto twice = error_of([&] { list_config(h, "[history]\nw1_over_v = 1\nT1 = 1\n"); });
+  EXPECT_EQ(twice.first, "history.w1_over_v") << twice.second;
+  EXPECT_NE(twice.second.find("withw1.csv"), std::string::npos) << twice.second;
+  EXPECT_TRUE(one_line(twice.second));
+  const StudyConfig ok = list_config(h, "[history]\nT1 = 1\n");
+  EXPECT_EQ(cases_of(ok).at(0).history.segments.at(0).T, 1.0);
+}
+
+TEST(StudyOverride, HistoryKeys) {
+  StudyConfig c = depth_study("tau = 2\nv = 0.5\n[history]\nw1_over_v = 0\nT1_over_tau = 1\n"
+                              "w2_over_v = 1\nT2_over_tau = 20\n");
+  const std::string before = canonical(c);
+  apply_override(c, "history.T1_over_tau", "1,10,100");
+  EXPECT_EQ(c.axes[col(c, "T1_over_tau")].values, std::vector<double>({1, 10, 100}));
+  EXPECT_EQ(case_count(c), 3u);
+  EXPECT_NE(canonical(c), before);
+  EXPECT_EQ(cases_of(c).at(2).history.segments[0].T, 200.0);
+  // an absolute key replaces the relative one of the same segment
+  apply_override(c, "history.w2", "3");
+  EXPECT_EQ(col(c, "w2"), 7u);
+  EXPECT_EQ(cases_of(c).at(0).history.segments[1].w, 3.0);
+  // a new segment needs both its columns: one alone is refused, the study unchanged
+  const std::string now = canonical(c);
+  const auto alone = error_of([&] { apply_override(c, "history.w3", "0"); });
+  EXPECT_EQ(alone.first, "history.T3") << alone.second;
+  EXPECT_EQ(alone.second.rfind("command line: ", 0), 0u) << alone.second;
+  EXPECT_NE(alone.second.find("segment 3 of 3 has no duration; give T3 or T3_over_tau"),
+            std::string::npos)
+      << alone.second;
+  EXPECT_EQ(canonical(c), now);
+  EXPECT_EQ(c.segments(), 2u);
+  // ... and both together, as the command line passes them, add it
+  apply_overrides(c, {{"history.w3", "0"}, {"history.T3_over_tau", "5"}});
+  EXPECT_EQ(c.segments(), 3u);
+  EXPECT_EQ(cases_of(c).at(0).history.segments[2].w, 0.0);
+  EXPECT_EQ(cases_of(c).at(0).history.segments[2].T, 10.0);
+  // history keys of any segment are known; others are not
+  // (a far segment leaves the ones between without columns: the first is named)
+  EXPECT_EQ(error_of([&] { apply_override(c, "history.w12", "0"); }).first, "history.w4");
+  EXPECT_EQ(error_of([&] { apply_override(c, "history.x1", "0"); }).first, "history.x1");
+  EXPECT_EQ(error_of([&] { apply_override(c, "history.T1_over_tau", "0"); }).first,
+            "history.T1_over_tau");
+  const auto keys = override_keys();
+  for (const char* k : {"history.w1", "history.T1_over_tau", "history.w9_over_v", "grid.FN",
+                        "grid.G", "run.G", "run.t_end_over_tau", "run.spacing"})
+    EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
+}
+
+TEST(StudyCanonical, EveryColumnValueCountsAndKeyOrderDoesNot) {
+  const std::string text = "[grid]\nFN = 1e-3, 2e-3\nR = 1\ntau = 1\nG = 1\nv = 0.1\n"
+                           "[history]\nw1_over_v = 0\nT1_over_tau = 1, 10\nw2 = 0.1\nT2 = 20\n";
+  const std::string ref = canonical(parse(text));
+  const std::string reordered = "[history]\nT2 = 20\nw2 = 0.1\nT1_over_tau = 1,10\n"
+                                "w1_over_v = 0\n[grid]\nv = 0.1\nG = 1\ntau = 1\nR = 1\n"
+                                "FN = 1e-3,2e-3\n";
+  EXPECT_EQ(canonical(parse(reordered)), ref);
+  // G = 1 is the default: leaving it out is the same study
+  std::string no_g = text;
+  no_g.erase(no_g.find("G = 1\n"), 6);
+  EXPECT_EQ(canonical(parse(no_g)), ref);
+  const std::vector<std::pair<std::string, std::string>> changes = {
+      {"FN = 1e-3, 2e-3", "FN = 1e-3, 3e-3"},
+      {"R = 1", "R = 2"},
+      {"tau = 1", "tau = 3"},
+      {"G = 1", "G = 2"},
+      {"v = 0.1", "v = 0.2"},
+      {"w1_over_v = 0", "w1_over_v = 0.5"},
+      {"T1_over_tau = 1, 10", "T1_over_tau = 1, 11"},
+      {"w2 = 0.1", "w2 = 0.3"},
+      {"T2 = 20", "T2 = 21"},
+      {"w2 = 0.1", "w2_over_v = 0.1"}};
+  for (const auto& [from, to] : changes) {
+    std::string t = text;
+    t.replace(t.find(from), from.size(), to);
+    EXPECT_NE(canonical(parse(t)), ref) << to;
+  }
 }
 
 // --- Size limits ---------------------------------------------------------------------
@@ -739,11 +1242,10 @@ TEST(StudyLimits, LoadConfigFileErrors) {
 TEST(StudyExamples, ShippedConfigsLoad) {
   const fs::path dir = fs::path(__FILE__).parent_path().parent_path() / "jobs" / "examples";
   if (!fs::exists(dir)) GTEST_SKIP() << "no " << dir;
-  const std::map<std::string, std::size_t> expected = {{"quick.ini", 40},
-                                                       {"start_stop.ini", 3},
-                                                       {"friction_map.ini", 561},
-                                                       {"v1_sweep.ini", 60},
-                                                       {"cases.ini", 7}};
+  const std::map<std::string, std::size_t> expected = {
+      {"quick.ini", 40},      {"start_stop.ini", 3}, {"friction_map.ini", 561},
+      {"v1_sweep.ini", 60},   {"cases.ini", 7},      {"seed_step.ini", 60},
+      {"load_sweep.ini", 75}, {"shs_holds.ini", 27}, {"velocity_steps.ini", 9}};
   for (const auto& [name, count] : expected) {
     SCOPED_TRACE(name);
     const StudyConfig c = load_config((dir / name).string());
@@ -753,13 +1255,23 @@ TEST(StudyExamples, ShippedConfigsLoad) {
   }
   const StudyConfig s = load_config((dir / "start_stop.ini").string());
   EXPECT_TRUE(s.run.timeseries);
-  for (const StepRow& sc : expand_cases(s)) {
+  for (const mdrmap::Case& k : cases_of(s)) {
     // a start-stop test: fast before (zeta >> 1, a2 ~ 0) and nearly stopped
     // after (zeta1 << 1, a2 -> a1), v1 = 1e-4 v as in the paper
-    EXPECT_EQ(sc.v1, 1e-4 * sc.v);
-    const mdrmap::Case k = case_for(s, sc);
-    EXPECT_GE(mdrmap::zeta(k, sc.v), 100.0);
-    EXPECT_LE(mdrmap::zeta(k, sc.v1), 0.1 + 1e-12);
+    const double v = k.history.v0, v1 = k.history.segments.at(0).w;
+    EXPECT_EQ(v1, 1e-4 * v);
+    EXPECT_GE(mdrmap::zeta(k, v), 100.0);
+    EXPECT_LE(mdrmap::zeta(k, v1), 0.1 + 1e-12);
+  }
+  // the new examples: load control, a hold and a reslide
+  const StudyConfig h = load_config((dir / "shs_holds.ini").string());
+  EXPECT_TRUE(h.by_force());
+  EXPECT_EQ(h.segments(), 2u);
+  for (const mdrmap::Case& k : cases_of(h)) {
+    EXPECT_GT(k.loading.F0, 0.0);
+    EXPECT_EQ(k.history.segments.at(0).w, 0.0);
+    EXPECT_EQ(k.history.segments.at(1).w, k.history.v0);
+    EXPECT_EQ(k.history.segments.at(1).T, 20.0);
   }
 }
 
@@ -876,7 +1388,7 @@ std::size_t check_cases(const StudyConfig& c, const std::string& input) {
     return 0;
   }
   if (count > kFuzzExpandLimit) return 0;
-  std::vector<StepRow> cases;
+  std::vector<Row> cases;
   if (!returns_or_refuses("expand_cases", input, [&] { cases = expand_cases(c); })) {
     EXPECT_EQ(c.kind, StudyConfig::Kind::Cases)
         << "a parsed grid refused to expand (a case the parse-time check missed)\n"
@@ -885,15 +1397,16 @@ std::size_t check_cases(const StudyConfig& c, const std::string& input) {
   }
   EXPECT_EQ(cases.size(), count) << input;
   for (std::size_t i = 0; i < cases.size(); ++i) {
-    const StepRow& s = cases[i];
+    const Row& s = cases[i];
+    EXPECT_EQ(s.size(), c.axes.size()) << input;
     bool finite = true;
-    for (const double x : {s.d, s.R, s.tau, s.v, s.v1, s.G})
+    for (const double x : s)
       finite = finite && std::isfinite(x);
     EXPECT_TRUE(finite) << "case " << i + 1 << "\n" << input;
-    EXPECT_EQ(s.G, c.run.G) << input;
     try {
-      validate_row(s);
-      mdrmap::validate(case_for(c, s));
+      const mdrmap::Case k = case_for(c, s);
+      mdrmap::validate(k);
+      EXPECT_EQ(k.history.size(), c.segments()) << input;
     } catch (const std::exception& e) {
       ADD_FAILURE() << "expanded case " << i + 1 << " is invalid: " << e.what() << "\n" << input;
     }
@@ -1042,7 +1555,20 @@ const std::vector<std::string>& fuzz_tokens() {
                                   "1e10",
                                   "1e-10",
                                   "10000001",
-                                  "d,R,tau,v,v1"};
+                                  "d,R,tau,v,v1",
+                                  "[history]",
+                                  "FN",
+                                  "w1",
+                                  "T1",
+                                  "w1_over_v",
+                                  "T1_over_tau",
+                                  "w2",
+                                  "T2_over_tau",
+                                  "w3_over_v",
+                                  "spacing",
+                                  "decades",
+                                  "log",
+                                  "d,R,tau,v,w1,T1,w2,T2"};
     t.push_back(std::string(400, '9')); // very long numbers
     t.push_back("0." + std::string(400, '0') + "1");
     t.push_back("1" + std::string(330, '0')); // past the largest double
@@ -1242,10 +1768,31 @@ TEST(StudyFuzz, ShippedConfigsMutated) {
     all.push_back(f.second);
   const std::string dir = (fs::path(tmp().path()) / "fuzz_ini").string();
   fs::create_directories(dir);
-  const std::vector<std::string> keys = {
-      "grid.d",      "grid.R",   "grid.tau", "grid.v",     "grid.v1",        "grid.v1_over_v",
-      "run.samples", "run.rtol", "run.G",    "run.solver", "run.timeseries", "run.t_end_over_tau",
-      "cases.file"};
+  const std::vector<std::string> keys = {"grid.d",
+                                         "grid.R",
+                                         "grid.tau",
+                                         "grid.v",
+                                         "grid.v1",
+                                         "grid.v1_over_v",
+                                         "run.samples",
+                                         "run.rtol",
+                                         "run.G",
+                                         "run.solver",
+                                         "run.timeseries",
+                                         "run.t_end_over_tau",
+                                         "cases.file",
+                                         "grid.FN",
+                                         "grid.G",
+                                         "run.spacing",
+                                         "run.decades",
+                                         "history.w1",
+                                         "history.w1_over_v",
+                                         "history.T1",
+                                         "history.T1_over_tau",
+                                         "history.w2_over_v",
+                                         "history.T2_over_tau",
+                                         "history.w3",
+                                         "history.T3"};
 
   const std::uint64_t seed = fuzz_seed(20250101);
   const int iters = fuzz_iters(4000);
@@ -1305,7 +1852,7 @@ TEST(StudyFuzz, ShippedConfigsMutated) {
   EXPECT_GT(refused, iters / 3);
 }
 
-/// Fuzzes read_cases_csv with the shipped case lists, mutated, and G edge values.
+/// Fuzzes reading the shipped case lists, mutated, with G edge values.
 TEST(StudyFuzz, ShippedCsvsMutated) {
   const FuzzCorpus& corpus = shipped_corpus();
   ASSERT_GE(corpus.csv.size(), 2u);
@@ -1325,14 +1872,21 @@ TEST(StudyFuzz, ShippedCsvsMutated) {
     const std::string input = "seed " + std::to_string(seed) + " iteration " +
                               std::to_string(iter) + ", G = " + mdrmap::format_number(G) +
                               ", mutated " + name + ": " + c_literal(text);
-    std::vector<StepRow> cases;
+    std::vector<Row> cases;
+    StudyConfig c;
     try {
-      cases = read_cases_csv(path, G);
+      c = parse_config("[cases]\nfile = " + path + "\n[run]\nG = " + mdrmap::format_number(G) +
+                           "\n",
+                       "", "fuzz.ini");
+      cases = expand_cases(c);
     } catch (const InvalidInput& e) {
       ++refused;
       ASSERT_TRUE(good_message(e.what())) << input;
-      ASSERT_TRUE(e.option().rfind("cases.", 0) == 0 || e.option() == "run.G") << e.option() << "\n"
-                                                                               << input;
+      const std::string& o = e.option();
+      ASSERT_TRUE(o.rfind("cases.", 0) == 0 || o.rfind("run.", 0) == 0 ||
+                  o.rfind("grid.", 0) == 0 || o.rfind("history.", 0) == 0)
+          << o << "\n"
+          << input;
       continue;
     } catch (const std::exception& e) {
       FAIL() << "threw " << typeid(e).name() << " (not InvalidInput): " << e.what() << "\n"
@@ -1340,12 +1894,12 @@ TEST(StudyFuzz, ShippedCsvsMutated) {
     }
     ++ok;
     ASSERT_FALSE(cases.empty()) << input;
-    for (const StepRow& s : cases) {
-      for (const double x : {s.d, s.R, s.tau, s.v, s.v1})
+    for (const Row& s : cases) {
+      for (const double x : s)
         ASSERT_TRUE(std::isfinite(x)) << input;
-      ASSERT_EQ(s.G, G) << input;
+      ASSERT_EQ(val(c, s, "G"), G) << input;
       try {
-        validate_row(s);
+        mdrmap::validate(case_for(c, s));
       } catch (const std::exception& e) {
         FAIL() << "a case read is invalid: " << e.what() << "\n" << input;
       }
@@ -1441,7 +1995,7 @@ TEST(StudyFuzz, ParseConfigReturnsOrThrowsInvalidInput) {
         // A config that parses expands: every case was validated up front.
         const auto cases = expand_cases(c);
         ASSERT_EQ(cases.size(), case_count(c)) << text;
-        for (const StepRow& s : cases)
+        for (const Row& s : cases)
           mdrmap::validate(case_for(c, s));
         ASSERT_FALSE(canonical(c).empty());
       }
@@ -1496,15 +2050,16 @@ TEST(StudyFuzz, ReadCasesCsvReturnsOrThrowsInvalidInput) {
     const std::string text = mutate(csv, rng);
     write_fast(path, text);
     try {
-      const auto cases = read_cases_csv(path, 1.0);
+      const StudyConfig c = parse_config("[cases]\nfile = " + path + "\n", "", "fuzz.ini");
+      const auto cases = expand_cases(c);
       ++ok;
       ASSERT_FALSE(cases.empty());
-      for (const StepRow& s : cases)
-        validate_row(s);
+      for (const Row& s : cases)
+        mdrmap::validate(case_for(c, s));
     } catch (const InvalidInput& e) {
       ++refused;
       ASSERT_TRUE(good_message(e.what())) << c_literal(text);
-      ASSERT_EQ(e.option().rfind("cases.", 0), 0u) << e.option();
+      ASSERT_FALSE(e.option().empty()) << c_literal(text);
     } catch (const std::exception& e) {
       FAIL() << "unexpected exception " << e.what() << " for:\n" << c_literal(text);
     }

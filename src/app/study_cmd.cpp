@@ -143,7 +143,8 @@ po::options_description options() {
   o.add_options()("config", po::value<std::string>(), "")("output", po::value<std::string>(), "")(
       "resume", po::bool_switch(), "")("overwrite", po::bool_switch(), "")(
       "quiet", po::bool_switch(), "")("help", po::bool_switch(), "")("chunk-seconds",
-                                                                     po::value<std::string>(), "");
+                                                                     po::value<std::string>(), "")(
+      "set", po::value<std::vector<std::string>>()->composing(), "");
   for (const auto& ov : kOverrides)
     o.add_options()(ov[0], po::value<std::string>(), "");
   return o;
@@ -203,6 +204,14 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
   }
   for (const auto& ov : kOverrides)
     if (vm.count(ov[0])) a.overrides.emplace_back(ov[1], vm[ov[0]].as<std::string>());
+  if (vm.count("set"))
+    for (const std::string& kv : vm["set"].as<std::vector<std::string>>()) {
+      const std::size_t eq = kv.find('=');
+      if (eq == std::string::npos || eq == 0)
+        throw InvalidInput(
+            "set", "expects SECTION.KEY=VALUE (e.g. history.T1_over_tau=1,10), got '" + kv + "'");
+      a.overrides.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    }
   return a;
 }
 
@@ -221,15 +230,19 @@ std::string study_help() {
   return R"(Usage: mpirun -np P mdrmap study --config FILE.ini [--output MAP.h5] [--resume | --overwrite]
                  [--quiet] [overrides...]
 
-Runs a parameter study: every case of the config (a grid over d, R, tau, v,
-v1 or v1/v, or a CSV list of cases) is one velocity step v -> v1, solved as
-by 'mdrmap simulate'. Rank 0 hands out cases in chunks on request and
-computes too; every rank writes its results into one HDF5 friction map
-(parallel HDF5 through MPI-IO), beside the corrected analytic estimates of
-the seed paper and the residuals between the two. Works with P = 1.
+Runs a parameter study: every case of the config (a grid over the case
+parameters d or FN, R, tau, G, v and the history's segment velocities and
+durations, or a CSV list of cases) is one velocity history under a fixed
+depth or a fixed normal load, solved as by 'mdrmap simulate'. Rank 0 hands
+out cases in chunks on request and computes too; every rank writes its
+results into one HDF5 friction map (schema mdrmap-map/2, docs/map-schema.md):
+the event metrics of every velocity change (a, b, D_c, peaks), the
+closed-form stationary states and the residuals between the two. Works with
+P = 1.
 
 Options:
-  --config FILE     the study (INI: [grid] or [cases], and [run]; see README)
+  --config FILE     the study (INI: [grid] or [cases], [history], [run]; see
+                    docs/map-schema.md)
   --output MAP.h5   the map file. Default: the config's name with .h5, in the
                     current directory. An existing file is never touched
                     without --resume or --overwrite.
@@ -245,6 +258,8 @@ Options:
   --help            this text
 
 Overrides (win over the config file; values as in the INI):
+  --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
+                            --set grid.FN=1e-3 --set run.spacing=log (repeatable)
   --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
   --G G  --d SPEC  --R SPEC  --tau SPEC  --v SPEC  --v1 SPEC  --v1-over-v SPEC
   (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
@@ -256,8 +271,8 @@ Signals: SIGTERM, SIGINT or SIGUSR1 (what batch systems send before the wall
 time limit) make every rank stop taking work, write what it finished, and
 exit with code 3; the message says how to resume.
 
-Exit codes: 0 study complete (failed cases are recorded in the map, status
--1, with their message), 1 runtime failure, 2 bad input, 3 interrupted
+Exit codes: 0 study complete (failed cases are recorded in the map: status
+-1, with their message in /failures), 1 runtime failure, 2 bad input, 3 interrupted
 (resume with --resume).
 )";
 }
@@ -304,8 +319,7 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
   try {
     study::StudyRequest req;
     req.config = study::load_config(a.config);
-    for (const auto& ov : a.overrides)
-      study::apply_override(req.config, ov.first, ov.second);
+    study::apply_overrides(req.config, a.overrides);
     req.output = a.output;
     req.resume = a.resume;
     req.overwrite = a.overwrite;

@@ -1,137 +1,153 @@
 #include "io/case_row.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace mdrmap::io {
 namespace {
 
-// The quantities of a state and the instants they are taken at: the names of
-// the map's fields and their meanings come from these tables together.
+// The quantities of a state: the names of the map's fields and their
+// meanings come from this table and the instants below together.
 struct Quantity {
   const char* name;
   const char* unit;
   const char* meaning;
+  bool load_only; ///< moves under load control only (fixed at depth control)
 };
 const Quantity kQuantities[] = {
-    {"FN", "force", "normal force"},
-    {"Fx", "force", "friction force"},
-    {"mu", "number", "friction coefficient Fx / FN"},
-    {"a2", "length", "trailing edge a2 of the contact"},
+    {"FN", "force", "normal force", false},
+    {"Fx", "force", "friction force", false},
+    {"mu", "number", "friction coefficient Fx / FN", false},
+    {"a2", "length", "trailing edge a2 of the contact", false},
+    {"d", "length", "indentation depth", true},
+    {"a1", "length", "leading edge a1 of the contact", true},
 };
 
-struct Instant {
-  const char* name;
-  const char* simulated; ///< results/<q>_<name>
-  const char* analytic;  ///< analytic/<q>_<name>
-  const char* residual;  ///< what residuals/<q>_<name> measures
-};
-const Instant kInstants[] = {
-    {"pre", "in stationary sliding at v before the step",
-     "in stationary sliding at v before the step (exact)",
-     "numerical error of the stationary state before the step"},
-    {"jump", "just after the step (t = 0+)",
-     "just after the step (t = 0+), the corrected estimate (eqs. 15-16)",
-     "numerical error just after the step"},
-    {"post", "at the end of the window (t = t_end)", "in stationary sliding at v1 (exact)",
-     "distance of the state at t_end from stationary sliding at v1 (physics, not error)"},
-};
-
-// Limits: analytic/<name> and residuals/<name> (sim: the simulated value the
-// residual compares with it).
-struct Limit {
-  const char* name;
-  const char* unit;
-  const char* meaning;
-  const char* sim;
-  const char* residual;
-};
-const Limit kLimits[] = {
-    {"FN_inf", "force", "normal force in the limit v -> inf (eqs. 12-14)", "FN_pre",
-     "distance of the state before the step from the v -> inf limit (physics, not error)"},
-    {"Fx_inf", "force", "friction force in the limit v -> inf (eqs. 12-14)", "Fx_pre",
-     "distance of the state before the step from the v -> inf limit (physics, not error)"},
-    {"mu_inf", "number", "friction coefficient in the limit v -> inf: 4/3 sqrt(d/R)", "mu_pre",
-     "distance of the state before the step from the v -> inf limit (physics, not error)"},
-    {"mu_post_drop", "number", "friction coefficient right after a stop: 3/4 sqrt(d/R)", "mu_jump",
-     "distance of mu just after the step from the start-stop value (physics, not error)"},
-};
-
-std::string residual_meaning(const std::string& field, const std::string& measures) {
-  return "(sim - analytic) / |analytic| of " + field + ": " + measures;
-}
-
-std::vector<FieldInfo> make_fields() {
-  std::vector<FieldInfo> f;
-  for (const char* group : {"results", "analytic", "residuals"}) {
-    const std::string g = group;
-    for (const Instant& w : kInstants)
-      for (const Quantity& q : kQuantities) {
-        const std::string name = std::string(q.name) + "_" + w.name;
-        if (g == "results")
-          f.push_back({g + "/" + name, q.unit, std::string(q.meaning) + " " + w.simulated});
-        else if (g == "analytic")
-          f.push_back({g + "/" + name, q.unit, std::string(q.meaning) + " " + w.analytic});
-        else
-          f.push_back({g + "/" + name, "number", residual_meaning(name, w.residual)});
-      }
-  }
-  f.push_back(
-      {"results/error_estimate", "number",
-       "the solver's estimate of the case's relative error (docs/design.md, error metric)"});
-  f.push_back({"results/wall_seconds", "s", "wall-clock time the case took, in seconds"});
-  for (const Limit& l : kLimits) {
-    f.push_back({std::string("analytic/") + l.name, l.unit, l.meaning});
-    f.push_back({std::string("residuals/") + l.name, "number",
-                 residual_meaning(l.name, std::string(l.residual) + ", sim = results/" + l.sim)});
-  }
-  return f;
-}
-
-std::vector<FieldInfo> make_others() {
-  std::vector<FieldInfo> f;
-  f.push_back({"results/status", "code", "1 done, 0 pending (not yet computed), -1 failed"});
-  f.push_back({"results/message", "text", "why a case failed (empty otherwise)"});
-  f.push_back({"timeseries/t", "time", "output instant, from the step at t = 0 to t_end"});
-  for (const Quantity& q : kQuantities)
-    f.push_back({std::string("timeseries/") + q.name, q.unit,
-                 std::string(q.meaning) + " at the output instants t"});
-  return f;
+std::string residual(const std::string& sim, const std::string& an, const std::string& measures) {
+  return "(" + sim + " - " + an + ") / |" + an + "|: " + measures;
 }
 
 } // namespace
 
-const std::vector<FieldInfo>& row_field_info() {
-  static const std::vector<FieldInfo> f = make_fields();
-  return f;
+RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_force_(by_force) {
+  const auto add = [this](const std::string& path, const char* unit, const std::string& meaning,
+                          bool per_event = false, bool undefined = false) {
+    fields_.push_back({{path, unit, meaning}, per_event, undefined});
+  };
+  const auto each = [by_force](auto f, bool all = true) {
+    for (const Quantity& q : kQuantities)
+      if (by_force || !q.load_only) {
+        if (all || !q.load_only) f(q);
+      }
+  };
+  const std::string ss = by_force ? "in stationary sliding under the load FN at "
+                                  : "in stationary "
+                                    "sliding at ";
+  add("results/error_estimate", "number",
+      "the solver's estimate of the case's relative error (docs/design.md, error metric)");
+  add("results/wall_seconds", "s", "wall-clock time the case took, in seconds");
+  each([&](const Quantity& q) {
+    add(std::string("results/") + q.name + "_pre", q.unit,
+        std::string(q.meaning) + " " + ss + "v before t = 0, as solved");
+  });
+  add("events/t", "time", "time of the velocity change at the segment's start (the first at t = 0)",
+      true);
+  each([&](const Quantity& q) {
+    add(std::string("events/") + q.name + "_after", q.unit,
+        std::string(q.meaning) + " just after the change (the segment's first sample)", true);
+  });
+  add("events/mu_before", "number",
+      "friction coefficient just before the change (the previous segment's last sample)", true);
+  add("events/mu_peak", "number",
+      "the segment's extreme friction coefficient: the sample farthest from its stationary value",
+      true);
+  add("events/t_peak", "time", "time of mu_peak since the change", true);
+  add("events/slip_peak", "length", "slip of mu_peak since the change", true);
+  each([&](const Quantity& q) {
+    add(std::string("events/") + q.name + "_end", q.unit,
+        std::string(q.meaning) + " at the segment's end (its last sample)", true);
+  });
+  add("events/a", "number",
+      "direct effect (mu_after - mu_before) / ln(w / w_before); undefined across a hold", true,
+      true);
+  add("events/b", "number", "evolution effect a - (a - b); undefined across a hold", true, true);
+  add("events/a_minus_b", "number",
+      "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold", true, true);
+  add("events/d_c", "length",
+      "slip over which |mu - mu_ss(w)| falls to 1/e of its value after the change; undefined "
+      "during a hold or when it does not fall that far within the segment",
+      true, true);
+  each([&](const Quantity& q) {
+    add(std::string("analytic/") + q.name + "_pre", q.unit,
+        std::string(q.meaning) + " " + ss + "v (closed form)");
+  });
+  each([&](const Quantity& q) {
+    add(std::string("analytic/") + q.name + "_ss", q.unit,
+        std::string(q.meaning) + " " + ss + "the segment's velocity (closed form)", true);
+  });
+  if (!by_force)
+    each(
+        [&](const Quantity& q) {
+          add(std::string("analytic/") + q.name + "_jump", q.unit,
+              std::string(q.meaning) +
+                  " just after the first change (t = 0+), the corrected estimate (eqs. 15-16)");
+        },
+        false);
+  each([&](const Quantity& q) {
+    const std::string n = std::string(q.name) + "_pre";
+    add("residuals/" + n, "number",
+        residual("results/" + n, "analytic/" + n,
+                 "numerical error of the stationary state before t = 0"));
+  });
+  each([&](const Quantity& q) {
+    add(std::string("residuals/") + q.name + "_end", "number",
+        residual(std::string("events/") + q.name + "_end",
+                 std::string("analytic/") + q.name + "_ss",
+                 "distance of the segment's end from stationary sliding at its velocity (physics, "
+                 "not error)"),
+        true);
+  });
+  if (!by_force)
+    each(
+        [&](const Quantity& q) {
+          add(std::string("residuals/") + q.name + "_jump", "number",
+              residual(std::string("events/") + q.name + "_after[0]",
+                       std::string("analytic/") + q.name + "_jump",
+                       "numerical error just after the first change"));
+        },
+        false);
+  offsets_.push_back(0);
+  for (std::size_t f = 0; f < fields_.size(); ++f) {
+    offsets_.push_back(offsets_.back() + width(f));
+    index_[fields_[f].info.path] = f;
+  }
+  series_.push_back({"timeseries/t", "time", "output instant, from the first change at t = 0"});
+  each([&](const Quantity& q) {
+    series_.push_back({std::string("timeseries/") + q.name, q.unit,
+                       std::string(q.meaning) + " at the output instants t"});
+  });
+}
+
+std::size_t RowLayout::at(const std::string& path, std::size_t k) const {
+  const auto it = index_.find(path);
+  if (it == index_.end()) throw std::out_of_range("no map field " + path);
+  if (k >= width(it->second))
+    throw std::out_of_range("map field " + path + ": no event " + std::to_string(k));
+  return offsets_[it->second] + k;
 }
 
 const std::vector<FieldInfo>& other_result_info() {
-  static const std::vector<FieldInfo> f = make_others();
+  static const std::vector<FieldInfo> f = {
+      {"results/status", "code", "1 done, 0 pending (not yet computed), -1 failed"},
+      {"timeseries/segment", "count", "the 0-based segment of each output instant"},
+      {"failures/case", "count", "a failed case (0-based index)"},
+      {"failures/message", "text", "why it failed"},
+  };
   return f;
 }
 
-const std::vector<std::string>& row_fields() {
-  static const std::vector<std::string> f = [] {
-    std::vector<std::string> names;
-    for (const FieldInfo& i : row_field_info())
-      names.push_back(i.path);
-    return names;
-  }();
-  return f;
-}
-
-std::size_t field_index(const std::string& name) {
-  const auto& f = row_fields();
-  const auto it = std::find(f.begin(), f.end(), name);
-  if (it == f.end()) throw std::out_of_range("no map field " + name);
-  return static_cast<std::size_t>(it - f.begin());
-}
-
-const FieldInfo& result_info(const std::string& path) {
-  for (const auto* table : {&row_field_info(), &other_result_info()})
-    for (const FieldInfo& i : *table)
-      if (i.path == path) return i;
+const FieldInfo& other_info(const std::string& path) {
+  for (const FieldInfo& i : other_result_info())
+    if (i.path == path) return i;
   throw std::out_of_range("no map dataset " + path);
 }
 

@@ -1,40 +1,74 @@
 #pragma once
-// One case's row of the friction map, as computed (study/compute.hpp) and as
-// written (io/map_file.hpp): MPI- and HDF5-free.
+// One case's row of the friction map (schema mdrmap-map/2, docs/map-schema.md),
+// as computed (study/compute.hpp) and as written (io/map_file.hpp): which
+// per-case datasets a study's map has, their units and meanings, and the row
+// that holds one case's values. MPI- and HDF5-free.
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace mdrmap::io {
 
-/// Per-case float64 fields, as "group/name", in the order of CaseRow::values.
-const std::vector<std::string>& row_fields();
-/// Index of a field in row_fields(); throws std::out_of_range.
-std::size_t field_index(const std::string& name);
+/// The netCDF default fill value of a double: undefined values (an event
+/// metric across a hold, say) hold it, and their datasets say so in
+/// `_FillValue`, so that xarray shows NaN while no file holds a NaN.
+inline constexpr double kFillValue = 9.969209968386869e36;
 
-/// What a per-case dataset of the map holds, for the map's /schema group and
-/// the datasets' `units` and `long_name` attributes.
+/// What a dataset of the map holds, for the map's /schema group and the
+/// datasets' `units` and `long_name` attributes.
 struct FieldInfo {
-  std::string path;    ///< "group/name" in the map, e.g. "results/mu_jump"
+  std::string path;    ///< "group/name" in the map, e.g. "events/mu_peak"
   std::string unit;    ///< a dimension name as core/params.hpp's dim_name: "force", "number", ...
   std::string meaning; ///< one line, lower case, no final period
 };
 
-/// Unit and meaning of every row_fields() entry, in that order; generated
-/// from the same table as the names.
-const std::vector<FieldInfo>& row_field_info();
-/// The per-case datasets besides row_fields(): results/status,
-/// results/message and the time series timeseries/{t,FN,Fx,mu,a2}.
+/// One per-case float64 dataset: [N] or, per event, [N, K].
+struct RowField {
+  FieldInfo info;
+  bool per_event = false;        ///< [N, K]
+  bool may_be_undefined = false; ///< holds kFillValue where undefined (`_FillValue`)
+};
+
+/// The per-case datasets of a study's map: K segments, under load (the depth
+/// and the leading edge move: d and a1 are quantities too) or at fixed depth
+/// (where the seed's jump estimate exists).
+class RowLayout {
+public:
+  RowLayout(std::size_t segments, bool by_force);
+  std::size_t segments() const { return K_; }
+  bool by_force() const { return by_force_; }
+  /// float64 datasets, in the order of CaseRow::values.
+  const std::vector<RowField>& fields() const { return fields_; }
+  /// Values of field f in a row: 1 or K.
+  std::size_t width(std::size_t f) const { return fields_[f].per_event ? K_ : 1; }
+  /// Where field f starts in CaseRow::values.
+  std::size_t offset(std::size_t f) const { return offsets_[f]; }
+  std::size_t row_width() const { return offsets_.back(); }
+  /// Index in values() of field `path` (event k for a per-event field); throws std::out_of_range.
+  std::size_t at(const std::string& path, std::size_t k = 0) const;
+  /// The time series: t, FN, Fx, mu, a2 (and d, a1 under load), [N, K S].
+  const std::vector<FieldInfo>& series() const { return series_; }
+
+private:
+  std::size_t K_;
+  bool by_force_;
+  std::vector<RowField> fields_;
+  std::vector<std::size_t> offsets_;                   ///< fields_.size() + 1
+  std::unordered_map<std::string, std::size_t> index_; ///< path -> field
+  std::vector<FieldInfo> series_;
+};
+
+/// results/status, /timeseries/segment, /failures/{case,message}.
 const std::vector<FieldInfo>& other_result_info();
-/// The entry of `path` in row_field_info() or other_result_info(); throws
-/// std::out_of_range.
-const FieldInfo& result_info(const std::string& path);
+/// The entry of `path` in other_result_info(); throws std::out_of_range.
+const FieldInfo& other_info(const std::string& path);
 
 struct CaseRow {
-  std::vector<double> values; ///< row_fields().size() values
-  std::int8_t status = 0;
-  std::string message;
-  std::vector<double> t, FN, Fx, mu, a2; ///< time series (when the map stores them)
+  std::vector<double> values;              ///< RowLayout::row_width() values
+  std::int8_t status = 0;                  ///< 1 done, -1 failed
+  std::string message;                     ///< why it failed ("" otherwise)
+  std::vector<std::vector<double>> series; ///< RowLayout::series() (when the map stores them)
 };
 
 } // namespace mdrmap::io

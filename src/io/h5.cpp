@@ -107,6 +107,15 @@ void write_scalar_attr(hid_t obj, const std::string& name, long long value) {
   attr.close(what);
 }
 
+void write_double_attr(hid_t obj, const std::string& name, double value) {
+  const std::string what = "attribute '" + name + "'";
+  Handle space = make_space(H5Screate(H5S_SCALAR), what);
+  Handle attr = make_attr(
+      H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT), what);
+  check_status(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), what);
+  attr.close(what);
+}
+
 void write_int_array_attr(hid_t obj, const std::string& name, const std::vector<long long>& v) {
   const std::string what = "attribute '" + name + "'";
   const hsize_t n = v.size();

@@ -70,6 +70,7 @@ void write_string_attr(hid_t obj, const std::string& name, const std::string& va
 std::string read_string_attr(hid_t obj, const std::string& name);
 bool has_attr(hid_t obj, const std::string& name);
 void write_scalar_attr(hid_t obj, const std::string& name, long long value);
+void write_double_attr(hid_t obj, const std::string& name, double value);
 void write_int_array_attr(hid_t obj, const std::string& name, const std::vector<long long>& v);
 bool has_link(hid_t loc, const std::string& path);
 /// A 1-D uint8 dataset read as text (up to the first NUL).

@@ -18,49 +18,43 @@
 namespace mdrmap::io {
 namespace {
 
-const char* const kSeriesNames[] = {"t", "FN", "Fx", "mu", "a2"};
-const char* const kCaseColumns[] = {"d", "R", "tau", "v", "v1", "G"};
-
 Handle create_group(hid_t loc, const char* name) {
   return make_group(H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                     std::string("creating group ") + name);
 }
 
-// Contiguous, allocated at creation, zero-filled, no timestamps: later
-// writes touch raw data only, never metadata.
-Handle dataset_plist(const std::string& what) {
+// Contiguous, allocated at creation, no timestamps: later writes touch raw
+// data only, never metadata. Zero-filled only when `zero` (the status, small
+// datasets written at once): the rest is written once, by the run.
+Handle dataset_plist(const std::string& what, bool zero) {
   Handle dcpl = make_plist(H5Pcreate(H5P_DATASET_CREATE), what);
   check_status(H5Pset_layout(dcpl.id(), H5D_CONTIGUOUS), what);
   check_status(H5Pset_alloc_time(dcpl.id(), H5D_ALLOC_TIME_EARLY), what);
-  check_status(H5Pset_fill_time(dcpl.id(), H5D_FILL_TIME_ALLOC), what);
+  check_status(H5Pset_fill_time(dcpl.id(), zero ? H5D_FILL_TIME_ALLOC : H5D_FILL_TIME_NEVER), what);
   check_status(H5Pset_obj_track_times(dcpl.id(), 0), what);
   return dcpl;
 }
 
-Handle create_dataset(hid_t loc, const std::string& name, hid_t type, std::vector<hsize_t> dims) {
+Handle create_dataset(hid_t loc, const std::string& name, hid_t type, std::vector<hsize_t> dims,
+                      bool zero = true) {
   const std::string what = "creating dataset /" + name;
   Handle space =
       make_space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), what);
-  Handle dcpl = dataset_plist(what);
+  Handle dcpl = dataset_plist(what, zero);
   return make_dataset(
       H5Dcreate2(loc, name.c_str(), type, space.id(), H5P_DEFAULT, dcpl.id(), H5P_DEFAULT), what);
 }
 
 // ---- self-description: /schema, CF attributes, dimension scales ----------------
 
-// Unit and meaning of a /cases column or a grid axis: the core's parameter
-// table, plus the step's v1 (its one history segment) and the axis v1_over_v.
-FieldInfo case_column_info(const std::string& group, const std::string& name) {
+// Unit and meaning of a /cases dataset: the core's parameter table, and the
+// history's segment velocity and duration.
+FieldInfo case_info(const std::string& name) {
   if (const ParamSpec* p = find_parameter(name))
-    return {group + "/" + name, dim_name(p->dim), p->meaning};
-  if (name == "v1") {
-    const ParamSpec& w = segment_velocity_spec();
-    return {group + "/v1", dim_name(w.dim),
-            std::string("after the step at t = 0, the history's one segment: ") + w.meaning};
-  }
-  if (name == "v1_over_v")
-    return {group + "/v1_over_v", "number", "velocity ratio v1 / v of the step"};
-  throw std::logic_error("map: no unit and meaning for the case column " + name);
+    return {"cases/" + name, dim_name(p->dim), p->meaning};
+  const ParamSpec& spec = name == "w" ? segment_velocity_spec() : segment_duration_spec();
+  return {"cases/" + name, dim_name(spec.dim),
+          std::string(spec.meaning) + " (absolute, as run), per segment"};
 }
 
 // A group whose links iterate in creation order (h5py and xarray list them so).
@@ -112,45 +106,51 @@ void attach(hid_t dset, hid_t scale, unsigned axis, const std::string& path) {
   check_status(H5DSattach_scale(dset, scale, axis), "attaching a dimension scale to /" + path);
 }
 
-Handle message_type() {
-  Handle t = make_type(H5Tcopy(H5T_C_S1), "string type");
-  check_status(H5Tset_size(t.id(), kMessageLen), "string type");
-  check_status(H5Tset_strpad(t.id(), H5T_STR_NULLPAD), "string type");
-  return t;
-}
-
 // Writes a whole float64 dataset (independent I/O: rank 0 alone).
 void write_doubles(hid_t dset, hid_t dxpl, const double* data, const std::string& what) {
   check_status(H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, dxpl, data), what);
 }
 
-// /cases/<column> from the cases, taken by range in blocks of 65536 rows
-// (memory independent of the number of cases).
-void write_case_columns(const std::vector<Handle>& sets, hid_t dxpl, std::size_t n,
-                        const MapFile::CaseRange& cases) {
+// Writes rows [i0, i0 + count) of a [N] or [N, width] dataset (independent I/O).
+template <class T>
+void write_block(hid_t dset, hid_t mem_type, hid_t dxpl, hsize_t i0, hsize_t count, hsize_t width,
+                 const T* data, const std::string& what) {
+  const hsize_t start[2] = {i0, 0}, counts[2] = {count, width};
+  Handle fspace = make_space(H5Dget_space(dset), what);
+  const int rank = static_cast<int>(check(H5Sget_simple_extent_ndims(fspace.id()), what));
+  check_status(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start, nullptr, counts, nullptr),
+               what);
+  Handle mspace = make_space(H5Screate_simple(rank, counts, nullptr), what);
+  check_status(H5Dwrite(dset, mem_type, mspace.id(), fspace.id(), dxpl, data), what);
+}
+
+// /cases from the cases, taken by range in blocks of 65536 (memory
+// independent of the number of cases): the parameters, then w and T [N, K].
+void write_cases(const std::vector<Handle>& sets, const std::vector<std::string>& params,
+                 hid_t dxpl, std::size_t n, std::size_t K, const MapFile::CaseRange& cases) {
   constexpr std::size_t kBlock = 65536;
-  std::vector<study::StepRow> rows;
+  std::vector<Case> rows;
   std::vector<double> col;
   for (std::size_t i0 = 0; i0 < n; i0 += kBlock) {
     const std::size_t i1 = std::min(n, i0 + kBlock);
     cases(i0, i1, rows);
     if (rows.size() != i1 - i0) throw std::invalid_argument("MapFile::create: case count");
-    const hsize_t start = i0, count = i1 - i0;
-    col.resize(rows.size());
-    for (std::size_t c = 0; c < sets.size(); ++c) {
-      const std::string what = std::string("writing /cases/") + kCaseColumns[c];
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        const study::StepRow& s = rows[i];
-        const double vals[6] = {s.d, s.R, s.tau, s.v, s.v1, s.G};
-        col[i] = vals[c];
-      }
-      Handle fspace = make_space(H5Dget_space(sets[c].id()), what);
-      check_status(
-          H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &start, nullptr, &count, nullptr), what);
-      Handle mspace = make_space(H5Screate_simple(1, &count, nullptr), what);
-      check_status(
-          H5Dwrite(sets[c].id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), dxpl, col.data()),
-          what);
+    const hsize_t count = rows.size();
+    for (std::size_t c = 0; c < params.size(); ++c) {
+      const ParamSpec* p = find_parameter(params[c]);
+      col.resize(rows.size());
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        col[i] = p->get(rows[i]);
+      write_block(sets[c].id(), H5T_NATIVE_DOUBLE, dxpl, i0, count, 1, col.data(),
+                  "writing /cases/" + params[c]);
+    }
+    for (std::size_t j = 0; j < 2; ++j) {
+      col.assign(rows.size() * K, 0.0);
+      for (std::size_t i = 0; i < rows.size(); ++i)
+        for (std::size_t k = 0; k < K && k < rows[i].history.size(); ++k)
+          col[i * K + k] = j == 0 ? rows[i].history.segments[k].w : rows[i].history.segments[k].T;
+      write_block(sets[params.size() + j].id(), H5T_NATIVE_DOUBLE, dxpl, i0, count, K, col.data(),
+                  j == 0 ? "writing /cases/w" : "writing /cases/T");
     }
   }
 }
@@ -180,148 +180,204 @@ long long read_ll_attr(hid_t obj, const char* name) {
 } // namespace
 
 std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
-  const std::uint64_t n = spec.n_cases;
-  std::uint64_t per_case = sizeof(kCaseColumns) / sizeof(kCaseColumns[0]) * 8 +
-                           row_fields().size() * 8 + 1 /* status */ + kMessageLen;
+  const std::uint64_t n = spec.n_cases, K = spec.segments;
+  const RowLayout layout = spec.layout();
+  std::uint64_t per_case =
+      (spec.case_params.size() + 2 * K) * 8 + layout.row_width() * 8 + 1 /* status */;
   if (spec.timeseries)
-    per_case += sizeof(kSeriesNames) / sizeof(kSeriesNames[0]) * 8 *
-                static_cast<std::uint64_t>(spec.samples);
+    per_case += layout.series().size() * 8 * K * static_cast<std::uint64_t>(spec.samples);
   std::uint64_t grid = 0;
   for (const auto& v : spec.grid.values)
     grid += 8 * v.size();
   // superblock, object headers, attributes and B-trees: about 32 KiB measured,
-  // plus about 40 KiB for /schema, the datasets' units and dimension scales
-  return n * per_case + grid + 2 * static_cast<std::uint64_t>(text_bytes) + 128 * 1024;
+  // plus about 100 KiB for /schema, the datasets' units and dimension scales
+  return n * per_case + grid + 4 * K * static_cast<std::uint64_t>(spec.samples) +
+         2 * static_cast<std::uint64_t>(text_bytes) + 256 * 1024;
 }
 
 void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                     const Provenance& prov, const std::vector<study::StepRow>& cases) {
+                     const Provenance& prov, const std::vector<Case>& cases) {
   if (cases.size() != spec.n_cases) throw std::invalid_argument("MapFile::create: case count");
-  create(comm, path, spec, prov,
-         [&cases](std::size_t i0, std::size_t i1, std::vector<study::StepRow>& out) {
-           out.assign(cases.begin() + static_cast<std::ptrdiff_t>(i0),
-                      cases.begin() + static_cast<std::ptrdiff_t>(i1));
-         });
+  create(comm, path, spec, prov, [&cases](std::size_t i0, std::size_t i1, std::vector<Case>& out) {
+    out.assign(cases.begin() + static_cast<std::ptrdiff_t>(i0),
+               cases.begin() + static_cast<std::ptrdiff_t>(i1));
+  });
 }
 
-void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                     const Provenance& prov, const CaseRange& cases) {
-  if (spec.n_cases == 0) throw std::invalid_argument("MapFile::create: no cases");
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  Handle fapl = mpio_fapl(comm, "creating " + path);
-  Handle file = make_file(H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.id()),
-                          "creating map file '" + path + "'");
-  const hid_t f = file.id();
-  const hsize_t n = spec.n_cases;
+namespace {
 
-  // Metadata (collective: identical calls on every rank).
+// Root attributes and /provenance (collective: identical calls on every rank).
+void write_header(hid_t f, const MapSpec& spec, const Provenance& prov) {
   write_string_attr(f, "mdrmap_schema", kSchema);
   write_string_attr(f, "program_version", prov.program_version);
   write_string_attr(f, "git_commit", prov.git_commit);
   write_string_attr(f, "created_utc", prov.created_utc);
   write_string_attr(f, "command_line", prov.command_line);
   write_string_attr(f, "units", prov.units);
+  write_string_attr(f, "loading", spec.by_force ? "force" : "depth");
   write_scalar_attr(f, "mpi_size", prov.mpi_size);
   write_scalar_attr(f, "n_cases", static_cast<long long>(spec.n_cases));
+  write_scalar_attr(f, "segments", static_cast<long long>(spec.segments));
   write_scalar_attr(f, "samples", spec.samples);
   write_scalar_attr(f, "timeseries", spec.timeseries ? 1 : 0);
   // an attribute must fit in the object header (64 KiB): long configs live in /provenance only
   write_string_attr(f, "config_text",
                     prov.config_text.size() < 48 * 1024 ? prov.config_text
                                                         : "(long: see /provenance/config_text)");
-  {
-    Handle g = create_group(f, "provenance");
-    write_text_dataset(f, "provenance/config_text", prov.config_text);
-    write_text_dataset(f, "provenance/config_canonical", prov.config_canonical);
-    g.close("closing /provenance");
+  Handle g = create_group(f, "provenance");
+  write_text_dataset(f, "provenance/config_text", prov.config_text);
+  write_text_dataset(f, "provenance/config_canonical", prov.config_canonical);
+  g.close("closing /provenance");
+}
+
+// The named dimensions of a map (xarray).
+struct Dimensions {
+  Handle cases, events, samples;
+};
+
+// A per-case dataset [N] or [N, width], described, its dimensions attached.
+Handle per_case(hid_t f, const Dimensions& dims, const FieldInfo& info, hid_t type, hsize_t n,
+                hsize_t width, hid_t second, bool zero) {
+  Handle d = width == 0 ? create_dataset(f, info.path, type, {n}, zero)
+                        : create_dataset(f, info.path, type, {n, width}, zero);
+  describe(f, d.id(), info);
+  attach(d.id(), dims.cases.id(), 0, info.path);
+  if (width != 0) attach(d.id(), second, 1, info.path);
+  return d;
+}
+
+// /results, /events, /analytic, /residuals and /timeseries.
+void create_results(hid_t f, const Dimensions& dims, const MapSpec& spec) {
+  const RowLayout layout = spec.layout();
+  const hsize_t n = spec.n_cases, K = spec.segments;
+  for (const RowField& field : layout.fields()) {
+    Handle d = per_case(f, dims, field.info, H5T_IEEE_F64LE, n, field.per_event ? K : 0,
+                        dims.events.id(), false);
+    if (field.may_be_undefined) write_double_attr(d.id(), "_FillValue", kFillValue);
+    d.close("closing /" + field.info.path);
   }
+  per_case(f, dims, other_info("results/status"), H5T_STD_I8LE, n, 0, -1, true)
+      .close("closing /results/status");
+  if (!spec.timeseries) return;
+  const hsize_t S = K * static_cast<hsize_t>(spec.samples);
+  for (const FieldInfo& info : layout.series())
+    per_case(f, dims, info, H5T_IEEE_F64LE, n, S, dims.samples.id(), false)
+        .close("closing /" + info.path);
+}
+
+// /grid/<axis>: the values of each axis, each a dimension scale of its own.
+std::vector<Handle> create_grid(hid_t f, const GridInfo& grid) {
+  std::vector<Handle> sets;
+  if (grid.names.empty()) return sets;
+  Handle g = create_ordered_group(f, "grid");
+  std::string axes;
+  std::vector<long long> shape, logs;
+  for (std::size_t i = 0; i < grid.names.size(); ++i) {
+    const std::string& a = grid.names[i];
+    axes += (i ? "," : "") + a;
+    shape.push_back(static_cast<long long>(grid.values[i].size()));
+    logs.push_back(grid.logarithmic[i]);
+    sets.push_back(create_dataset(f, "grid/" + a, H5T_IEEE_F64LE, {grid.values[i].size()}));
+    describe(f, sets.back().id(), grid.info[i]);
+    check_status(H5DSset_scale(sets.back().id(), a.c_str()),
+                 "making /grid/" + a + " a dimension scale");
+  }
+  write_string_attr(g.id(), "axes", axes);
+  write_int_array_attr(g.id(), "shape", shape);
+  write_int_array_attr(g.id(), "log", logs);
+  g.close("closing /grid");
+  return sets;
+}
+
+// Reserves the file's blocks (its size is final at close): the raw data is
+// written once, by the run, and cannot run out of space then.
+void reserve_blocks(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
+  struct stat st {};
+  int err = ::fstat(fd, &st) == 0 ? ::posix_fallocate(fd, 0, st.st_size) : errno;
+  if (err == EOPNOTSUPP || err == ENOSYS) err = 0; // no reservation here: a later write tells
+  ::close(fd);
+  if (err != 0)
+    throw std::runtime_error("reserving " + std::to_string(st.st_size) + " bytes for '" + path +
+                             "': " + std::strerror(err));
+}
+
+} // namespace
+
+void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
+                     const Provenance& prov, const CaseRange& cases) {
+  if (spec.n_cases == 0 || spec.segments == 0)
+    throw std::invalid_argument("MapFile::create: no cases");
+  for (const std::string& p : spec.case_params)
+    if (!find_parameter(p)) throw std::invalid_argument("MapFile::create: no parameter " + p);
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  Handle fapl = mpio_fapl(comm, "creating " + path);
+  Handle file = make_file(H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.id()),
+                          "creating map file '" + path + "'");
+  const hid_t f = file.id();
+  const hsize_t n = spec.n_cases, K = spec.segments;
+  write_header(f, spec, prov);
   // every object is closed before the file: a map is closed complete
-  for (const char* group : {"cases", "results", "analytic", "residuals"})
+  std::vector<const char*> groups = {"cases", "results", "events", "analytic", "residuals"};
+  if (spec.timeseries) groups.push_back("timeseries");
+  for (const char* group : groups)
     create_ordered_group(f, group).close(std::string("closing /") + group);
-  // /schema/<group>/<name>: unit and meaning of every per-case dataset
   {
     Handle schema = create_ordered_group(f, "schema");
-    for (const char* group : {"cases", "results", "analytic", "residuals", "timeseries", "grid"})
-      if ((std::strcmp(group, "timeseries") != 0 || spec.timeseries) &&
-          (std::strcmp(group, "grid") != 0 || !spec.grid.names.empty()))
-        create_ordered_group(f, std::string("schema/") + group)
-            .close(std::string("closing /schema/") + group);
+    for (const char* group : groups)
+      create_ordered_group(f, std::string("schema/") + group)
+          .close(std::string("closing /schema/") + group);
+    if (!spec.grid.names.empty()) create_ordered_group(f, "schema/grid").close("/schema/grid");
     schema.close("closing /schema");
   }
-  // named dimensions (xarray): /case for every per-case dataset, /sample for
-  // the time series' second axis
-  Handle case_dim = create_dimension(f, "case", n);
+  Dimensions dims{create_dimension(f, "case", n), create_dimension(f, "event", K),
+                  create_dimension(f, "sample", K * static_cast<hsize_t>(spec.samples))};
+  const std::vector<std::string>& params = spec.case_params;
   std::vector<Handle> case_sets;
-  for (const char* c : kCaseColumns) {
-    const std::string dpath = std::string("cases/") + c;
-    case_sets.push_back(create_dataset(f, dpath, H5T_IEEE_F64LE, {n}));
-    describe(f, case_sets.back().id(), case_column_info("cases", c));
-    attach(case_sets.back().id(), case_dim.id(), 0, dpath);
-  }
-  const auto per_case = [&](const std::string& dpath, hid_t type) {
-    Handle d = create_dataset(f, dpath, type, {n});
-    describe(f, d.id(), result_info(dpath));
-    attach(d.id(), case_dim.id(), 0, dpath);
-    d.close("closing /" + dpath);
-  };
-  for (const auto& name : row_fields())
-    per_case(name, H5T_IEEE_F64LE);
-  per_case("results/status", H5T_STD_I8LE);
-  {
-    Handle t = message_type();
-    per_case("results/message", t.id());
-  }
+  for (const std::string& c : params)
+    case_sets.push_back(per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, 0, -1, false));
+  for (const char* c : {"w", "T"})
+    case_sets.push_back(
+        per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, K, dims.events.id(), false));
+  create_results(f, dims, spec);
+  Handle segment;
   if (spec.timeseries) {
-    Handle g = create_ordered_group(f, "timeseries");
-    Handle sample_dim = create_dimension(f, "sample", static_cast<hsize_t>(spec.samples));
-    for (const char* s : kSeriesNames) {
-      const std::string dpath = std::string("timeseries/") + s;
-      Handle d = create_dataset(f, dpath, H5T_IEEE_F64LE, {n, static_cast<hsize_t>(spec.samples)});
-      describe(f, d.id(), result_info(dpath));
-      attach(d.id(), case_dim.id(), 0, dpath);
-      attach(d.id(), sample_dim.id(), 1, dpath);
-      d.close("closing /" + dpath);
-    }
-    sample_dim.close("closing /sample");
-    g.close("closing /timeseries");
+    segment = create_dataset(f, "timeseries/segment", H5T_STD_I32LE,
+                             {K * static_cast<hsize_t>(spec.samples)});
+    describe(f, segment.id(), other_info("timeseries/segment"));
+    attach(segment.id(), dims.samples.id(), 0, "timeseries/segment");
   }
-  case_dim.close("closing /case");
-  std::vector<Handle> grid_sets;
-  if (!spec.grid.names.empty()) {
-    Handle g = create_ordered_group(f, "grid");
-    std::string axes;
-    std::vector<long long> shape, logs;
-    for (std::size_t i = 0; i < spec.grid.names.size(); ++i) {
-      const std::string& a = spec.grid.names[i];
-      axes += (i ? "," : "") + a;
-      shape.push_back(static_cast<long long>(spec.grid.values[i].size()));
-      logs.push_back(spec.grid.logarithmic[i]);
-      grid_sets.push_back(
-          create_dataset(f, "grid/" + a, H5T_IEEE_F64LE, {spec.grid.values[i].size()}));
-      // a coordinate variable: the dimension `a` of group /grid, with its values
-      describe(f, grid_sets.back().id(), case_column_info("grid", a));
-      check_status(H5DSset_scale(grid_sets.back().id(), a.c_str()),
-                   "making /grid/" + a + " a dimension scale");
-    }
-    write_string_attr(g.id(), "axes", axes);
-    write_int_array_attr(g.id(), "shape", shape);
-    write_int_array_attr(g.id(), "log", logs);
-    g.close("closing /grid");
-  }
+  for (Handle* h : {&dims.cases, &dims.events, &dims.samples})
+    h->close("closing a dimension scale");
+  std::vector<Handle> grid_sets = create_grid(f, spec.grid);
   // Raw data known up front: rank 0 writes it (independent I/O).
   Handle dxpl = make_plist(H5Pcreate(H5P_DATASET_XFER), "transfer property list");
   check_status(H5Pset_dxpl_mpio(dxpl.id(), H5FD_MPIO_INDEPENDENT), "independent transfer");
   if (rank == 0) {
-    write_case_columns(case_sets, dxpl.id(), spec.n_cases, cases);
+    write_cases(case_sets, params, dxpl.id(), spec.n_cases, spec.segments, cases);
     for (std::size_t i = 0; i < grid_sets.size(); ++i)
       write_doubles(grid_sets[i].id(), dxpl.id(), spec.grid.values[i].data(), "writing /grid");
+    if (segment) {
+      std::vector<std::int32_t> seg;
+      for (std::size_t k = 0; k < spec.segments; ++k)
+        seg.insert(seg.end(), static_cast<std::size_t>(spec.samples), static_cast<std::int32_t>(k));
+      check_status(
+          H5Dwrite(segment.id(), H5T_NATIVE_INT32, H5S_ALL, H5S_ALL, dxpl.id(), seg.data()),
+          "writing /timeseries/segment");
+    }
   }
   for (auto& h : case_sets)
     h.close("closing /cases");
   for (auto& h : grid_sets)
     h.close("closing /grid");
+  if (segment) segment.close("closing /timeseries/segment");
   file.close("closing " + path);
+  if (rank == 0) {
+    write_failures(path, {}); // every map has /failures, empty until a run records some
+    reserve_blocks(path);
+  }
 }
 
 bool MapFile::is_map(const std::string& path, std::string* why) {
@@ -341,7 +397,7 @@ bool MapFile::is_map(const std::string& path, std::string* why) {
   try {
     if (has_attr(f, "mdrmap_schema")) {
       const std::string schema = read_string_attr(f, "mdrmap_schema");
-      if (schema == kSchema) return true;
+      if (schema == kSchema || schema == "mdrmap-map/1") return true;
       if (why) *why = "an mdrmap map of another schema (" + schema + ")";
       return false;
     }
@@ -353,10 +409,11 @@ bool MapFile::is_map(const std::string& path, std::string* why) {
 
 std::vector<std::uint64_t> MapLayout::pack() const {
   std::vector<std::uint64_t> v{n_cases,
+                               segments,
                                static_cast<std::uint64_t>(samples),
+                               by_force ? 1u : 0u,
                                timeseries ? 1u : 0u,
                                status,
-                               message,
                                fields.size(),
                                series.size()};
   v.insert(v.end(), fields.begin(), fields.end());
@@ -365,17 +422,18 @@ std::vector<std::uint64_t> MapLayout::pack() const {
 }
 
 MapLayout MapLayout::unpack(const std::vector<std::uint64_t>& v) {
-  if (v.size() < 7 || v.size() != 7 + v[5] + v[6])
+  if (v.size() < 8 || v.size() != 8 + v[6] + v[7])
     throw std::invalid_argument("MapLayout::unpack: bad size");
   MapLayout m;
   m.n_cases = v[0];
-  m.samples = static_cast<long>(v[1]);
-  m.timeseries = v[2] != 0;
-  m.status = v[3];
-  m.message = v[4];
-  const auto nf = static_cast<long>(v[5]);
-  m.fields.assign(v.begin() + 7, v.begin() + 7 + nf);
-  m.series.assign(v.begin() + 7 + nf, v.end());
+  m.segments = v[1];
+  m.samples = static_cast<long>(v[2]);
+  m.by_force = v[3] != 0;
+  m.timeseries = v[4] != 0;
+  m.status = v[5];
+  const auto nf = static_cast<long>(v[6]);
+  m.fields.assign(v.begin() + 8, v.begin() + 8 + nf);
+  m.series.assign(v.begin() + 8 + nf, v.end());
   return m;
 }
 
@@ -425,8 +483,14 @@ MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>
   Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
                           "opening map file '" + path + "'");
   const hid_t f = file.id();
-  if (!has_attr(f, "mdrmap_schema") || read_string_attr(f, "mdrmap_schema") != kSchema)
-    throw H5Error("'" + path + "' is not an mdrmap map of schema " + kSchema);
+  const std::string schema =
+      has_attr(f, "mdrmap_schema") ? read_string_attr(f, "mdrmap_schema") : "";
+  if (schema == "mdrmap-map/1")
+    throw H5Error("'" + path +
+                  "' is an mdrmap-map/1 map, written by an earlier mdrmap; this one "
+                  "continues " +
+                  kSchema + " maps only");
+  if (schema != kSchema) throw H5Error("'" + path + "' is not an mdrmap map of schema " + kSchema);
   {
     Handle fcpl = make_plist(H5Fget_create_plist(f), "file creation properties");
     hsize_t userblock = 0;
@@ -434,23 +498,27 @@ MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>
     if (userblock != 0) throw H5Error("'" + path + "' has a user block");
   }
   MapLayout m;
-  const long long n = read_ll_attr(f, "n_cases"), samples = read_ll_attr(f, "samples");
-  if (n < 1 || samples < 2) throw H5Error("attributes n_cases or samples out of range");
+  const long long n = read_ll_attr(f, "n_cases"), samples = read_ll_attr(f, "samples"),
+                  K = read_ll_attr(f, "segments");
+  if (n < 1 || samples < 2 || K < 1 || K > static_cast<long long>(kMaxSegments))
+    throw H5Error("attributes n_cases, segments or samples out of range");
   m.n_cases = static_cast<std::uint64_t>(n);
+  m.segments = static_cast<std::uint64_t>(K);
   m.samples = static_cast<long>(samples);
+  m.by_force = read_string_attr(f, "loading") == "force";
   m.timeseries = read_ll_attr(f, "timeseries") != 0;
   const hsize_t N = m.n_cases;
-  for (const auto& name : row_fields())
-    m.fields.push_back(raw_offset(f, name, H5T_IEEE_F64LE, {N}, file_size));
+  const RowLayout layout(m.segments, m.by_force);
+  for (const RowField& field : layout.fields())
+    m.fields.push_back(
+        raw_offset(f, field.info.path, H5T_IEEE_F64LE,
+                   field.per_event ? std::vector<hsize_t>{N, m.segments} : std::vector<hsize_t>{N},
+                   file_size));
   m.status = raw_offset(f, "results/status", H5T_STD_I8LE, {N}, file_size);
-  {
-    Handle t = message_type();
-    m.message = raw_offset(f, "results/message", t.id(), {N}, file_size);
-  }
   if (m.timeseries)
-    for (const char* s : kSeriesNames)
-      m.series.push_back(raw_offset(f, std::string("timeseries/") + s, H5T_IEEE_F64LE,
-                                    {N, static_cast<hsize_t>(m.samples)}, file_size));
+    for (const FieldInfo& info : layout.series())
+      m.series.push_back(raw_offset(f, info.path, H5T_IEEE_F64LE,
+                                    {N, m.segments * static_cast<hsize_t>(m.samples)}, file_size));
   if (status) {
     status->assign(m.n_cases, 0);
     Handle d = make_dataset(H5Dopen2(f, "results/status", H5P_DEFAULT), "opening /results/status");
@@ -471,8 +539,9 @@ RowWriter::RowWriter(const std::string& path, MapLayout layout)
   unsigned char first_byte = 0;
   std::memcpy(&first_byte, &probe, 1);
   if (first_byte != 1) throw std::runtime_error("writing maps needs a little-endian host");
-  if (layout_.fields.size() != row_fields().size() ||
-      layout_.series.size() != (layout_.timeseries ? std::size(kSeriesNames) : 0))
+  const RowLayout rows(layout_.segments, layout_.by_force);
+  if (layout_.fields.size() != rows.fields().size() ||
+      layout_.series.size() != (layout_.timeseries ? rows.series().size() : 0))
     throw std::invalid_argument("RowWriter: layout does not match this program's fields");
   fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd_ < 0)
@@ -517,35 +586,32 @@ void RowWriter::write_rows(std::size_t first, const std::vector<CaseRow>& rows) 
   if (fd_ < 0) throw std::logic_error("RowWriter::write_rows on a closed writer");
   if (first + count > layout_.n_cases)
     throw std::out_of_range("RowWriter::write_rows beyond the case count");
-  std::vector<double> col(count);
-  const auto& names = row_fields();
-  for (std::size_t k = 0; k < names.size(); ++k) {
+  const RowLayout L(layout_.segments, layout_.by_force);
+  std::vector<double> block;
+  for (std::size_t f = 0; f < L.fields().size(); ++f) {
+    const std::size_t w = L.width(f), at = L.offset(f);
+    block.resize(count * w);
     for (std::size_t i = 0; i < count; ++i)
-      col[i] = rows[i].values.at(k);
-    pwrite_all(col.data(), count * 8, layout_.fields[k] + 8 * first, "/" + names[k]);
+      std::copy_n(rows[i].values.begin() + static_cast<long>(at), w,
+                  block.begin() + static_cast<long>(i * w));
+    pwrite_all(block.data(), block.size() * 8, layout_.fields[f] + 8 * w * first,
+               "/" + L.fields()[f].info.path);
   }
   if (layout_.timeseries) {
-    const auto S = static_cast<std::size_t>(layout_.samples);
-    std::vector<double> block(count * S);
-    for (std::size_t q = 0; q < std::size(kSeriesNames); ++q) {
+    const auto S = layout_.segments * static_cast<std::size_t>(layout_.samples);
+    block.resize(count * S);
+    for (std::size_t q = 0; q < L.series().size(); ++q) {
       for (std::size_t i = 0; i < count; ++i) {
-        const std::vector<double>* src[] = {&rows[i].t, &rows[i].FN, &rows[i].Fx, &rows[i].mu,
-                                            &rows[i].a2};
-        const auto& v = *src[q];
-        if (v.size() == S)
-          std::copy(v.begin(), v.end(), block.begin() + static_cast<long>(i * S));
+        const auto out = block.begin() + static_cast<long>(i * S);
+        if (rows[i].series.size() == L.series().size() && rows[i].series[q].size() == S)
+          std::copy(rows[i].series[q].begin(), rows[i].series[q].end(), out);
         else
-          std::fill_n(block.begin() + static_cast<long>(i * S), S, 0.0); // failed case
+          std::fill_n(out, S, 0.0); // failed case
       }
       pwrite_all(block.data(), block.size() * 8, layout_.series[q] + 8 * S * first,
-                 std::string("/timeseries/") + kSeriesNames[q]);
+                 "/" + L.series()[q].path);
     }
   }
-  std::vector<char> msgs(count * kMessageLen, '\0');
-  for (std::size_t i = 0; i < count; ++i)
-    std::memcpy(&msgs[i * kMessageLen], rows[i].message.data(),
-                std::min(rows[i].message.size(), kMessageLen - 1));
-  pwrite_all(msgs.data(), msgs.size(), layout_.message + kMessageLen * first, "/results/message");
   // status last: a case counts as done only once everything else is written
   std::vector<std::int8_t> st(count);
   for (std::size_t i = 0; i < count; ++i)
@@ -564,6 +630,81 @@ void RowWriter::close() {
   }
   if (::close(fd) != 0)
     throw std::runtime_error("closing '" + path_ + "': " + std::strerror(errno));
+}
+
+// ---- failures -------------------------------------------------------------------
+
+std::vector<Failure> MapFile::read_failures(const std::string& path) {
+  Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                          "opening map file '" + path + "'");
+  std::vector<Failure> out;
+  if (!has_link(file.id(), "failures/case") || !has_link(file.id(), "failures/message")) return out;
+  Handle c = make_dataset(H5Dopen2(file.id(), "failures/case", H5P_DEFAULT), "/failures/case");
+  Handle m =
+      make_dataset(H5Dopen2(file.id(), "failures/message", H5P_DEFAULT), "/failures/message");
+  Handle space = make_space(H5Dget_space(c.id()), "/failures/case");
+  const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id()));
+  Handle type = make_type(H5Dget_type(m.id()), "/failures/message");
+  const std::size_t len = H5Tget_size(type.id());
+  if (H5Tget_class(type.id()) != H5T_STRING || H5Tis_variable_str(type.id()) != 0 || len == 0)
+    throw H5Error("/failures/message is not a fixed-length string");
+  std::vector<std::uint64_t> idx(n);
+  std::vector<char> text(n * len + 1, '\0');
+  if (n > 0) {
+    check_status(H5Dread(c.id(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, idx.data()),
+                 "reading /failures/case");
+    check_status(H5Dread(m.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()),
+                 "reading /failures/message");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* p = &text[i * len];
+    out.push_back({idx[i], std::string(p, strnlen(p, len))});
+  }
+  return out;
+}
+
+void MapFile::write_failures(const std::string& path, const std::vector<Failure>& failures) {
+  Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT),
+                          "opening map file '" + path + "'");
+  const hid_t f = file.id();
+  if (has_link(f, "failures"))
+    check_status(H5Ldelete(f, "failures", H5P_DEFAULT), "replacing /failures");
+  create_ordered_group(f, "failures").close("closing /failures");
+  std::size_t len = 1;
+  for (const Failure& x : failures)
+    len = std::max(len, x.message.size() + 1);
+  std::vector<std::uint64_t> idx;
+  std::vector<char> text(failures.size() * len, '\0');
+  for (std::size_t i = 0; i < failures.size(); ++i) {
+    idx.push_back(failures[i].index);
+    std::memcpy(&text[i * len], failures[i].message.data(), failures[i].message.size());
+  }
+  const hsize_t n = failures.size();
+  Handle space = make_space(H5Screate_simple(1, &n, nullptr), "/failures");
+  Handle type = make_type(H5Tcopy(H5T_C_S1), "string type");
+  check_status(H5Tset_size(type.id(), len), "string type");
+  check_status(H5Tset_strpad(type.id(), H5T_STR_NULLTERM), "string type");
+  const auto dataset = [&](const char* name, hid_t file_type, hid_t mem_type, const void* data) {
+    const std::string what = std::string("writing /") + name;
+    Handle d = make_dataset(
+        H5Dcreate2(f, name, file_type, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), what);
+    if (n > 0) check_status(H5Dwrite(d.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what);
+    const FieldInfo& info = other_info(name);
+    write_string_attr(d.id(), "units", info.unit);
+    write_string_attr(d.id(), "long_name", info.meaning);
+    if (!has_link(f, std::string("schema/") + name)) {
+      if (!has_link(f, "schema/failures"))
+        create_ordered_group(f, "schema/failures").close("closing /schema/failures");
+      Handle g = create_ordered_group(f, std::string("schema/") + name);
+      write_string_attr(g.id(), "unit", info.unit);
+      write_string_attr(g.id(), "meaning", info.meaning);
+      g.close(what);
+    }
+    d.close(what);
+  };
+  dataset("failures/case", H5T_STD_U64LE, H5T_NATIVE_UINT64, idx.data());
+  dataset("failures/message", type.id(), type.id(), text.data());
+  file.close("closing '" + path + "'");
 }
 
 } // namespace mdrmap::io

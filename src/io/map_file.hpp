@@ -2,45 +2,27 @@
 // The friction-map file: one HDF5 file per study, written in parallel
 // through MPI-IO.
 //
-// Layout (schema "mdrmap-map/1"; N cases, S samples):
-//   /cases/{d,R,tau,v,v1,G}                 float64 [N]   case order of the config
-//   /results/{FN,Fx,mu,a2}_{pre,jump,post}  float64 [N]   before the step, t = 0+, t_end
-//   /results/{error_estimate,wall_seconds}  float64 [N]
-//   /results/status                         int8    [N]   0 pending, 1 done, -1 failed
-//   /results/message                        string  [N]   why a case failed ("" otherwise)
-//   /analytic/{FN,Fx,mu,a2}_{pre,jump,post} float64 [N]   the corrected estimates
-//   /analytic/{FN_inf,Fx_inf,mu_inf,mu_post_drop}         limits (eqs. 12-14; 3/4 sqrt(d/R))
-//   /residuals/<same names>                 float64 [N]   (sim - analytic) / |analytic|
-//   /timeseries/{t,FN,Fx,mu,a2}             float64 [N,S] when asked
-//   /grid/<axis>                            float64 [n_i] grid studies; attrs axes, shape, log
-//   /provenance/{config_text,config_canonical}  uint8 text
-//   root attributes: mdrmap_schema, program_version, git_commit, created_utc,
-//   command_line, mpi_size, units, config_text (when short), n_cases, samples
-//
-// Self-description (compatible additions to mdrmap-map/1; maps without them
-// are still maps of this schema):
-//   /schema/<group>/<name>                  group, attributes unit, meaning (strings)
-//       for every dataset of /cases, /results, /analytic, /residuals,
-//       /timeseries and /grid, in the order of creation; units are dimension
-//       names ("length", "force", "number", ...): the case parameters' from
-//       the core's parameter table (core/params.hpp), the results' from
-//       io/case_row.hpp's table
-//   the same on each of those datasets as CF attributes units, long_name
-//   /case, /sample                          HDF5 dimension scales (netCDF-4
-//       dimensions without a variable; extent 0, unlimited: no data), attached
-//       to axis 0 of every per-case dataset and axis 1 of the time series, so
-//       that xarray (engine h5netcdf) names the dimensions case and sample
-//   /grid/<axis>                            also a dimension scale named <axis>:
-//       xarray shows the axes as coordinates of group /grid
+// Layout: schema "mdrmap-map/2", described dataset by dataset in
+// docs/map-schema.md (N cases, K segments, S samples per segment):
+//   /cases/{d|FN,R,tau,G,v} [N], /cases/{w,T} [N, K]   the cases as run
+//   /results, /events, /analytic, /residuals           io::RowLayout: float64 [N] or [N, K]
+//   /results/status                         int8 [N]   0 pending, 1 done, -1 failed
+//   /timeseries/<q> [N, K S], /timeseries/segment [K S]  with timeseries = true
+//   /failures/{case,message} [F]            the failed cases of the last run and why
+//   /grid/<axis>, /provenance, /schema/<group>/<name>, root attributes
+// Every dataset has `units` and `long_name` (CF) and a /schema entry; the
+// dimension scales /case, /event, /sample name the dimensions for xarray.
 //
 // Crash and fault safety: the file is created collectively with parallel
-// HDF5, every dataset allocated (early, contiguous, zero-filled) and the file
-// closed before any case runs: the whole map is on disk and valid from then
-// on. The run writes raw rows only, by plain positional writes at the offsets
-// of the datasets (RowWriter; no HDF5 state, nothing collective), values
-// first and status last. So a process killed at any moment, or a rank whose
-// write fails, leaves a file that opens, with every case marked done intact;
-// and a failing device cannot hang the job in a collective close.
+// HDF5, every dataset allocated (early, contiguous), its blocks reserved on
+// disk (posix_fallocate: the raw data is not written at creation), status
+// zeroed and the file closed before any case runs: the whole map is on disk
+// and valid from then on. The run writes raw rows only, by plain positional
+// writes at the offsets of the datasets (RowWriter; no HDF5 state, nothing
+// collective), values first and status last. So a process killed at any
+// moment, or a rank whose write fails, leaves a file that opens, with every
+// case marked done intact; and a failing device cannot hang the job in a
+// collective close. A row's values are defined once its status is 1.
 #include <mpi.h>
 
 #include <cstdint>
@@ -48,14 +30,13 @@
 #include <string>
 #include <vector>
 
+#include "core/case.hpp"
 #include "io/case_row.hpp"
 #include "io/h5.hpp"
-#include "study/config.hpp"
 
 namespace mdrmap::io {
 
-inline constexpr const char* kSchema = "mdrmap-map/1";
-inline constexpr std::size_t kMessageLen = 160;
+inline constexpr const char* kSchema = "mdrmap-map/2";
 
 struct Provenance {
   std::string program_version, git_commit, created_utc, command_line, units;
@@ -67,57 +48,76 @@ struct GridInfo {
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;
   std::vector<int> logarithmic;
+  std::vector<FieldInfo> info; ///< unit and meaning of each axis
 };
 
 struct MapSpec {
   std::size_t n_cases = 0;
-  long samples = 0;
+  std::size_t segments = 1; ///< K
+  long samples = 0;         ///< S, per segment
+  bool by_force = false;
   bool timeseries = false;
+  /// /cases/<name> [N]: the case parameters of the core's table the study
+  /// sets (e.g. FN, R, tau, G, v), in column order
+  std::vector<std::string> case_params;
   GridInfo grid; ///< empty for a case list
+  RowLayout layout() const { return RowLayout(segments, by_force); }
 };
 
-/// Bytes the map file of `spec` takes on disk (all datasets are allocated and
-/// zero-filled at creation), with `text_bytes` of provenance text; an upper
-/// bound within 128 KiB. The file is written in full before any case runs, so
-/// a map that fits at creation cannot run out of space later.
+/// Bytes the map file of `spec` takes on disk (every dataset is allocated and
+/// its blocks reserved at creation), with `text_bytes` of provenance text; an
+/// upper bound within 256 KiB, failures' messages aside. A map that fits at
+/// creation cannot run out of space later.
 std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes);
 
 /// Where the per-case datasets of a map lie in its file (byte offsets).
 struct MapLayout {
   std::uint64_t n_cases = 0;
+  std::uint64_t segments = 1;
   long samples = 0;
+  bool by_force = false;
   bool timeseries = false;
-  std::vector<std::uint64_t> fields; ///< row_fields() order, float64 [N]
+  std::vector<std::uint64_t> fields; ///< RowLayout::fields() order
   std::uint64_t status = 0;          ///< int8 [N]
-  std::uint64_t message = 0;         ///< kMessageLen-byte strings [N]
-  std::vector<std::uint64_t> series; ///< t, FN, Fx, mu, a2: float64 [N, S] (timeseries only)
+  std::vector<std::uint64_t> series; ///< RowLayout::series(): float64 [N, K S] (timeseries only)
 
   /// Flat form, to broadcast.
   std::vector<std::uint64_t> pack() const;
   static MapLayout unpack(const std::vector<std::uint64_t>& v);
 };
 
+/// A failed case and why.
+struct Failure {
+  std::uint64_t index = 0;
+  std::string message;
+};
+
 class MapFile {
 public:
   /// Cases [i0, i1) of the study into `out` (replacing its contents).
-  using CaseRange =
-      std::function<void(std::size_t i0, std::size_t i1, std::vector<study::StepRow>& out)>;
+  using CaseRange = std::function<void(std::size_t i0, std::size_t i1, std::vector<Case>& out)>;
   /// Collective. Creates `path` (which must not exist) with every dataset
-  /// allocated and zero-filled; rank 0 writes /cases (the rows' fields, taken
-  /// by range in blocks: no rank holds every case) and /grid. The file is
-  /// closed (complete and valid) on return.
+  /// allocated and its blocks reserved; rank 0 writes /cases (taken by range
+  /// in blocks: no rank holds every case), the status (0), /grid and
+  /// /timeseries/segment. The file is closed (complete and valid) on return.
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const CaseRange& cases);
   /// The same from a list of all the cases (tests, small studies).
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
-                     const Provenance& prov, const std::vector<study::StepRow>& cases);
-  /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema?
-  /// On false, `why` says what it is instead.
+                     const Provenance& prov, const std::vector<Case>& cases);
+  /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema
+  /// (this one or an earlier one)? On false, `why` says what it is instead.
   static bool is_map(const std::string& path, std::string* why);
   /// Serial, read-only: the layout of a map, checked dataset by dataset
   /// (type, shape, contiguous storage inside the file), and its status
-  /// column when `status` is given. Throws H5Error saying what is wrong.
+  /// column when `status` is given. Throws H5Error saying what is wrong (a
+  /// map of an earlier schema: which one, and that it cannot be continued).
   static MapLayout read_layout(const std::string& path, std::vector<std::int8_t>* status);
+  /// Serial, read-only: the map's /failures (none when it has none).
+  static std::vector<Failure> read_failures(const std::string& path);
+  /// Serial: replaces the map's /failures with `failures` (in case order).
+  /// Only while no RowWriter has the file open.
+  static void write_failures(const std::string& path, const std::vector<Failure>& failures);
 };
 
 /// Writes rows into a created map at the offsets of its layout (positional

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "study/columns.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
 
@@ -13,10 +14,6 @@ constexpr double kMaxGridCases = 1e9;
 constexpr long long kMaxAxisValues = 10'000'000;
 
 const char* const kAxisForms = "a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n";
-
-bool in_range(const std::string& axis, double x) {
-  return std::isfinite(x) && (allows_zero(axis) ? x >= 0.0 : x > 0.0);
-}
 
 void fill_linspace(std::vector<double>& v, double lo, double hi, long long n) {
   v.resize(static_cast<std::size_t>(n));
@@ -107,46 +104,21 @@ void parse_list(Axis& a, const std::string& option, const std::string& allowed) 
   }
 }
 
-/// Checks every value of a against its axis' range.
-void check_range(const Axis& a, const std::string& option, const std::string& allowed) {
-  for (std::size_t i = 0; i < a.values.size(); ++i)
-    if (!in_range(a.name, a.values[i]))
-      throw ConfigError(option, allowed + ", got " + format_number(a.values[i]) +
+/// Checks every value of a against its column's range.
+void check_range(const Axis& a, const std::string& option, const ParamSpec& spec) {
+  for (std::size_t i = 0; i < a.values.size(); ++i) {
+    try {
+      spec.check(a.values[i]);
+    } catch (const InvalidInput& e) {
+      throw ConfigError(option, a.name + " " + e.what() +
                                     (a.values.size() > 1 ? " (value " + std::to_string(i + 1) +
                                                                " of " + shown(a.spec) + ")"
                                                          : std::string()));
-}
-
-std::string grid_shape(const StudyConfig& c) {
-  std::string s;
-  for (const auto& a : c.axes) {
-    if (!s.empty()) s += " x ";
-    s += a.name + " " + std::to_string(a.values.size());
+    }
   }
-  return s;
 }
 
 } // namespace
-
-const std::vector<std::string>& axis_names() {
-  static const std::vector<std::string> k = {"d", "R", "tau", "v", "v1", "v1_over_v"};
-  return k;
-}
-
-void check_axes_shape(const StudyConfig& c) {
-  const std::string want = "a grid needs the axes d, R, tau, v and v1 or v1_over_v, in this order";
-  if (c.axes.size() != 5)
-    throw ConfigError("config", "the grid has " + std::to_string(c.axes.size()) + " axes; " + want);
-  for (std::size_t i = 0; i < 5; ++i) {
-    const std::string& n = c.axes[i].name;
-    const bool ok = i < 4 ? n == kAxisOrder[i] : (n == "v1" || n == "v1_over_v");
-    if (!ok)
-      throw ConfigError("config",
-                        "axis " + std::to_string(i + 1) + " is " + shown(n) + "; " + want);
-    if (c.axes[i].values.empty())
-      throw ConfigError("grid." + n, "axis " + n + " has no values; give at least one");
-  }
-}
 
 double grid_size(const StudyConfig& c) {
   double n = 1.0;
@@ -181,21 +153,24 @@ namespace mdrmap::study {
 
 using namespace detail;
 
-Axis parse_axis(const std::string& name, const std::string& spec_text) {
-  const std::string option = "grid." + name;
-  if (!contains(axis_names(), name))
-    throw ConfigError(option,
-                      "unknown axis " + shown(name) + "; the axes are " + join(axis_names()));
+Axis parse_axis(const std::string& section, const std::string& name, const std::string& spec_text) {
+  const std::string option = section + "." + name;
   Axis a;
+  if (!parse_column(name, a.column))
+    throw ConfigError(option, "unknown column " + shown(name) +
+                                  "; the columns are d or FN, R, tau, G, v and the history's wK, "
+                                  "wK_over_v, TK, TK_over_tau");
   a.name = name;
+  a.section = section;
   a.spec = trim(spec_text);
-  const std::string allowed = name + " must be " + range_text(name);
+  const ParamSpec& range = column_spec(a.column);
+  const std::string allowed = name + " must be " + range.allowed();
   if (a.spec.empty()) throw ConfigError(option, name + " is empty; give " + kAxisForms);
   if (starts_with(a.spec, "linspace:") || starts_with(a.spec, "logspace:"))
     parse_spaced(a, option);
   else
     parse_list(a, option, allowed);
-  check_range(a, option, allowed);
+  check_range(a, option, range);
   return a;
 }
 

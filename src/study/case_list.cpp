@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "study/columns.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
 
@@ -16,87 +17,39 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Columns of a case list, in StepRow field order.
-constexpr const char* kColumns[5] = {"d", "R", "tau", "v", "v1"};
-const char* const kAllColumns = "d, R, tau, v, v1";
+const char* const kAllColumns =
+    "d or FN, R, tau, v, optionally G, and the history: w1, T1, w2, T2, ... or the seed's v1";
 
 [[noreturn]] void cannot_read(const std::string& path, const std::string& why) {
   throw ConfigError("cases.file", "cannot read " + shown_path(path) + ": " + why);
 }
 
-/// The StepRow field (index into kColumns) a column name or option names, or -1.
-int field_index(const std::string& name) {
-  int f = -1;
-  for (int j = 0; j < 5; ++j)
-    if (name == kColumns[j]) f = j;
-  return f;
-}
-
-/// Reads the header line (split at commas); `at` is "FILE:LINE".
-CaseColumns read_header(const std::vector<std::string>& fields, const std::string& at) {
-  CaseColumns cols;
+/// Reads one case line (split at commas) into the row's listed columns; `at` is "FILE:LINE".
+void read_row(const std::vector<std::string>& fields, const std::string& at,
+              const std::vector<std::size_t>& axis_of_column, const StudyConfig& c, Row& r) {
+  if (fields.size() != axis_of_column.size())
+    throw ConfigError("cases.file",
+                      at + ": " + std::to_string(fields.size()) + " fields, the header has " +
+                          std::to_string(axis_of_column.size()) + "; give one value per column");
   for (std::size_t k = 0; k < fields.size(); ++k) {
-    const std::string name = trim(fields[k]);
-    const std::string here = at + ":" + std::to_string(k + 1) + ": ";
-    const int f = field_index(name);
-    if (f < 0) {
-      const std::string near = nearest(name, {"d", "R", "tau", "v", "v1"});
-      throw ConfigError("cases.file", here + "unknown column " + shown(name) + "; " +
-                                          (near.empty() ? "" : "did you mean '" + near + "'? ") +
-                                          "the header must name the columns " + kAllColumns +
-                                          ", each once, in any order");
-    }
-    if (cols.column_of_field[f] >= 0)
-      throw ConfigError("cases.file", here + "column '" + name + "' appears twice (also column " +
-                                          std::to_string(cols.column_of_field[f] + 1) +
-                                          "); give each of " + kAllColumns + " once");
-    cols.column_of_field[f] = static_cast<int>(k);
-    cols.field_of_column[k] = f; // k < 5: a sixth column is unknown or a repeat
-  }
-  for (int j = 0; j < 5; ++j)
-    if (cols.column_of_field[j] < 0)
-      throw ConfigError("cases.file", at + ": missing column '" + kColumns[j] +
-                                          "'; the header must name the columns " + kAllColumns +
-                                          " (in any order)");
-  return cols;
-}
-
-/// Reads one case line (split at commas), validated; `at` is "FILE:LINE".
-StepRow read_row(const std::vector<std::string>& fields, const std::string& at,
-                 const CaseColumns& cols, double G) {
-  if (fields.size() != 5)
-    throw ConfigError("cases.file", at + ": " + std::to_string(fields.size()) +
-                                        " fields, the header has 5; give one value per column");
-  double x[5] = {0, 0, 0, 0, 0};
-  for (std::size_t k = 0; k < 5; ++k) {
-    const int f = cols.field_of_column[k];
+    const Axis& a = c.axes[axis_of_column[k]];
+    const ParamSpec& spec = column_spec(a.column);
     const std::string cell = trim(fields[k]);
+    const std::string here = at + ":" + std::to_string(k + 1) + ": ";
     const Num n = to_number(cell);
     if (n.err != NumError::None)
-      throw ConfigError(std::string("cases.") + kColumns[f],
-                        at + ":" + std::to_string(k + 1) + ": " + kColumns[f] +
+      throw ConfigError(a.option(),
+                        here + a.name +
                             (n.err == NumError::Empty ? std::string(" is empty")
                                                       : " value " + number_problem(cell, n.err)) +
-                            "; " + kColumns[f] + " must be " + range_text(kColumns[f]));
-    x[f] = n.x;
+                            "; " + a.name + " must be " + spec.allowed());
+    try {
+      spec.check(n.x);
+    } catch (const InvalidInput& e) {
+      throw ConfigError(a.option(), here + a.name + " " + e.what());
+    }
+    r[axis_of_column[k]] = n.x;
   }
-  StepRow s;
-  s.d = x[0];
-  s.R = x[1];
-  s.tau = x[2];
-  s.v = x[3];
-  s.v1 = x[4];
-  s.G = G;
-  try {
-    validate_row(s);
-  } catch (const InvalidInput& e) {
-    const int f = field_index(e.option());
-    if (f < 0) throw ConfigError("run.G", at + ": G " + e.what());
-    throw ConfigError(std::string("cases.") + kColumns[f],
-                      at + ":" + std::to_string(cols.column_of_field[f] + 1) + ": " + kColumns[f] +
-                          " " + e.what());
-  }
-  return s;
 }
 
 std::ifstream open_cases(const std::string& path) {
@@ -134,15 +87,63 @@ void no_cases_after_header(const std::string& path) {
                     path + ": no cases after the header; add one line of values per case");
 }
 
-CaseListReader::CaseListReader(const std::string& path, double G) : path_(path), G_(G) {
-  if (!std::isfinite(G) || !(G > 0.0))
-    throw ConfigError("run.G", "G must be a finite number > 0, got " + format_number(G));
-  in_ = open_cases(path);
+std::vector<Axis> read_list_columns(const std::string& path) {
+  std::ifstream in = open_cases(path);
+  std::string raw;
+  std::uint64_t line = 0;
+  while (std::getline(in, raw)) {
+    ++line;
+    if (line == 1 && starts_with(raw, "\xEF\xBB\xBF")) raw.erase(0, 3); // UTF-8 BOM
+    const std::string text = trim(raw);
+    if (text.empty() || text[0] == '#') continue;
+    std::vector<Axis> out;
+    const std::vector<std::string> names = split(text, ',');
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const std::string here =
+          path + ":" + std::to_string(line) + ":" + std::to_string(k + 1) + ": ";
+      Axis a;
+      a.name = trim(names[k]);
+      a.section = "cases";
+      a.listed = true;
+      if (!parse_column(a.name, a.column))
+        throw ConfigError("cases.file", here + "unknown column " + shown(a.name) +
+                                            "; the header names the columns " + kAllColumns);
+      for (const Axis& b : out)
+        if (column_rank(b.column) == column_rank(a.column))
+          throw ConfigError(
+              "cases.file",
+              here + "column '" + a.name + "' " +
+                  (a.name == b.name ? "appears twice" : "sets what column '" + b.name + "' sets") +
+                  "; give each once");
+      out.push_back(a);
+    }
+    return out;
+  }
+  if (in.bad()) cannot_read(path, "read error");
+  throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
+                                      kAllColumns + " (in any order)");
+}
+
+CaseListReader::CaseListReader(const StudyConfig& c) : c_(&c), path_(c.cases_file) {
+  in_ = open_cases(path_);
   std::string line;
   if (!next_line(line))
-    throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
+    throw ConfigError("cases.file", path_ + ": no header; the first line must name the columns " +
                                         kAllColumns + " (in any order)");
-  cols_ = read_header(split(line, ','), path + ":" + std::to_string(line_));
+  for (const std::string& name : split(line, ','))
+    for (std::size_t i = 0; i < c.axes.size(); ++i)
+      if (c.axes[i].listed && c.axes[i].name == trim(name)) axis_of_column_.push_back(i);
+  std::size_t listed = 0;
+  fixed_.assign(c.axes.size(), 0.0);
+  for (std::size_t i = 0; i < c.axes.size(); ++i) {
+    if (c.axes[i].listed)
+      ++listed;
+    else
+      fixed_[i] = c.axes[i].values.front();
+  }
+  if (axis_of_column_.size() != listed || listed != split(line, ',').size())
+    throw ConfigError("cases.file", shown_path(path_) + " has another header than when the "
+                                                        "study was read; run it again");
 }
 
 bool CaseListReader::next_line(std::string& line) {
@@ -163,10 +164,11 @@ bool CaseListReader::next_line(std::string& line) {
   return false;
 }
 
-bool CaseListReader::next(StepRow& s) {
+bool CaseListReader::next(Row& r) {
   std::string line;
   if (!next_line(line)) return false;
-  s = read_row(split(line, ','), path_ + ":" + std::to_string(line_), cols_, G_);
+  r = fixed_;
+  read_row(split(line, ','), path_ + ":" + std::to_string(line_), axis_of_column_, *c_, r);
   return true;
 }
 
@@ -263,19 +265,3 @@ std::string Sha256::hex() {
 }
 
 } // namespace mdrmap::study::detail
-
-namespace mdrmap::study {
-
-using namespace detail;
-
-std::vector<StepRow> read_cases_csv(const std::string& path, double G) {
-  CaseListReader reader(path, G);
-  std::vector<StepRow> cases;
-  StepRow s;
-  while (reader.next(s))
-    cases.push_back(s);
-  if (cases.empty()) no_cases_after_header(path);
-  return cases;
-}
-
-} // namespace mdrmap::study

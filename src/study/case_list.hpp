@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "study/config.hpp"
 
@@ -13,23 +14,23 @@ namespace mdrmap::study::detail {
 /// checks it can be read. Throws ConfigError("cases.file") without location.
 std::string resolve_cases_file(const std::string& file, const std::string& base_dir);
 
-/// Where each field is in a case list's lines, from its header.
-struct CaseColumns {
-  int column_of_field[5] = {-1, -1, -1, -1, -1}; ///< StepRow field -> CSV column index
-  int field_of_column[5] = {-1, -1, -1, -1, -1}; ///< CSV column -> StepRow field
-};
+/// The columns a case list's header names (split at commas), each listed
+/// (its values in the file), in the file's order. Throws ConfigError("cases.file")
+/// naming the file, line and column of an unknown or repeated name.
+std::vector<Axis> read_list_columns(const std::string& path);
 
 /// Refuses a case list without cases. Throws ConfigError("cases.file").
 [[noreturn]] void no_cases_after_header(const std::string& path);
 
-/// Reads a case list one case at a time, with the errors of read_cases_csv:
-/// the constructor opens the file and reads the header, next() each case
-/// line (blank and comment lines skipped), read and checked (validate_row).
+/// Reads a study's case list one case at a time: the constructor opens the
+/// file and reads the header, next() each case line (blank and comment lines
+/// skipped) as a row of the study (the listed columns' values from the line,
+/// each checked against its column's range; the others the config's one value).
 class CaseListReader {
 public:
-  CaseListReader(const std::string& path, double G);
-  /// The next case into s; false at the end of the file.
-  bool next(StepRow& s);
+  explicit CaseListReader(const StudyConfig& c);
+  /// The next case into r; false at the end of the file.
+  bool next(Row& r);
   /// Passes over the next case without reading it; false at the end of the file.
   bool skip() {
     std::string line;
@@ -45,11 +46,12 @@ public:
 private:
   /// The next line that is neither blank nor a comment, trimmed; false at the end.
   bool next_line(std::string& line);
+  const StudyConfig* c_;
   std::string path_;
-  double G_;
   std::ifstream in_;
-  CaseColumns cols_;
-  std::uint64_t offset_ = 0, line_ = 0; ///< of the next line to read
+  std::vector<std::size_t> axis_of_column_; ///< CSV column -> index in c.axes
+  Row fixed_;                               ///< the config's values, listed ones 0
+  std::uint64_t offset_ = 0, line_ = 0;     ///< of the next line to read
   std::uint64_t case_offset_ = 0, case_line_ = 0;
 };
 

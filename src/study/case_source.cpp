@@ -46,17 +46,17 @@ CaseListIndex CaseListIndex::unpack(const std::vector<std::uint64_t>& v) {
 }
 
 CaseListIndex scan_case_list(const StudyConfig& c, bool check_cases) {
-  CaseListReader reader(c.cases_file, c.run.G);
+  CaseListReader reader(c);
   CaseListIndex index;
   Sha256 hash;
   std::optional<InvalidInput> first_bad; // expand_cases checks the windows after reading all
-  StepRow s;
+  Row s;
   while (reader.next(s)) {
     if (index.count % CaseListIndex::kStride == 0) {
       index.offsets.push_back(reader.case_offset());
       index.lines.push_back(reader.line_before_case());
     }
-    hash.add(canonical_row(s));
+    hash.add(canonical_row(c, s));
     if (check_cases && !first_bad) {
       try {
         check_listed_case(c, index.count, s);
@@ -88,11 +88,9 @@ CaseSource::CaseSource(const StudyConfig& c) : c_(&c) {
     n_ = index_.count;
     return;
   }
-  check_axes_shape(c);
   n_ = case_count(c);
-  for (std::size_t j = 0; j < 5; ++j)
-    shape_[j] = c.axes[j].values.size();
-  ratio_ = c.axes[4].name == "v1_over_v";
+  for (const Axis& a : c.axes)
+    shape_.push_back(a.values.size());
 }
 
 CaseSource::CaseSource(const StudyConfig& c, CaseListIndex index)
@@ -102,30 +100,21 @@ CaseSource::CaseSource(CaseSource&&) noexcept = default;
 CaseSource& CaseSource::operator=(CaseSource&&) noexcept = default;
 CaseSource::~CaseSource() = default;
 
-StepRow CaseSource::row(std::size_t i) const {
+Row CaseSource::row(std::size_t i) const {
   if (c_->kind == StudyConfig::Kind::Cases) {
-    std::vector<StepRow> one;
+    std::vector<Row> one;
     rows(i, i + 1, one);
     return one.front();
   }
-  std::size_t k[5];
-  for (int j = 4; j >= 0; --j) {
-    k[j] = i % shape_[j];
+  Row r(shape_.size());
+  for (std::size_t j = shape_.size(); j-- > 0;) { // C order: the last axis fastest
+    r[j] = c_->axes[j].values[i % shape_[j]];
     i /= shape_[j];
   }
-  const auto& A = c_->axes;
-  StepRow s; // as for_each_combination makes it
-  s.d = A[0].values[k[0]];
-  s.R = A[1].values[k[1]];
-  s.tau = A[2].values[k[2]];
-  s.v = A[3].values[k[3]];
-  const double x = A[4].values[k[4]];
-  s.v1 = ratio_ ? x * s.v : x;
-  s.G = c_->run.G;
-  return s;
+  return r;
 }
 
-void CaseSource::rows(std::size_t i0, std::size_t i1, std::vector<StepRow>& out) const {
+void CaseSource::rows(std::size_t i0, std::size_t i1, std::vector<Row>& out) const {
   out.clear();
   if (i1 <= i0) return;
   out.reserve(i1 - i0);
@@ -141,7 +130,7 @@ void CaseSource::rows(std::size_t i0, std::size_t i1, std::vector<StepRow>& out)
   };
   if (!reader_) {
     if (file_size(c_->cases_file) != index_.file_bytes) throw changed("changed size");
-    reader_ = std::make_unique<CaseListReader>(c_->cases_file, c_->run.G);
+    reader_ = std::make_unique<CaseListReader>(*c_);
     reader_next_ = 0;
   }
   if (i1 > n_) throw changed("has fewer cases"); // a caller's bug, or a truncated file
@@ -152,7 +141,7 @@ void CaseSource::rows(std::size_t i0, std::size_t i1, std::vector<StepRow>& out)
     for (; reader_next_ < i0; ++reader_next_)
       if (!reader_->skip()) throw changed("has fewer cases");
   }
-  StepRow s;
+  Row s;
   for (; reader_next_ < i1; ++reader_next_) {
     if (!reader_->next(s)) throw changed("has fewer cases");
     out.push_back(s);

@@ -57,19 +57,18 @@ public:
 
   std::size_t size() const { return n_; }
   /// Case i (< size()), as expand_cases()[i].
-  StepRow row(std::size_t i) const;
+  Row row(std::size_t i) const;
   /// Cases [i0, i1) into out, replacing its contents. A case list read back
   /// differently than scanned (the file changed) throws ConfigError("cases.file").
-  void rows(std::size_t i0, std::size_t i1, std::vector<StepRow>& out) const;
+  void rows(std::size_t i0, std::size_t i1, std::vector<Row>& out) const;
   /// canonical(config), without reading a case list again.
   std::string canonical() const;
 
 private:
   const StudyConfig* c_;
   std::size_t n_ = 0;
-  std::size_t shape_[5] = {1, 1, 1, 1, 1}; ///< grid: values per axis
-  bool ratio_ = false;                     ///< grid: the fifth axis is v1_over_v
-  CaseListIndex index_;                    ///< case list
+  std::vector<std::size_t> shape_; ///< grid: values per axis
+  CaseListIndex index_;            ///< case list
   mutable std::unique_ptr<detail::CaseListReader> reader_;
   mutable std::size_t reader_next_ = 0; ///< the case the reader returns next
 };

@@ -7,16 +7,20 @@
 #include <string>
 
 #include "core/analytic.hpp"
+#include "core/events.hpp"
 
 namespace mdrmap::study {
 namespace {
 
-void fill_state(io::CaseRow& row, const char* group, const char* when, const State& st) {
-  const std::string g = group, w = when;
-  row.values[io::field_index(g + "/FN_" + w)] = st.FN;
-  row.values[io::field_index(g + "/Fx_" + w)] = st.Fx;
-  row.values[io::field_index(g + "/mu_" + w)] = st.mu;
-  row.values[io::field_index(g + "/a2_" + w)] = st.a2;
+const char* const kQuantities[] = {"FN", "Fx", "mu", "a2", "d", "a1"};
+
+std::size_t quantities(const io::RowLayout& L) {
+  return L.by_force() ? 6 : 4;
+}
+
+double get(const State& s, std::size_t q) {
+  const double v[] = {s.FN, s.Fx, s.mu, s.a2, s.d, s.a1};
+  return v[q];
 }
 
 // (sim - analytic) / |analytic|; 0 when both vanish (tau = 0: F_x = mu = 0).
@@ -25,64 +29,105 @@ double residual(double sim, double an) {
   return (sim - an) / std::abs(an);
 }
 
+// An event metric that may be undefined (NaN): the fill value then.
+double defined_or_fill(double x) {
+  return std::isnan(x) ? io::kFillValue : x;
+}
+
+class Filler {
+public:
+  Filler(const io::RowLayout& L, std::vector<double>& v) : L_(L), v_(v) {}
+  void put(const std::string& path, double x, std::size_t k = 0) { v_[L_.at(path, k)] = x; }
+  // group/<q><suffix> for every quantity of the layout
+  void state(const std::string& group, const std::string& suffix, const State& s,
+             std::size_t k = 0) {
+    for (std::size_t q = 0; q < quantities(L_); ++q)
+      put(group + "/" + kQuantities[q] + suffix, get(s, q), k);
+  }
+  void residuals(const std::string& suffix, const State& sim, const State& an, std::size_t k = 0,
+                 std::size_t n = 0) {
+    for (std::size_t q = 0; q < (n ? n : quantities(L_)); ++q)
+      put(std::string("residuals/") + kQuantities[q] + suffix, residual(get(sim, q), get(an, q)),
+          k);
+  }
+
+private:
+  const io::RowLayout& L_;
+  std::vector<double>& v_;
+};
+
+void fill_event(Filler& f, const EventMetrics& e, const State& after, std::size_t k) {
+  f.put("events/t", e.t, k);
+  f.state("events", "_after", after, k);
+  f.put("events/mu_before", e.mu_before, k);
+  f.put("events/mu_peak", e.mu_peak, k);
+  f.put("events/t_peak", e.t_peak, k);
+  f.put("events/slip_peak", e.slip_peak, k);
+  f.state("events", "_end", e.end, k);
+  f.put("events/a", defined_or_fill(e.a), k);
+  f.put("events/b", defined_or_fill(e.b), k);
+  f.put("events/a_minus_b", defined_or_fill(e.a_minus_b), k);
+  f.put("events/d_c", defined_or_fill(e.d_c), k);
+  f.state("analytic", "_ss", e.ss_after, k);
+  f.residuals("_end", e.end, e.ss_after, k);
+}
+
+// The row of a solved case. Throws for a non-finite value.
+void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const RunResult& r) {
+  const Series& x = r.series;
+  const std::vector<EventMetrics> ev = event_metrics(c, x);
+  Filler f(L, row.values);
+  f.put("results/error_estimate", r.info.error_estimate);
+  f.state("results", "_pre", x.pre);
+  const State& an_pre = ev.front().ss_before; // stationary at v0, closed form
+  f.state("analytic", "_pre", an_pre);
+  f.residuals("_pre", x.pre, an_pre);
+  const auto S = static_cast<std::size_t>(c.sampling.samples);
+  for (std::size_t k = 0; k < ev.size(); ++k)
+    fill_event(f, ev[k], x.at(k * S), k);
+  if (!L.by_force()) { // the seed's corrected estimate of the first change
+    const State jump = analytic::jump(c, c.history.v0, c.history.segments.front().w);
+    f.state("analytic", "_jump", jump);
+    f.residuals("_jump", x.at(0), jump, 0, 4);
+  }
+  for (double v : row.values)
+    if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
+}
+
+void fill_series(io::CaseRow& row, const io::RowLayout& L, const Series& x) {
+  const std::vector<double>* all[] = {&x.t, &x.FN, &x.Fx, &x.mu, &x.a2, &x.d, &x.a1};
+  row.series.clear();
+  for (std::size_t s = 0; s < L.series().size(); ++s) {
+    for (double v : *all[s])
+      if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
+    row.series.push_back(*all[s]);
+  }
+}
+
 } // namespace
 
-io::CaseRow compute_case(const StudyConfig& cfg, const StepRow& s, SolverKind kind,
-                         bool timeseries) {
+io::RowLayout row_layout(const StudyConfig& cfg) {
+  return io::RowLayout(cfg.segments(), cfg.by_force());
+}
+
+io::CaseRow compute_case(const StudyConfig& cfg, const io::RowLayout& layout, const Row& r,
+                         SolverKind kind, bool timeseries) {
   io::CaseRow row;
-  row.values.assign(io::row_fields().size(), 0.0);
+  row.values.assign(layout.row_width(), 0.0);
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const Case c = case_for(cfg, s);
-    // The analytic estimates exist for every valid case.
-    const State an_pre = analytic::stationary(c, s.v);
-    const State an_jump = analytic::jump(c, s.v, s.v1);
-    const State an_post = analytic::stationary(c, s.v1);
-    fill_state(row, "analytic", "pre", an_pre);
-    fill_state(row, "analytic", "jump", an_jump);
-    fill_state(row, "analytic", "post", an_post);
-    const double lim[4] = {analytic::FN_inf(c, s.v), analytic::Fx_inf(c, s.v), analytic::mu_inf(c),
-                           analytic::mu_post_drop_limit(c)};
-    const char* lim_names[4] = {"FN_inf", "Fx_inf", "mu_inf", "mu_post_drop"};
-    for (int i = 0; i < 4; ++i)
-      row.values[io::field_index(std::string("analytic/") + lim_names[i])] = lim[i];
-
-    RunResult r = run_case(c, kind, cfg.run.rtol);
-    const Series& x = r.series;
-    const State jump = x.at(0), post = x.at(x.size() - 1);
-    fill_state(row, "results", "pre", x.pre);
-    fill_state(row, "results", "jump", jump);
-    fill_state(row, "results", "post", post);
-    row.values[io::field_index("results/error_estimate")] = r.info.error_estimate;
-    const State sims[3] = {x.pre, jump, post}, ans[3] = {an_pre, an_jump, an_post};
-    const char* when[3] = {"pre", "jump", "post"};
-    for (int i = 0; i < 3; ++i) {
-      const State res{residual(sims[i].FN, ans[i].FN), residual(sims[i].Fx, ans[i].Fx),
-                      residual(sims[i].mu, ans[i].mu), residual(sims[i].a2, ans[i].a2)};
-      fill_state(row, "residuals", when[i], res);
-    }
-    // distance of the case from the limits: before the step vs v -> inf
-    // (eqs. 12-14), just after it vs the start-stop value 3/4 sqrt(d/R)
-    const double lim_sim[4] = {x.pre.FN, x.pre.Fx, x.pre.mu, jump.mu};
-    for (int i = 0; i < 4; ++i)
-      row.values[io::field_index(std::string("residuals/") + lim_names[i])] =
-          residual(lim_sim[i], lim[i]);
-    for (double v : row.values)
-      if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
-    if (timeseries) {
-      row.t = x.t, row.FN = x.FN, row.Fx = x.Fx, row.mu = x.mu, row.a2 = x.a2;
-      for (const auto* vec : {&row.FN, &row.Fx, &row.mu, &row.a2})
-        for (double v : *vec)
-          if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
-    }
+    const Case c = case_for(cfg, r);
+    const RunResult res = run_case(c, kind, cfg.run.rtol);
+    fill_row(row, layout, c, res);
+    if (timeseries) fill_series(row, layout, res.series);
     row.status = 1;
   } catch (const std::exception& e) {
     std::fill(row.values.begin(), row.values.end(), 0.0);
-    row.t.clear(), row.FN.clear(), row.Fx.clear(), row.mu.clear(), row.a2.clear();
+    row.series.clear();
     row.status = -1;
     row.message = e.what();
   }
-  row.values[io::field_index("results/wall_seconds")] =
+  row.values[layout.at("results/wall_seconds")] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return row;
 }

@@ -1,16 +1,20 @@
-// The cases of a study: each checked against the core's parameter table
-// (validate_row, case_for), the checks of a whole grid, expanding and
+// The cases of a study: each row made a Case and checked against the core's
+// parameter table (case_for), the checks of a whole grid, expanding and
 // counting the cases, and the canonical text a resume compares. The INI
-// reader, grid axes, case lists and the study schema are in study/ini.cpp,
-// study/axes.cpp, study/case_list.cpp and study/study_schema.cpp.
+// reader, grid axes, columns, case lists and the study schema are in
+// study/ini.cpp, study/axes.cpp, study/columns.cpp, study/case_list.cpp and
+// study/study_schema.cpp.
 #include "study/config.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/params.hpp"
 #include "core/solver.hpp"
 #include "study/axes.hpp"
 #include "study/case_source.hpp"
+#include "study/columns.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
 
@@ -21,149 +25,134 @@ using namespace detail;
 namespace {
 
 constexpr double kMaxTimeseriesBytes = 64.0 * 1024.0 * 1024.0 * 1024.0;
+/// Grids whose corners (extremes of every axis) are more cases than this are
+/// checked case by case only (the runner's preflight checks every case).
+constexpr double kMaxCorners = 4096;
 
-std::string describe(const StepRow& s) {
-  return "d = " + format_number(s.d) + ", R = " + format_number(s.R) +
-         ", tau = " + format_number(s.tau) + ", v = " + format_number(s.v) +
-         ", v1 = " + format_number(s.v1);
+/// Checks x against its column's range. Throws InvalidInput(option).
+void check_value(const Axis& a, double x) {
+  try {
+    column_spec(a.column).check(x);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(a.option(), a.name + " " + e.what());
+  }
 }
 
-/// The table's specs of a row's fields, looked up once (rows are checked by
-/// the million).
-struct RowSpecs {
-  const ParamSpec &d, &R, &tau, &v, &v1, &G, &t_end, &samples;
-};
-const RowSpecs& row_specs() {
-  static const RowSpecs s{*find_parameter("d"),    *find_parameter("R"),
-                          *find_parameter("tau"),  *find_parameter("v"),
-                          segment_velocity_spec(), *find_parameter("G"),
-                          segment_duration_spec(), *find_parameter("samples")};
-  return s;
-}
-
-/// Checks `x` against a parameter spec, blaming `option` (a row field or the
-/// seed's t-end) instead of the spec's own name.
-void check_as(const char* option, const ParamSpec& spec, double x) {
+/// Checks a resolved history value against the segment's own range.
+void check_resolved(const Axis& a, const ParamSpec& spec, double x, const std::string& how) {
   try {
     spec.check(x);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(option, e.what());
+    throw InvalidInput(a.option(), how + " " + e.what());
   }
 }
 
-/// Checks a valid row's sampling as the seed's protocol was checked: the
-/// window (as "t-end"), then the samples. Returns the window.
-double check_sampling(const StudyConfig& c, const StepRow& r) {
-  const double T = step_duration(c, r);
-  check_as("t-end", row_specs().t_end, T);
-  check_as("samples", row_specs().samples, static_cast<double>(c.run.samples));
-  return T;
+/// Segment k's (0-based) velocity from its column's value.
+void set_velocity(Case& c, const Axis& a, double x) {
+  Segment& s = c.history.segments[a.column.segment - 1];
+  if (a.column.kind == Column::Kind::Velocity) {
+    s.w = x;
+    return;
+  }
+  s.w = x * c.history.v0;
+  const std::string w = "w" + std::to_string(a.column.segment);
+  check_resolved(a, segment_velocity_spec(), s.w, w + " = " + a.name + " * v");
 }
 
-/// Validates one case as the runner will run it, without building it. Throws
-/// InvalidInput with the seed's option names (d, R, tau, v, v1, G, t-end, samples).
-void validate_case(const StudyConfig& c, const StepRow& s) {
-  validate_row(s);
-  check_sampling(c, s);
-}
-
-/// The message for a failed case check, for whichever key gets the blame.
-std::string case_problem(const InvalidInput& e, const StepRow& s, const std::string& v1_name) {
-  const std::string& o = e.option();
-  std::string what;
-  if (o == "t-end") {
-    what = s.tau > 0.0 ? "t_end = t_end_over_tau * tau " + std::string(e.what()) +
-                             "; change t_end_over_tau or rescale the units"
-                       : "with tau = 0 the default window 6 sqrt(R d) / min(v, v1) " +
-                             std::string(e.what()) + "; rescale the units";
-  } else if (o == "v1" && v1_name == "v1_over_v") {
-    what = "v1 = v1_over_v * v " + std::string(e.what());
+/// Segment k's duration from its column's value (velocities already set).
+/// Relative to tau; with tau = 0, six contact half-widths at the slower
+/// moving velocity of the segment and the one before it.
+void set_duration(Case& c, const Axis& a, double x) {
+  const std::size_t k = a.column.segment - 1;
+  Segment& s = c.history.segments[k];
+  const std::string T = "T" + std::to_string(a.column.segment);
+  if (a.column.kind == Column::Kind::Duration) {
+    s.T = x;
+  } else if (c.material.tau > 0.0) {
+    s.T = x * c.material.tau;
+    check_resolved(a, segment_duration_spec(), s.T, T + " = " + a.name + " * tau");
   } else {
-    what = (o == "v1" ? v1_name : o) + " " + e.what();
+    const double w0 = c.history.before(k), w1 = s.w;
+    const double slow = (w0 > 0.0 && w1 > 0.0) ? std::min(w0, w1) : std::max(w0, w1);
+    if (!(slow > 0.0))
+      throw InvalidInput(a.option(), a.name +
+                                         " is relative to tau, and with tau = 0 a hold after "
+                                         "a hold has no time scale; give " +
+                                         T + " instead");
+    s.T = 6.0 * c.edge_scale() / slow;
+    check_resolved(a, segment_duration_spec(), s.T,
+                   "with tau = 0 the default duration " + T + " = 6 a / min(w) (a = " +
+                       (c.loading.by_force() ? "a0" : "a1 = sqrt(R d)") + ")");
   }
-  return what + " (case " + describe(s) + ")";
 }
 
-/// Config key that answers for a core option, in a grid.
-std::string grid_option(const std::string& core_option, const StepRow& s,
-                        const std::string& v1_name) {
-  if (core_option == "v1") return "grid." + v1_name;
-  if (core_option == "G") return "run.G";
-  if (core_option == "samples") return "run.samples";
-  if (core_option == "t-end") return s.tau > 0.0 ? "run.t_end_over_tau" : "grid.tau";
-  for (const char* a : kAxisOrder)
-    if (core_option == a) return "grid." + core_option;
+/// The option of the column a core option (a table name, "history") names.
+std::string column_option(const StudyConfig& c, const std::string& core) {
+  for (const Axis& a : c.axes)
+    if (core == "history" ? a.column.history()
+                          : (!a.column.history() && core == a.column.param->name))
+      return a.option();
+  if (core == "samples") return "run.samples";
+  if (core == "log-decades") return "run.decades";
   return "config";
 }
 
+/// Rethrows a failed case check located: "SOURCE: case i: <what> (case ...)".
+[[noreturn]] void case_problem(const StudyConfig& c, const InvalidInput& e, const Row& r,
+                               const std::string& prefix) {
+  throw ConfigError(e.option(), prefix + e.what() + " (case " + describe(c, r) + ")");
+}
+
 /// Refuses time series that would not fit in 64 GiB. Throws ConfigError("run.timeseries").
-void check_timeseries_memory(const RunSettings& r, double cases) {
-  if (!r.timeseries) return;
-  const double bytes = static_cast<double>(r.samples) * cases * 5.0 * 8.0;
+void check_timeseries_memory(const StudyConfig& c, double cases) {
+  if (!c.run.timeseries) return;
+  const double series = c.by_force() ? 7.0 : 5.0;
+  const double samples = static_cast<double>(c.run.samples) * static_cast<double>(c.segments());
+  const double bytes = samples * cases * series * 8.0;
   if (bytes > kMaxTimeseriesBytes) {
     char gib[64];
     std::snprintf(gib, sizeof gib, "%.1f", bytes / (1024.0 * 1024.0 * 1024.0));
     throw ConfigError("run.timeseries",
-                      "timeseries = true needs " + std::to_string(r.samples) + " samples x " +
-                          format_number(cases) + " cases x 5 series x 8 bytes = " + gib +
+                      "timeseries = true needs " + format_number(samples) + " samples x " +
+                          format_number(cases) + " cases x " + format_number(series) +
+                          " series x 8 bytes = " + gib +
                           " GiB, more than 64 GiB; lower samples, use fewer cases or set "
                           "timeseries = false");
   }
 }
 
-/// Validates every case of a grid without expanding it: each axis value is in
-/// range (parse_axis), and the combined checks of validate_row and the
-/// window and samples checks are monotone in each parameter, so the corners of the
-/// grid (smallest, largest, smallest positive value per axis) decide them.
+/// Checks the corners of a grid (smallest, largest, smallest positive value
+/// of every axis): the core's checks are monotone in each parameter, so they
+/// fail there first. A located error without a case number.
 void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
-  const std::string& v1_name = c.axes[4].name;
-  const bool ratio = v1_name == "v1_over_v";
-  const auto D = extremes(c.axes[0].values), R = extremes(c.axes[1].values),
-             T = extremes(c.axes[2].values), V = extremes(c.axes[3].values),
-             V1 = extremes(c.axes[4].values);
-  for_each_combination(D, R, T, V, V1, ratio, c.run.G, [&](const StepRow& s) {
-    try {
-      validate_case(c, s);
-    } catch (const InvalidInput& e) {
-      const std::string option = grid_option(e.option(), s, v1_name);
-      throw ConfigError(option, where(option).prefix() + case_problem(e, s, v1_name));
-    }
-  });
-}
-
-std::vector<StepRow> expand_case_list(const StudyConfig& c) {
-  std::vector<StepRow> cases = read_cases_csv(c.cases_file, c.run.G);
-  check_case_list_size(c, cases.size());
-  for (std::size_t i = 0; i < cases.size(); ++i)
-    check_listed_case(c, i, cases[i]);
-  return cases;
-}
-
-std::vector<StepRow> expand_grid(const StudyConfig& c) {
-  check_axes_shape(c);
-  const std::size_t count = case_count(c);
-  const auto& A = c.axes;
-  const bool ratio = A[4].name == "v1_over_v";
-  std::vector<StepRow> out;
-  out.reserve(count);
-  for_each_combination(A[0].values, A[1].values, A[2].values, A[3].values, A[4].values, ratio,
-                       c.run.G, [&](const StepRow& s) {
-                         check_grid_case(c, out.size(), s);
-                         out.push_back(s);
-                       });
-  return out;
-}
-
-std::string canonical_grid(const StudyConfig& c) {
-  check_axes_shape(c);
-  std::string out = "[grid]\n";
-  for (const auto& a : c.axes) {
-    out += a.name + " =";
-    for (std::size_t i = 0; i < a.values.size(); ++i)
-      out += (i == 0 ? " " : ", ") + format_number(a.values[i]);
-    out += "\n";
+  std::vector<std::vector<double>> ext;
+  double n = 1.0;
+  for (const Axis& a : c.axes) {
+    ext.push_back(extremes(a.values));
+    n *= static_cast<double>(ext.back().size());
   }
-  return out;
+  if (n > kMaxCorners) return;
+  Row r(c.axes.size());
+  for (std::size_t i = 0; i < static_cast<std::size_t>(n); ++i) {
+    std::size_t rest = i;
+    for (std::size_t j = c.axes.size(); j-- > 0;) {
+      r[j] = ext[j][rest % ext[j].size()];
+      rest /= ext[j].size();
+    }
+    try {
+      case_for(c, r);
+    } catch (const InvalidInput& e) {
+      case_problem(c, e, r, where(e.option()).prefix());
+    }
+  }
+}
+
+std::string canonical_values(const Axis& a) {
+  if (a.listed) return a.name + " = (listed)\n";
+  std::string out = a.name + " =";
+  for (std::size_t i = 0; i < a.values.size(); ++i)
+    out += (i == 0 ? " " : ", ") + format_number(a.values[i]);
+  return out + "\n";
 }
 
 std::string canonical_run(const RunSettings& r) {
@@ -173,71 +162,142 @@ std::string canonical_run(const RunSettings& r) {
   } catch (const InvalidInput&) {
     // keep as is: a hand-made config; the runner will refuse it
   }
-  return "[run]\nt_end_over_tau = " + format_number(r.t_end_over_tau) +
-         "\nsamples = " + std::to_string(r.samples) + "\nrtol = " + format_number(r.rtol) +
-         "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") +
-         "\nG = " + format_number(r.G) + "\n";
+  return "[run]\nsamples = " + std::to_string(r.samples) +
+         "\nspacing = " + (r.spacing == Spacing::Log ? "log" : "linear") +
+         "\ndecades = " + format_number(r.decades) + "\nrtol = " + format_number(r.rtol) +
+         "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") + "\n";
+}
+
+std::string canonical_columns(const StudyConfig& c) {
+  std::string out = "[columns]\n";
+  for (const Axis& a : c.axes)
+    out += canonical_values(a);
+  return out;
 }
 
 } // namespace
 
-void detail::check_listed_case(const StudyConfig& c, std::size_t i, const StepRow& s) {
+std::size_t StudyConfig::segments() const {
+  std::size_t k = 0;
+  for (const Axis& a : axes)
+    k = std::max(k, a.column.segment);
+  return k;
+}
+
+bool StudyConfig::by_force() const {
+  for (const Axis& a : axes)
+    if (!a.column.history() && a.column.param->part == Part::Loading)
+      return a.column.param->dim == Dim::Force;
+  return false;
+}
+
+Case case_for(const StudyConfig& c, const Row& r) {
+  if (r.size() != c.axes.size()) // a caller's bug, not an input's
+    throw std::invalid_argument("case_for: a row of " + std::to_string(r.size()) +
+                                " values for a study of " + std::to_string(c.axes.size()) +
+                                " columns");
+  Case out;
+  out.history.segments.assign(c.segments(), Segment{});
+  for (std::size_t i = 0; i < c.axes.size(); ++i) {
+    check_value(c.axes[i], r[i]);
+    if (!c.axes[i].column.history()) c.axes[i].column.param->set(out, r[i]);
+  }
+  for (std::size_t i = 0; i < c.axes.size(); ++i) {
+    const Column::Kind k = c.axes[i].column.kind;
+    if (k == Column::Kind::Velocity || k == Column::Kind::VelocityOverV)
+      set_velocity(out, c.axes[i], r[i]);
+  }
+  out.sampling.samples = c.run.samples;
+  out.sampling.spacing = c.run.spacing;
+  out.sampling.decades = c.run.decades;
   try {
-    validate_case(c, s);
+    Case probe = out; // the derived scales (a, 16 G d^2) before the durations use them
+    for (Segment& s : probe.history.segments)
+      s.T = 1.0;
+    validate(probe);
+    for (std::size_t i = 0; i < c.axes.size(); ++i)
+      if (c.axes[i].column.history() && !(c.axes[i].column.kind == Column::Kind::Velocity ||
+                                          c.axes[i].column.kind == Column::Kind::VelocityOverV))
+        set_duration(out, c.axes[i], r[i]);
+    validate(out);
   } catch (const InvalidInput& e) {
-    const std::string o = e.option() == "t-end" && s.tau > 0.0 ? "run.t_end_over_tau"
-                          : e.option() == "samples"            ? "run.samples"
-                                                               : "cases." + e.option();
-    throw ConfigError(o, c.cases_file + ": case " + std::to_string(i + 1) + ": " +
-                             case_problem(e, s, "v1"));
+    if (e.option().find('.') != std::string::npos) throw; // a column's own message
+    const std::string option = column_option(c, e.option());
+    const std::string name = option.substr(option.find('.') + 1);
+    throw InvalidInput(option, name + " " + e.what());
+  }
+  return out;
+}
+
+std::string describe(const StudyConfig& c, const Row& r) {
+  std::string s;
+  for (std::size_t i = 0; i < c.axes.size() && i < r.size(); ++i)
+    s += (i ? ", " : "") + c.axes[i].name + " = " + format_number(r[i]);
+  return s;
+}
+
+void detail::check_listed_case(const StudyConfig& c, std::size_t i, const Row& r) {
+  try {
+    case_for(c, r);
+  } catch (const InvalidInput& e) {
+    case_problem(c, e, r, c.cases_file + ": case " + std::to_string(i + 1) + ": ");
   }
 }
 
 void detail::check_case_list_size(const StudyConfig& c, std::size_t n) {
-  check_timeseries_memory(c.run, static_cast<double>(n));
+  check_timeseries_memory(c, static_cast<double>(n));
 }
 
-void detail::check_grid_case(const StudyConfig& c, std::size_t i, const StepRow& s) {
+void detail::check_grid_case(const StudyConfig& c, std::size_t i, const Row& r) {
   try {
-    validate_case(c, s);
+    case_for(c, r);
   } catch (const InvalidInput& e) {
     const Where src{c.source_path.empty() ? "config" : c.source_path, 0};
-    throw ConfigError(grid_option(e.option(), s, c.axes[4].name),
-                      src.prefix() + "case " + std::to_string(i + 1) + ": " +
-                          case_problem(e, s, c.axes[4].name));
+    case_problem(c, e, r, src.prefix() + "case " + std::to_string(i + 1) + ": ");
   }
 }
 
-std::string detail::canonical_row(const StepRow& s) {
-  return format_number(s.d) + "," + format_number(s.R) + "," + format_number(s.tau) + "," +
-         format_number(s.v) + "," + format_number(s.v1) + "\n";
+std::string detail::canonical_row(const StudyConfig& c, const Row& r) {
+  std::string out;
+  for (std::size_t i = 0; i < c.axes.size(); ++i)
+    if (c.axes[i].listed) out += (out.empty() ? "" : ",") + format_number(r[i]);
+  return out + "\n";
 }
 
 std::string detail::canonical_case_list(const StudyConfig& c, std::uint64_t count,
                                         const std::string& sha256) {
-  return "mdrmap study 1\n[cases]\ncount = " + std::to_string(count) +
-         "\nsha256 of d,R,tau,v,v1 rows = " + sha256 + "\n" + canonical_run(c.run);
+  return "mdrmap study 2\n" + canonical_columns(c) + "[cases]\ncount = " + std::to_string(count) +
+         "\nsha256 of the listed columns' rows = " + sha256 + "\n" + canonical_run(c.run);
 }
 
 void detail::check_study(const StudyConfig& c, const WhereFn& where) {
   if (c.kind != StudyConfig::Kind::Grid) return; // case lists: checked when read
   try {
-    check_axes_shape(c);
     check_grid_size(c);
-    check_timeseries_memory(c.run, grid_size(c));
+    check_timeseries_memory(c, grid_size(c));
   } catch (const InvalidInput& e) {
     rethrow_at(e, where(e.option()));
   }
   check_grid_corners(c, where);
 }
 
-std::vector<StepRow> expand_cases(const StudyConfig& c) {
-  return c.kind == StudyConfig::Kind::Cases ? expand_case_list(c) : expand_grid(c);
+std::vector<Row> expand_cases(const StudyConfig& c) {
+  const CaseSource source(c);
+  std::vector<Row> out;
+  source.rows(0, source.size(), out);
+  if (c.kind == StudyConfig::Kind::Cases) {
+    check_case_list_size(c, out.size());
+    for (std::size_t i = 0; i < out.size(); ++i)
+      check_listed_case(c, i, out[i]);
+  } else {
+    for (std::size_t i = 0; i < out.size(); ++i)
+      check_grid_case(c, i, out[i]);
+  }
+  return out;
 }
 
 std::size_t case_count(const StudyConfig& c) {
   if (c.kind == StudyConfig::Kind::Cases) return scan_case_list(c, false).count;
-  check_axes_shape(c);
   check_grid_size(c);
   std::size_t n = 1;
   for (const auto& a : c.axes)
@@ -245,39 +305,12 @@ std::size_t case_count(const StudyConfig& c) {
   return n;
 }
 
-void validate_row(const StepRow& r) {
-  // the seed's scene order; each field against its parameter's range
-  const RowSpecs& spec = row_specs();
-  check_as("d", spec.d, r.d);
-  check_as("R", spec.R, r.R);
-  check_as("tau", spec.tau, r.tau);
-  check_as("v", spec.v, r.v);
-  check_as("v1", spec.v1, r.v1);
-  check_as("G", spec.G, r.G);
-  // Every field is in range: only the derived scales (a1, 16 G d^2,
-  // v tau / a1) can fail the whole case, over any valid window.
-  validate(step_case(r.d, r.R, r.tau, r.v, r.v1, r.G, 1.0, 2));
-}
-
-double step_duration(const StudyConfig& c, const StepRow& r) {
-  return r.tau > 0.0 ? c.run.t_end_over_tau * r.tau
-                     : default_step_duration(r.d, r.R, r.tau, r.v, r.v1);
-}
-
-Case case_for(const StudyConfig& c, const StepRow& r) {
-  validate_row(r);
-  const double T = check_sampling(c, r); // > 0: step_case takes it as given
-  Case out = step_case(r.d, r.R, r.tau, r.v, r.v1, r.G, T, c.run.samples);
-  validate(out);
-  return out;
-}
-
 std::string canonical(const StudyConfig& c) {
   if (c.kind == StudyConfig::Kind::Cases) {
     const CaseListIndex index = scan_case_list(c, false);
     return canonical_case_list(c, index.count, index.sha256);
   }
-  return "mdrmap study 1\n" + canonical_grid(c) + canonical_run(c.run);
+  return "mdrmap study 2\n" + canonical_columns(c) + canonical_run(c.run);
 }
 
 } // namespace mdrmap::study

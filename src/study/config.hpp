@@ -1,36 +1,44 @@
 #pragma once
 // A parameter study: which cases to run and how. Read from an INI file,
-// overridden from the command line, expanded to a case list. Pure C++: no
-// MPI, no HDF5, no printing.
+// overridden from the command line, expanded to cases. Pure C++: no MPI, no
+// HDF5, no printing. The syntax is documented in docs/map-schema.md:
 //
-//   [grid]                  ; cartesian product, case order: last axis fastest
-//   d   = 1e-3              ; a number,
-//   R   = 1, 2, 5           ; a comma list,
+//   [grid]                  ; the case parameters of the core's table
+//   FN  = 1e-3              ; d (depth control) or FN (load control), one of them
+//   R   = 1, 2, 5           ; a number, a comma list,
 //   tau = linspace:0.5:2:4  ; n evenly spaced values from lo to hi (inclusive),
-//   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values from lo to hi (values, not exponents)
-//   v1_over_v = 0, 1e-4     ; or v1 = ... (absolute); exactly one of the two
+//   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values (values, not exponents)
+//   G   = 1                 ; optional (default 1)
+//
+//   [history]               ; segments k = 1..K after stationary sliding at v
+//   w1_over_v   = 0         ; velocity: wk, or wk_over_v (times v)
+//   T1_over_tau = 1, 10     ; duration: Tk, or Tk_over_tau (times tau)
 //
 //   [cases]                 ; instead of [grid]
-//   file = cases.csv        ; columns d,R,tau,v,v1 (header line required), relative to the INI
+//   file = cases.csv        ; columns d|FN, R, tau, v, [G], w1, T1, ... (or the seed's v1)
 //
 //   [run]
-//   t_end_over_tau = 6      ; window after the step, in units of tau
-//                           ; (tau = 0: mdrmap::default_step_duration)
-//   samples = 201
+//   samples = 201           ; per segment
+//   spacing = linear        ; linear | log
+//   decades = 4             ; log spacing: the first instant after a start is T 10^-decades
 //   rtol = 1e-4
 //   solver = auto           ; auto | exact | mdr | baseline
 //   timeseries = false      ; store the full time series of every case
-//   G = 1
 //
-// Every case is the seed's one-step history (stationary sliding at v, then
-// v1 from t = 0; a StepRow) until the study is generated from the parameter
-// table (issue 12).
+// Every key of [grid] and [history] is a column of the study; in a grid each
+// column is an axis (case order: C order over the columns in column order, the
+// last fastest). The seed's one-step form is still read: [grid] v1 or
+// v1_over_v is the column w1 or w1_over_v, [run] t_end_over_tau the column
+// T1_over_tau and [run] G the column G.
 //
 // Comments start with ';' or '#'. Keys are case-sensitive.
+#include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/params.hpp"
 
 namespace mdrmap::study {
 
@@ -38,43 +46,58 @@ namespace mdrmap::study {
 /// and whose message starts with "FILE:LINE: " when it comes from a file.
 using ConfigError = InvalidInput;
 
+/// What a study column sets in a case: a parameter of the core's table, or
+/// a history segment's velocity or duration, absolute or relative.
+struct Column {
+  enum class Kind { Param, Velocity, VelocityOverV, Duration, DurationOverTau };
+  Kind kind = Kind::Param;
+  const ParamSpec* param = nullptr; ///< Param: the table's entry
+  std::size_t segment = 0;          ///< history columns: the segment, from 1
+  bool history() const { return kind != Kind::Param; }
+};
+
+/// One column of a study: its values (a grid axis), or, in a case list, the
+/// values of a CSV column (`listed`) or the one value the config gives it.
 struct Axis {
-  std::string name; ///< d, R, tau, v, v1 or v1_over_v
-  std::string spec; ///< as written
+  std::string name;    ///< the key as written: d, FN, R, tau, G, v, w1, T1_over_tau, v1_over_v ...
+  std::string section; ///< where it is set: grid, history or run (the seed's G, t_end_over_tau)
+  std::string spec;    ///< as written
   std::vector<double> values;
   bool logarithmic = false; ///< from logspace (plots use log axes)
+  bool listed = false;      ///< case list: the values are a CSV column
+  Column column;
+  /// "grid.R", "history.T1_over_tau", "run.G": the option that sets it.
+  std::string option() const { return section + "." + name; }
 };
 
-/// One case of the study, the seed's one-step experiment: d, R, tau, v, v1
-/// from the grid or the case list, G from [run]. This is the study's row (and
-/// the /cases columns of its map) until the study is generated from the
-/// parameter table; case_for() turns it into a Case.
-struct StepRow {
-  double d = 0.0;   ///< indentation depth
-  double R = 0.0;   ///< radius of curvature of the indenter
-  double tau = 0.0; ///< relaxation time
-  double v = 0.0;   ///< sliding velocity before the step (the history's v0)
-  double v1 = 0.0;  ///< sliding velocity after the step (its one segment)
-  double G = 1.0;   ///< shear modulus, from [run]
-};
+/// A study's case as written: one value per column (StudyConfig::axes), in
+/// column order. case_for() makes it a Case.
+using Row = std::vector<double>;
 
 struct RunSettings {
-  double t_end_over_tau = 6.0;
   long samples = 201;
+  Spacing spacing = Spacing::Linear;
+  double decades = 4.0;
   double rtol = 1e-4;
   std::string solver = "auto";
   bool timeseries = false;
-  double G = 1.0;
 };
 
 struct StudyConfig {
   enum class Kind { Grid, Cases };
   Kind kind = Kind::Grid;
-  std::vector<Axis> axes; ///< grid only: d, R, tau, v, v1|v1_over_v, in this order
+  /// The study's columns in column order: the loading, R, tau, G, v, then w1,
+  /// T1, w2, T2, ... (each velocity and duration absolute or relative).
+  std::vector<Axis> axes;
   std::string cases_file; ///< cases only: path as resolved against the INI's directory
   RunSettings run;
   std::string source_path; ///< the INI file ("" when parsed from text)
   std::string source_text; ///< the INI file's text, for provenance
+
+  /// Number of history segments K.
+  std::size_t segments() const;
+  /// Load control (an FN column) or depth control (d).
+  bool by_force() const;
 };
 
 /// Parses INI text. base_dir resolves [cases] file. Unknown sections or keys
@@ -86,47 +109,53 @@ StudyConfig parse_config(const std::string& text, const std::string& base_dir,
 StudyConfig load_config(const std::string& path);
 
 /// Overrides one setting, as from the command line: key is "section.key"
-/// (e.g. "run.samples", "grid.v1_over_v") and value as in the INI.
+/// (e.g. "run.samples", "grid.FN", "history.T1_over_tau") and value as in the
+/// INI. A [grid] or [history] key the config does not have adds the column.
 void apply_override(StudyConfig& c, const std::string& key, const std::string& value);
 
-/// Parses one grid axis value: number, comma list, linspace:lo:hi:n,
-/// logspace:lo:hi:n. Throws ConfigError("grid.<name>").
-Axis parse_axis(const std::string& name, const std::string& spec);
+/// Several overrides, in order, checked together at the end (a new segment
+/// takes its velocity and its duration: "history.w3", "history.T3").
+void apply_overrides(StudyConfig& c,
+                     const std::vector<std::pair<std::string, std::string>>& settings);
 
-/// The cases in study order, each validated (case_for); G from [run].
-/// Throws ConfigError naming the axis, or the CSV file, line and column.
-/// Holds every case: for tests and small uses (the runner takes them by
-/// index from a CaseSource, study/case_source.hpp).
-std::vector<StepRow> expand_cases(const StudyConfig& c);
+/// The keys apply_override takes, as "section.key" (history keys for
+/// segments 1 to 9; any segment is accepted).
+std::vector<std::string> override_keys();
+
+/// What a column name means: a parameter of the core's table (not the
+/// sampling), wK, wK_over_v, TK, TK_over_tau (K >= 1), or the seed's v1 and
+/// v1_over_v. False for anything else.
+bool parse_column(const std::string& name, Column& out);
+
+/// Parses one column's values (a number, comma list, linspace:lo:hi:n or
+/// logspace:lo:hi:n) and checks each against the column's range. Throws
+/// ConfigError(section.name).
+Axis parse_axis(const std::string& section, const std::string& name, const std::string& spec);
+
+/// The cases in study order, each validated (case_for). Holds every case:
+/// for tests and small uses (the runner takes them by index from a
+/// CaseSource, study/case_source.hpp).
+std::vector<Row> expand_cases(const StudyConfig& c);
 
 /// Number of cases without building them (grid: product of axis sizes; a
 /// case list is read through).
 std::size_t case_count(const StudyConfig& c);
 
-/// Checks a row as the seed's scene was checked, in its order: d, R, tau, v,
-/// v1, G, then the derived scales. Throws InvalidInput whose option() is the
-/// row's field (d, R, tau, v, v1, G).
-void validate_row(const StepRow& r);
+/// The case a row runs, validated: each column's value against its range,
+/// relative values resolved (wK_over_v * v, TK_over_tau * tau; with tau = 0
+/// six contact half-widths at the slower moving velocity), the sampling of
+/// [run], then the whole case. Throws InvalidInput whose option() is the
+/// column's option ("grid.R", "history.T1_over_tau", ...) or "run.samples".
+Case case_for(const StudyConfig& c, const Row& r);
 
-/// Observation window of a row: t_end_over_tau * tau (tau = 0:
-/// default_step_duration).
-double step_duration(const StudyConfig& c, const StepRow& r);
+/// "FN = 0.001, R = 1, ...": a row for a message.
+std::string describe(const StudyConfig& c, const Row& r);
 
-/// The case a row runs: step_case(d, R, tau, v, v1, G, step_duration,
-/// run.samples), validated. Throws InvalidInput naming d, R, tau, v, v1, G,
-/// t-end (the window) or samples, as the seed's scene and protocol did.
-Case case_for(const StudyConfig& c, const StepRow& r);
-
-/// Canonical text of everything that determines the results (axes values or
-/// the case list's contents, and the [run] settings), normalized so that
-/// formatting, comments and key order do not matter. Resume compares it. A
-/// case list's contents are its number of cases and the SHA-256 of its rows
-/// in normalized text (every value, in order): its size does not grow with
-/// the list.
+/// Canonical text of everything that determines the results (columns and
+/// their values or the case list's contents, and the [run] settings),
+/// normalized so that formatting, comments and key order do not matter.
+/// Resume compares it. A case list's contents are its columns, its number
+/// of cases and the SHA-256 of its rows in normalized text.
 std::string canonical(const StudyConfig& c);
-
-/// Reads a CSV case list (header d,R,tau,v,v1 in any column order; extra
-/// columns are an error). Throws ConfigError naming file, line and column.
-std::vector<StepRow> read_cases_csv(const std::string& path, double G);
 
 } // namespace mdrmap::study

@@ -49,12 +49,4 @@ bool to_integer(const std::string& s, long long& out) {
   return true;
 }
 
-bool allows_zero(const std::string& field) {
-  return field == "tau" || field == "v1" || field == "v1_over_v";
-}
-
-std::string range_text(const std::string& field) {
-  return allows_zero(field) ? "a finite number >= 0" : "a finite number > 0";
-}
-
 } // namespace mdrmap::study::detail

@@ -30,14 +30,6 @@ std::string number_problem(const std::string& text, NumError e);
 /// Strict integer: optional sign and decimal digits; huge values clamp near 1e18.
 bool to_integer(const std::string& s, long long& out);
 
-// --- Case fields ----------------------------------------------------------------
-
-/// Whether a case field or grid axis (d, R, tau, v, v1, v1_over_v) may be 0.
-bool allows_zero(const std::string& field);
-
-/// "a finite number >= 0" or "a finite number > 0".
-std::string range_text(const std::string& field);
-
 // --- The whole study ----------------------------------------------------------
 
 /// Where the setting behind an option ("section.key" or "config") was made.
@@ -50,18 +42,19 @@ void check_study(const StudyConfig& c, const WhereFn& where);
 
 /// Checks grid case i (0-based) as expand_cases does: the row, the window
 /// and the samples. Throws ConfigError naming the axis and "case i+1".
-void check_grid_case(const StudyConfig& c, std::size_t i, const StepRow& s);
+void check_grid_case(const StudyConfig& c, std::size_t i, const Row& r);
 
 /// Checks the window and samples of a case list's case i (0-based; its row
 /// was checked when read), as expand_cases does. Throws ConfigError naming
 /// the file and "case i+1".
-void check_listed_case(const StudyConfig& c, std::size_t i, const StepRow& s);
+void check_listed_case(const StudyConfig& c, std::size_t i, const Row& r);
 
 /// Refuses a case list of n cases whose time series would not fit in 64 GiB.
 void check_case_list_size(const StudyConfig& c, std::size_t n);
 
-/// A case list's row in canonical text ("d,R,tau,v,v1\n", numbers normalized).
-std::string canonical_row(const StepRow& s);
+/// A case list's row in canonical text (its listed columns' values, comma
+/// separated, numbers normalized, a newline).
+std::string canonical_row(const StudyConfig& c, const Row& r);
 
 /// canonical() of a case list of `count` cases whose canonical rows hash to `sha256`.
 std::string canonical_case_list(const StudyConfig& c, std::uint64_t count,

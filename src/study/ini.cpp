@@ -249,7 +249,7 @@ void IniReader::key_value(const std::string& line, const Where& here) {
     throw ConfigError("config", here.prefix() + "key " + shown(key) +
                                     " is outside a section; put it under " + schema_.any_section);
   const std::string option = section_ + "." + key;
-  if (!contains(schema_.keys_of(section_), key))
+  if (!contains(schema_.keys_of(section_), key) && !(schema_.also && schema_.also(section_, key)))
     throw ConfigError(option, here.prefix() + unknown_key_message(schema_, section_, key));
   if (lines_.key_line.count(option))
     throw ConfigError(option, here.prefix() + "duplicate key '" + key + "' in [" + section_ +

@@ -56,6 +56,8 @@ struct IniSchema {
   std::vector<std::vector<std::string>> keys; ///< keys[i]: those of sections[i]
   std::string any_section;  ///< where a key may go, e.g. "[grid], [cases] or [run]"
   std::string all_sections; ///< what a file has, e.g. "[grid] or [cases], and [run]"
+  /// Keys a section takes besides its list (e.g. numbered ones); may be empty.
+  std::function<bool(const std::string& section, const std::string& key)> also;
 
   /// The keys of a known section.
   const std::vector<std::string>& keys_of(const std::string& section) const;

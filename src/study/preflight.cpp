@@ -10,6 +10,8 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
+#include "study/columns.hpp"
+
 namespace mdrmap::study::detail {
 namespace {
 
@@ -25,6 +27,21 @@ std::string first_difference(const std::string& a, const std::string& b) {
     return s.substr(start, end == std::string::npos ? std::string::npos : end - start);
   };
   return "stored '" + line_of(a) + "', now '" + line_of(b) + "'";
+}
+
+// Refuses to continue a map of an earlier schema (it is a map: is_map).
+void check_schema(const std::string& out) {
+  io::silence_hdf5_errors();
+  const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return; // read_layout says why
+  io::Handle file(f, H5Fclose);
+  const std::string schema = io::read_string_attr(f, "mdrmap_schema");
+  if (schema != io::kSchema)
+    throw InvalidInput("resume", "'" + out + "' is an " + schema +
+                                     " map, written by an earlier mdrmap; this version continues " +
+                                     io::kSchema +
+                                     " maps only: run the study again into a new map (or "
+                                     "--overwrite it)");
 }
 
 // Rank 0's checks of the output path before anything is written.
@@ -50,6 +67,7 @@ void check_output(const StudyRequest& req) {
     if (!exists) throw InvalidInput("resume", "there is no map '" + out + "' to resume");
     if (!io::MapFile::is_map(out, &why))
       throw InvalidInput("resume", "'" + out + "' is " + why + "; refusing to touch it");
+    check_schema(out);
     return;
   }
   if (!exists) return;
@@ -158,23 +176,37 @@ int ranks_on_this_node(MPI_Comm comm) {
   return ranks_here;
 }
 
+} // namespace
+
+// Unit and meaning of a grid axis: its column's range entry (the core's
+// table, a segment's velocity or duration, or a ratio).
+io::FieldInfo axis_info(const Axis& a) {
+  const ParamSpec& spec = column_spec(a.column);
+  std::string meaning = spec.meaning;
+  if (a.column.history()) meaning = "segment " + std::to_string(a.column.segment) + ": " + meaning;
+  return {"grid/" + a.name, dim_name(spec.dim), meaning};
+}
+
 // The map a study needs: its size, and the axes of a grid.
 io::MapSpec map_spec(const StudyConfig& cfg, std::size_t n_cases) {
   io::MapSpec spec;
   spec.n_cases = n_cases;
+  spec.segments = cfg.segments();
   spec.samples = cfg.run.samples;
+  spec.by_force = cfg.by_force();
   spec.timeseries = cfg.run.timeseries;
+  for (const Axis& a : cfg.axes)
+    if (!a.column.history()) spec.case_params.push_back(a.column.param->name);
   if (cfg.kind == StudyConfig::Kind::Grid) {
     for (const auto& ax : cfg.axes) {
       spec.grid.names.push_back(ax.name);
       spec.grid.values.push_back(ax.values);
       spec.grid.logarithmic.push_back(ax.logarithmic ? 1 : 0);
+      spec.grid.info.push_back(axis_info(ax));
     }
   }
   return spec;
 }
-
-} // namespace
 
 std::string bcast_from_root(MPI_Comm comm, std::string s) {
   int n = static_cast<int>(s.size());

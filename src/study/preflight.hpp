@@ -57,6 +57,14 @@ void bcast_from_root(MPI_Comm comm, std::vector<std::uint64_t>& v);
 /// The directory a path's file is in ("." for a bare name).
 std::string parent_dir(const std::string& path);
 
+/// The map a study of n_cases cases needs: its shape, the case parameters it
+/// stores, and a grid's axes with their units and meanings.
+io::MapSpec map_spec(const StudyConfig& cfg, std::size_t n_cases);
+
+/// Unit and meaning of a grid axis: its column's entry of the core's table
+/// (or a segment's velocity or duration, or a ratio).
+io::FieldInfo axis_info(const Axis& a);
+
 /// What the checks established, alike on every rank.
 struct StudyPlan {
   SolverKind kind = SolverKind::Auto;

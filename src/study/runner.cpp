@@ -35,6 +35,37 @@ double seconds_since(Clock::time_point t0) {
 
 constexpr int kTagRequest = 11;
 constexpr int kTagAssign = 12;
+constexpr int kTagFailures = 13;
+
+// At most this many failures are recorded in /failures (the rest are failed
+// in the status column, their messages not kept: rank 0's memory stays bounded).
+constexpr std::size_t kMaxRecordedFailures = 100000;
+
+// Failures as bytes, to send: index (8 bytes), length (4), message, ...
+std::vector<char> pack_failures(const std::vector<io::Failure>& v) {
+  std::vector<char> out;
+  for (const io::Failure& f : v) {
+    const auto n = static_cast<std::uint32_t>(std::min<std::size_t>(f.message.size(), 4096));
+    const char* idx = reinterpret_cast<const char*>(&f.index);
+    const char* len = reinterpret_cast<const char*>(&n);
+    out.insert(out.end(), idx, idx + 8);
+    out.insert(out.end(), len, len + 4);
+    out.insert(out.end(), f.message.data(), f.message.data() + n);
+  }
+  return out;
+}
+
+void unpack_failures(const std::vector<char>& in, std::vector<io::Failure>& out) {
+  for (std::size_t at = 0; at + 12 <= in.size();) {
+    io::Failure f;
+    std::uint32_t n = 0;
+    std::memcpy(&f.index, &in[at], 8);
+    std::memcpy(&n, &in[at + 8], 4);
+    f.message.assign(&in[at + 12], std::min<std::size_t>(n, in.size() - at - 12));
+    at += 12 + n;
+    out.push_back(std::move(f));
+  }
+}
 
 // A chunk of work: ranges [begin, end) of case indices, in order, at most
 // kMaxRanges of them (pending cases are contiguous but for a resume's gaps).
@@ -78,8 +109,8 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   prov.git_commit = kGitCommit;
   prov.created_utc = bcast_from_root(comm, utc_now());
   prov.command_line = bcast_from_root(comm, req.command_line);
-  prov.units = "consistent user units: d, R, a2 lengths; tau, t times; v, v1 length/time; G "
-               "force/length^2; FN, Fx force = G * length^2; mu dimensionless";
+  prov.units = "consistent user units: d, R, a1, a2 lengths; tau, T, t times; v, w "
+               "length/time; G force/length^2; FN, Fx force = G * length^2; mu dimensionless";
   prov.config_text = req.config.source_text;
   prov.config_canonical = plan.canon;
   prov.mpi_size = size;
@@ -88,9 +119,13 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   try {
     collectively(comm, [&] {
       // rank 0 writes /cases taking the cases by range (no rank holds them all)
+      std::vector<Row> rows;
       io::MapFile::create(comm, tmp, plan.spec, prov,
-                          [&](std::size_t i0, std::size_t i1, std::vector<StepRow>& out) {
-                            plan.cases->rows(i0, i1, out);
+                          [&](std::size_t i0, std::size_t i1, std::vector<Case>& out) {
+                            plan.cases->rows(i0, i1, rows);
+                            out.clear();
+                            for (const Row& r : rows)
+                              out.push_back(case_for(req.config, r));
                           });
     });
     collectively(comm, [&] {
@@ -110,7 +145,16 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
 class PendingCases {
 public:
   PendingCases() = default;
-  explicit PendingCases(std::vector<std::int8_t> status) : status_(std::move(status)) {
+  /// From the map's status and its recorded failures: a failed case whose
+  /// failure is not recorded (a killed run's) is pending again.
+  PendingCases(std::vector<std::int8_t> status, const std::vector<io::Failure>& recorded)
+      : status_(std::move(status)) {
+    std::vector<std::uint64_t> kept; // at most kMaxRecordedFailures: no memory per case
+    for (const io::Failure& f : recorded)
+      kept.push_back(f.index);
+    std::sort(kept.begin(), kept.end());
+    for (std::size_t i = 0; i < status_.size(); ++i)
+      if (status_[i] == -1 && !std::binary_search(kept.begin(), kept.end(), i)) status_[i] = 0;
     left_ = static_cast<std::size_t>(std::count(status_.begin(), status_.end(), 0));
     total_ = left_;
   }
@@ -144,9 +188,10 @@ private:
 
 // Collective. Where the rows go, and what is left to do: every rank gets rank
 // 0's read of the map's layout and opens the map for its rows; rank 0 keeps
-// the status column and locks the map (one job at a time).
+// the status column and the recorded failures, and locks the map (one job
+// at a time).
 PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
-                      std::optional<io::RowWriter>& map) {
+                      std::optional<io::RowWriter>& map, std::vector<io::Failure>& recorded) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::int8_t> status;
@@ -164,6 +209,7 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
       throw InvalidInput("resume", "'" + req.output + "' holds " + std::to_string(status.size()) +
                                        " cases, the study " + std::to_string(n_cases) +
                                        "; refusing to touch it");
+    recorded = io::MapFile::read_failures(req.output);
   });
   bcast_from_root(comm, packed);
   collectively(comm, [&] {
@@ -176,7 +222,7 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
                              (holder > 0 ? " (process " + std::to_string(holder) + ")" : "") +
                              "; refusing to touch it");
   });
-  return PendingCases(std::move(status));
+  return PendingCases(std::move(status), recorded);
 }
 
 // ---- scheduling ---------------------------------------------------------------
@@ -191,14 +237,16 @@ public:
 
   Worker(MPI_Comm communicator, const StudyRequest& request, const CaseSource& source,
          io::RowWriter& map, SolverKind kind)
-      : comm(communicator), req(request), cases(source), map_(map), kind_(kind) {}
+      : comm(communicator), req(request), cases(source), map_(map), kind_(kind),
+        layout_(row_layout(request.config)) {}
 
   MPI_Comm comm;
   const StudyRequest& req;
   const CaseSource& cases;
   std::size_t done = 0, failed = 0; ///< rows written by this rank
   double compute_seconds = 0.0;
-  std::string write_error; ///< why writing the map failed here ("" if it did not)
+  std::string write_error;           ///< why writing the map failed here ("" if it did not)
+  std::vector<io::Failure> failures; ///< failed rows written since the last report
 
   // A stop signal, or a failed write: either way this rank takes no more work.
   bool stop_requested() const { return (req.stop && *req.stop != 0) || !write_error.empty(); }
@@ -211,10 +259,10 @@ public:
       for (std::size_t first = begin; first < end; first += kBatch) {
         cases.rows(first, std::min(end, first + kBatch), in_);
         out_.clear();
-        for (const StepRow& r : in_) {
+        for (const Row& r : in_) {
           if (stop_requested()) break;
           const auto t0 = Clock::now();
-          out_.push_back(compute_case(req.config, r, kind_, map_.timeseries()));
+          out_.push_back(compute_case(req.config, layout_, r, kind_, map_.timeseries()));
           compute_seconds += seconds_since(t0);
           if (between_cases) between_cases();
         }
@@ -239,14 +287,17 @@ private:
       write_error = describe_write_failure(req.output, e.what());
       return false;
     }
-    for (const auto& r : out_)
-      ++(r.status == 1 ? done : failed);
+    for (std::size_t i = 0; i < out_.size(); ++i) {
+      ++(out_[i].status == 1 ? done : failed);
+      if (out_[i].status != 1) failures.push_back({first + i, out_[i].message});
+    }
     return true;
   }
 
   io::RowWriter& map_;
   SolverKind kind_;
-  std::vector<StepRow> in_;      ///< the batch's cases
+  io::RowLayout layout_;
+  std::vector<Row> in_;          ///< the batch's cases
   std::vector<io::CaseRow> out_; ///< and their rows
 };
 
@@ -259,9 +310,10 @@ using Assignment = std::array<long long, 1 + 2 * kMaxRanges>;
 // between, serving requests after every case.
 class Master {
 public:
-  Master(Worker& w, PendingCases pending, ProgressSink* sink, StudySummary& sum)
-      : w_(w), pending_(std::move(pending)), sink_(sink), sum_(sum), size_(comm_size(w.comm)),
-        active_(size_ - 1) {}
+  Master(Worker& w, PendingCases pending, ProgressSink* sink, StudySummary& sum,
+         std::vector<io::Failure>& failures)
+      : w_(w), pending_(std::move(pending)), sink_(sink), sum_(sum), failures_(failures),
+        size_(comm_size(w.comm)), active_(size_ - 1) {}
 
   // Runs until every case is handed out (or a stop) and every worker is
   // dismissed; fills sum's counts, and reports a last time.
@@ -357,6 +409,7 @@ private:
       add_cost(static_cast<double>(msg[2]) * 1e-9 / static_cast<double>(msg[0] + msg[1]));
     if (msg[3] != 0) stopping_ = true; // that worker was asked to stop
     if (w_.stop_requested()) stopping_ = true;
+    if (msg[1] > 0) receive_failures(source);
     Assignment assign{};
     ++sum_.messages;
     if (!stopping_ && pending_.left() > 0) {
@@ -374,6 +427,25 @@ private:
              w_.comm);
   }
 
+  // The messages of a worker's failed cases, sent after its report.
+  void receive_failures(int source) {
+    MPI_Status st;
+    MPI_Probe(source, kTagFailures, w_.comm, &st);
+    int n = 0;
+    MPI_Get_count(&st, MPI_CHAR, &n);
+    std::vector<char> buf(static_cast<std::size_t>(n));
+    MPI_Recv(buf.data(), n, MPI_CHAR, source, kTagFailures, w_.comm, MPI_STATUS_IGNORE);
+    std::vector<io::Failure> got;
+    unpack_failures(buf, got);
+    record(got);
+  }
+
+  void record(std::vector<io::Failure>& got) {
+    for (io::Failure& f : got)
+      if (failures_.size() < kMaxRecordedFailures) failures_.push_back(std::move(f));
+    got.clear();
+  }
+
   // A chunk of rank 0's own (at most 64 cases when there are workers to serve).
   void run_own_chunk() {
     const std::size_t k =
@@ -383,6 +455,7 @@ private:
     const double before = w_.compute_seconds;
     const std::size_t n_before = w_.done + w_.failed;
     const std::size_t finished = w_.run_chunk(c, [&] { serve(false); });
+    record(w_.failures);
     if (finished < c.size()) stopping_ = true; // stop request mid-chunk: the rest stays pending
     const std::size_t n = w_.done + w_.failed - n_before;
     if (n > 0) add_cost((w_.compute_seconds - before) / static_cast<double>(n));
@@ -392,6 +465,7 @@ private:
   PendingCases pending_;
   ProgressSink* sink_;
   StudySummary& sum_;
+  std::vector<io::Failure>& failures_;
   int size_;
   int active_; ///< workers not yet dismissed
   std::size_t others_done_ = 0, others_failed_ = 0;
@@ -406,10 +480,14 @@ private:
 // did, and computes it, until rank 0 dismisses it.
 void pull_work(Worker& w) {
   long long report_msg[4] = {0, 0, 0, 0};
+  std::vector<char> pending_failures; // the failed cases of the last chunk
   Chunk chunk;
   while (true) {
     report_msg[3] = w.stop_requested() ? 1 : 0;
     MPI_Send(report_msg, 4, MPI_LONG_LONG, 0, kTagRequest, w.comm);
+    if (report_msg[1] > 0)
+      MPI_Send(pending_failures.data(), static_cast<int>(pending_failures.size()), MPI_CHAR, 0,
+               kTagFailures, w.comm);
     Assignment assign{};
     MPI_Recv(assign.data(), static_cast<int>(assign.size()), MPI_LONG_LONG, 0, kTagAssign, w.comm,
              MPI_STATUS_IGNORE);
@@ -425,6 +503,8 @@ void pull_work(Worker& w) {
     report_msg[0] = static_cast<long long>(w.done - d0);
     report_msg[1] = static_cast<long long>(w.failed - f0);
     report_msg[2] = static_cast<long long>((w.compute_seconds - c0) * 1e9);
+    pending_failures = pack_failures(w.failures);
+    w.failures.clear();
   }
 }
 
@@ -473,6 +553,24 @@ void close_map(Worker& w, StudySummary& sum) {
   }
 }
 
+// Rank 0 writes the failures into the closed map (in case order).
+void record_failures(MPI_Comm comm, const std::string& out, std::vector<io::Failure>& failures,
+                     StudySummary& sum) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  try {
+    collectively(comm, [&] {
+      if (rank != 0) return;
+      std::sort(failures.begin(), failures.end(),
+                [](const io::Failure& a, const io::Failure& b) { return a.index < b.index; });
+      io::MapFile::write_failures(out, failures);
+    });
+  } catch (const CollectiveFailure& e) {
+    if (sum.write_failure.empty())
+      sum.write_failure = std::string("recording the failed cases' messages: ") + e.what();
+  }
+}
+
 } // namespace
 
 StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sink) {
@@ -482,17 +580,19 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   const detail::StudyPlan plan = detail::preflight(comm, req);
   if (!req.resume) create_map(comm, req, plan);
   std::optional<io::RowWriter> map;
-  PendingCases pending = open_map(comm, req, plan.cases->size(), map);
+  std::vector<io::Failure> failures; // rank 0: the recorded ones, then this run's
+  PendingCases pending = open_map(comm, req, plan.cases->size(), map, failures);
 
   Worker w(comm, req, *plan.cases, *map, plan.kind);
   StudySummary sum;
   sum.total = plan.cases->size();
   if (rank == 0)
-    Master(w, std::move(pending), sink, sum).run();
+    Master(w, std::move(pending), sink, sum, failures).run();
   else
     pull_work(w);
   share_outcome(comm, sum);
   close_map(w, sum);
+  record_failures(comm, req.output, failures, sum);
   return sum;
 }
 

@@ -8,6 +8,7 @@
 #include "core/solver.hpp"
 #include "study/axes.hpp"
 #include "study/case_list.hpp"
+#include "study/columns.hpp"
 #include "study/config.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
@@ -20,25 +21,54 @@ namespace {
 
 constexpr long kMaxRunSamples = 1'000'000;
 
+std::vector<std::string> grid_keys() {
+  std::vector<std::string> k;
+  for (const ParamSpec* p : study_parameters())
+    k.push_back(p->name);
+  k.push_back("v1"); // the seed's step: w1
+  k.push_back("v1_over_v");
+  return k;
+}
+
+bool is_history_key(const std::string& key) {
+  Column col;
+  return key != "v1" && key != "v1_over_v" && parse_column(key, col) && col.history();
+}
+
 const IniSchema& study_schema() {
   static const IniSchema s{
-      {"grid", "cases", "run"},
-      {axis_names(), {"file"}, {"t_end_over_tau", "samples", "rtol", "solver", "timeseries", "G"}},
-      "[grid], [cases] or [run]",
-      "[grid] or [cases], and [run]"};
+      {"grid", "history", "cases", "run"},
+      {grid_keys(),
+       history_names(1),
+       {"file"},
+       {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "t_end_over_tau", "G"}},
+      "[grid], [history], [cases] or [run]",
+      "[grid] or [cases], [history] and [run]",
+      [](const std::string& section, const std::string& key) {
+        return section == "history" && is_history_key(key);
+      }};
   return s;
 }
 
-/// Every key as "section.key", as the command line names them.
-const std::vector<std::string>& override_keys() {
-  static const std::vector<std::string> k = [] {
-    std::vector<std::string> all;
-    for (const auto& s : study_schema().sections)
-      for (const auto& key : study_schema().keys_of(s))
-        all.push_back(s + "." + key);
-    return all;
-  }();
-  return k;
+} // namespace
+
+std::vector<std::string> override_keys() {
+  std::vector<std::string> all;
+  for (const auto& s : study_schema().sections)
+    for (const auto& key : study_schema().keys_of(s))
+      all.push_back(s + "." + key);
+  for (std::size_t k = 2; k <= 9; ++k)
+    for (const auto& key : history_names(k))
+      all.push_back("history." + key);
+  return all;
+}
+
+namespace {
+
+/// An override's key is known: a listed one or any history column.
+bool known_override(const std::string& key) {
+  if (contains(override_keys(), key)) return true;
+  return starts_with(key, "history.") && is_history_key(key.substr(8));
 }
 
 // --- [run] ------------------------------------------------------------------
@@ -61,6 +91,19 @@ long run_samples(const std::string& option, const std::string& text) {
   if (n < 2 || n > kMaxRunSamples)
     throw ConfigError(option, allowed + ", got " + digits_shown(text));
   return static_cast<long>(n);
+}
+
+double run_decades(const std::string& option, const std::string& text) {
+  const ParamSpec& spec = *find_parameter("log-decades");
+  const Num n = to_number(text);
+  if (n.err != NumError::None)
+    throw ConfigError(option, number_problem(text, n.err) + "; decades must be " + spec.allowed());
+  try {
+    spec.check(n.x);
+  } catch (const InvalidInput& e) {
+    throw ConfigError(option, std::string("decades ") + e.what());
+  }
+  return n.x;
 }
 
 double run_rtol(const std::string& option, const std::string& text) {
@@ -92,15 +135,22 @@ bool run_timeseries(const std::string& option, const std::string& text) {
                                           "or false (also yes/no, 1/0)");
 }
 
+Spacing run_spacing(const std::string& option, const std::string& text) {
+  const std::string t = lower(text);
+  if (t == "linear") return Spacing::Linear;
+  if (t == "log") return Spacing::Log;
+  throw ConfigError(option, "unknown spacing " + shown(text) + "; spacing must be linear or log");
+}
+
 /// Sets one [run] key from its text. Throws ConfigError("run.<key>") without location.
 void set_run_key(RunSettings& r, const std::string& key, const std::string& text) {
   const std::string option = "run." + key;
-  if (key == "t_end_over_tau")
-    r.t_end_over_tau = positive_number(option, key, text);
-  else if (key == "G")
-    r.G = positive_number(option, key, text);
-  else if (key == "samples")
+  if (key == "samples")
     r.samples = run_samples(option, text);
+  else if (key == "spacing")
+    r.spacing = run_spacing(option, text);
+  else if (key == "decades")
+    r.decades = run_decades(option, text);
   else if (key == "rtol")
     r.rtol = run_rtol(option, text);
   else if (key == "solver")
@@ -109,6 +159,88 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
     r.timeseries = run_timeseries(option, text);
   else
     throw ConfigError(option, "unknown key " + shown(key) + " in [run]");
+}
+
+/// The seed's [run] G and t_end_over_tau: one number, a column of the study
+/// (G, and T1_over_tau under its old name).
+Axis run_column(const std::string& key, const std::string& text) {
+  Axis a;
+  a.name = key;
+  a.section = "run";
+  a.spec = trim(text);
+  a.values = {positive_number("run." + key, key, a.spec)};
+  if (key == "G") {
+    parse_column("G", a.column);
+  } else {
+    a.column.kind = Column::Kind::DurationOverTau;
+    a.column.segment = 1;
+  }
+  return a;
+}
+
+bool is_run_column(const std::string& key) {
+  return key == "G" || key == "t_end_over_tau";
+}
+
+// --- Columns ------------------------------------------------------------------
+
+/// Puts a column in, replacing one that sets the same thing (an override).
+void put_column(StudyConfig& c, Axis a) {
+  for (auto it = c.axes.begin(); it != c.axes.end(); ++it)
+    if (column_rank(it->column) == column_rank(a.column)) {
+      if (it->listed)
+        throw ConfigError(a.option(), a.name + " is a column of the case list " +
+                                          shown_path(c.cases_file) + "; change it there");
+      c.axes.erase(it);
+      break;
+    }
+  c.axes.push_back(std::move(a));
+}
+
+/// Adds a column from the config file: one that sets what another sets (a
+/// key of the file, or a case list's column) is an error.
+void add_column(StudyConfig& c, Axis a) {
+  for (const Axis& b : c.axes)
+    if (column_rank(b.column) == column_rank(a.column))
+      throw ConfigError(a.option(),
+                        "both " + b.name + " (" +
+                            (b.listed ? "a column of " + shown_path(c.cases_file) : b.option()) +
+                            ") and " + a.name +
+                            " are given; they set the same "
+                            "thing, give only one");
+  c.axes.push_back(std::move(a));
+}
+
+/// Makes the columns whole: the seed's default window t_end_over_tau = 6
+/// after a v1 or v1_over_v without a duration, then column order and the
+/// checks of order_columns; a case list's columns from the config take one
+/// value. Throws ConfigError without location.
+void complete_columns(StudyConfig& c) {
+  bool seed_step = false, duration1 = false;
+  for (const Axis& a : c.axes) {
+    seed_step = seed_step || a.name == "v1" || a.name == "v1_over_v";
+    duration1 =
+        duration1 || (a.column.segment == 1 && (a.column.kind == Column::Kind::Duration ||
+                                                a.column.kind == Column::Kind::DurationOverTau));
+  }
+  if (seed_step && !duration1) c.axes.push_back(run_column("t_end_over_tau", "6"));
+  order_columns(c.axes, c.kind == StudyConfig::Kind::Cases
+                            ? shown_path(c.cases_file) + " and the config: "
+                            : std::string());
+  if (c.kind != StudyConfig::Kind::Cases) return;
+  for (const Axis& a : c.axes)
+    if (!a.listed && a.values.size() != 1)
+      throw ConfigError(a.option(), a.name + " has " + std::to_string(a.values.size()) +
+                                        " values; a case list takes one value per column from "
+                                        "the config (put the others in a column of " +
+                                        shown_path(c.cases_file) + ")");
+}
+
+/// A case list's columns: those of its CSV header, then the config's.
+void list_columns(StudyConfig& c, std::vector<Axis> from_config) {
+  c.axes = read_list_columns(c.cases_file);
+  for (Axis& a : from_config)
+    put_column(c, std::move(a));
 }
 
 // --- The file -------------------------------------------------------------------
@@ -122,67 +254,39 @@ void check_one_kind(const std::string& section, const IniLines& seen) {
                                     "); a study has either a [grid] or a [cases] list");
 }
 
-/// What a file's values make of a study: the config and its grid axes by name.
+/// What a file's values make of a study: the config and its columns.
 struct FileValues {
   StudyConfig& c;
-  std::map<std::string, Axis> axes;
+  std::vector<Axis> columns;
   std::string base_dir;
 
   /// One key's value. Throws ConfigError without location.
   void set(const std::string& section, const std::string& key, const std::string& value,
-           const IniLines& seen) {
-    if (section == "grid") {
-      if (key == "v1" || key == "v1_over_v") {
-        const std::string other = key == "v1" ? "grid.v1_over_v" : "grid.v1";
-        if (seen.key_line.count(other))
-          throw ConfigError(section + "." + key,
-                            "both v1 and v1_over_v are set (the other at line " +
-                                std::to_string(seen.key_line.at(other)) + "); give only one");
-      }
-      axes[key] = parse_axis(key, value);
-    } else if (section == "cases") {
+           const IniLines&) {
+    if (section == "grid" || section == "history")
+      columns.push_back(parse_axis(section, key, value));
+    else if (section == "cases")
       c.cases_file = resolve_cases_file(value, base_dir);
-    } else {
+    else if (is_run_column(key))
+      columns.push_back(run_column(key, value));
+    else
       set_run_key(c.run, key, value);
-    }
   }
 };
 
 /// Where each option was set in a file: its key's line, else its section's
-/// header ([run], or [grid] for anything else), else the file.
+/// header, else [grid]'s or [cases]', else the file.
 WhereFn where_in_file(const IniLines& lines, const std::string& source) {
-  const Where grid_at{source, lines.section_line.at("grid")};
-  return [&lines, source, grid_at](const std::string& option) {
+  return [&lines, source](const std::string& option) {
     const auto it = lines.key_line.find(option);
     if (it != lines.key_line.end()) return Where{source, it->second};
-    if (starts_with(option, "run.")) {
-      const auto run = lines.section_line.find("run");
-      return Where{source, run != lines.section_line.end() ? run->second : 0};
-    }
-    return grid_at;
+    for (const char* s : {"run", "history", "cases", "grid"})
+      if (starts_with(option, (std::string(s) + ".").c_str()) && lines.section_line.count(s))
+        return Where{source, lines.section_line.at(s)};
+    for (const char* s : {"grid", "cases"})
+      if (lines.section_line.count(s)) return Where{source, lines.section_line.at(s)};
+    return Where{source, 0};
   };
-}
-
-/// The grid's axes in study order, then every check of the whole study.
-void assemble_grid(StudyConfig& c, std::map<std::string, Axis>& axes, const IniLines& lines,
-                   const std::string& source) {
-  c.kind = StudyConfig::Kind::Grid;
-  const Where grid_at{source, lines.section_line.at("grid")};
-  for (const char* name : kAxisOrder) {
-    if (!axes.count(name))
-      throw ConfigError(std::string("grid.") + name,
-                        grid_at.prefix() + "[grid] has no key '" + name +
-                            "'; a grid needs d, R, tau, v and one of v1, v1_over_v");
-    c.axes.push_back(axes[name]);
-  }
-  if (axes.count("v1"))
-    c.axes.push_back(axes["v1"]);
-  else if (axes.count("v1_over_v"))
-    c.axes.push_back(axes["v1_over_v"]);
-  else
-    throw ConfigError("grid.v1",
-                      grid_at.prefix() + "[grid] has no key 'v1' or 'v1_over_v'; give one of them");
-  check_study(c, where_in_file(lines, source));
 }
 
 // --- The command line -------------------------------------------------------------
@@ -191,20 +295,18 @@ void assemble_grid(StudyConfig& c, std::map<std::string, Axis>& axes, const IniL
 void set_override(StudyConfig& n, const std::string& key, const std::string& value) {
   const std::size_t dot = key.find('.');
   const std::string section = key.substr(0, dot), name = key.substr(dot + 1);
-  if (section == "grid") {
-    if (n.kind != StudyConfig::Kind::Grid)
-      throw ConfigError(key, "the study reads its cases from " + shown_path(n.cases_file) +
-                                 " ([cases]); grid axes cannot be set");
-    check_axes_shape(n);
-    Axis a = parse_axis(name, value);
-    std::size_t i = 4;
-    for (std::size_t k = 0; k < 4; ++k)
-      if (name == kAxisOrder[k]) i = k;
-    n.axes[i] = std::move(a);
+  if (section == "grid" || section == "history") {
+    put_column(n, parse_axis(section, name, value));
+  } else if (section == "run" && is_run_column(name)) {
+    put_column(n, run_column(name, value));
   } else if (section == "cases") {
     if (n.kind != StudyConfig::Kind::Cases)
       throw ConfigError(key, "the study is a [grid]; a case list cannot be set");
     n.cases_file = resolve_cases_file(value, "");
+    std::vector<Axis> from_config;
+    for (Axis& a : n.axes)
+      if (!a.listed) from_config.push_back(std::move(a));
+    list_columns(n, std::move(from_config));
   } else {
     set_run_key(n.run, name, value);
   }
@@ -228,14 +330,22 @@ StudyConfig parse_config(const std::string& text, const std::string& base_dir,
   if (!grid && !cases)
     throw ConfigError("config", Where{source_name, 0}.prefix() +
                                     "no [grid] or [cases] section; a study needs one of them");
+  const WhereFn where = where_in_file(lines, source_name);
   if (cases) {
     c.kind = StudyConfig::Kind::Cases;
     if (c.cases_file.empty())
-      throw ConfigError("cases.file", Where{source_name, lines.section_line.at("cases")}.prefix() +
+      throw ConfigError("cases.file", where("cases.file").prefix() +
                                           "[cases] has no key 'file'; write 'file = cases.csv'");
-    return c;
+    c.axes = read_list_columns(c.cases_file); // errors located in the CSV
   }
-  assemble_grid(c, values.axes, lines, source_name);
+  try {
+    for (Axis& a : values.columns)
+      add_column(c, std::move(a));
+    complete_columns(c);
+  } catch (const InvalidInput& e) {
+    rethrow_at(e, where(e.option()));
+  }
+  check_study(c, where);
   return c;
 }
 
@@ -246,25 +356,37 @@ StudyConfig load_config(const std::string& path) {
   return c;
 }
 
-void apply_override(StudyConfig& c, const std::string& key, const std::string& value_text) {
+void apply_overrides(StudyConfig& c,
+                     const std::vector<std::pair<std::string, std::string>>& settings) {
   const Where cl{"command line", 0};
-  if (!contains(override_keys(), key)) {
-    const std::string near = nearest(key, override_keys());
-    throw ConfigError(key, cl.prefix() + "unknown key " + shown(key) + "; " +
-                               (near.empty() ? "the keys are " + join(override_keys())
-                                             : "did you mean '" + near + "'?"));
-  }
-  const std::string value = trim(value_text);
-  if (value.empty())
-    throw ConfigError(key, cl.prefix() + key + " has no value; give it as in the config file");
   StudyConfig n = c;
+  for (const auto& [key, value_text] : settings) {
+    if (!known_override(key)) {
+      const std::string near = nearest(key, override_keys());
+      throw ConfigError(key, cl.prefix() + "unknown key " + shown(key) + "; " +
+                                 (near.empty() ? "the keys are " + join(override_keys())
+                                               : "did you mean '" + near + "'?"));
+    }
+    const std::string value = trim(value_text);
+    if (value.empty())
+      throw ConfigError(key, cl.prefix() + key + " has no value; give it as in the config file");
+    try {
+      set_override(n, key, value);
+    } catch (const InvalidInput& e) {
+      rethrow_at(e, cl);
+    }
+  }
   try {
-    set_override(n, key, value);
+    complete_columns(n); // after all of them: a new segment takes two keys
   } catch (const InvalidInput& e) {
     rethrow_at(e, cl);
   }
   check_study(n, [&cl](const std::string&) { return cl; });
   c = std::move(n);
+}
+
+void apply_override(StudyConfig& c, const std::string& key, const std::string& value) {
+  apply_overrides(c, {{key, value}});
 }
 
 } // namespace mdrmap::study

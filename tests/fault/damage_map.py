@@ -48,6 +48,10 @@ def main():
     with h5py.File(dst, "r+") as f:
         f.attrs["mdrmap_schema"] = np.bytes_("mdrmap-map/0")
     made.append(dst)
+    dst = copy(src, outdir, "schema_1.h5")  # a map of the previous schema: not continued
+    with h5py.File(dst, "r+") as f:
+        f.attrs["mdrmap_schema"] = np.bytes_("mdrmap-map/1")
+    made.append(dst)
 
     # structure: a dataset missing, re-stored chunked, of the wrong shape or type
     dst = copy(src, outdir, "missing_status.h5")
@@ -62,15 +66,15 @@ def main():
     made.append(dst)
     dst = copy(src, outdir, "short_field.h5")
     with h5py.File(dst, "r+") as f:
-        data = f["results/mu_post"][...]
-        del f["results/mu_post"]
-        f.create_dataset("results/mu_post", data=data[:-1])
+        data = f["events/mu_end"][...]
+        del f["events/mu_end"]
+        f.create_dataset("events/mu_end", data=data[:-1])
     made.append(dst)
     dst = copy(src, outdir, "float32_field.h5")
     with h5py.File(dst, "r+") as f:
-        data = f["residuals/a2_jump"][...]
-        del f["residuals/a2_jump"]
-        f.create_dataset("residuals/a2_jump", data=data.astype("f4"))
+        data = f["residuals/a2_pre"][...]
+        del f["residuals/a2_pre"]
+        f.create_dataset("residuals/a2_pre", data=data.astype("f4"))
     made.append(dst)
     dst = copy(src, outdir, "no_study.h5")
     with h5py.File(dst, "r+") as f:

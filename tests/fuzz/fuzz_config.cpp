@@ -6,7 +6,8 @@
 // An input is an INI text, optionally followed by a line "%%" and a CSV text.
 // The CSV is written as cases.csv and failing.csv (the names the shipped
 // [cases] configs use) next to the INI, then:
-//   - read_cases_csv returns valid, finite cases or throws InvalidInput;
+//   - the CSV read as a case list (a [cases] config of it alone) gives valid,
+//     finite cases or throws InvalidInput;
 //   - parse_config returns or throws InvalidInput; a config that parses
 //     expands (grids always; case lists or InvalidInput) to valid, finite cases.
 // InvalidInput messages must be non-empty and one line without control bytes.
@@ -66,12 +67,15 @@ template <class F> bool returns_or_refuses(const char* step, F&& f) {
   }
 }
 
-void check_row(const StepRow& s, double G) {
-  for (const double x : {s.d, s.R, s.tau, s.v, s.v1, s.G})
+/// A row of a parsed study: finite values, one per column, and a valid Case.
+void check_row(const StudyConfig& c, const Row& s) {
+  if (s.size() != c.axes.size()) fail("a case has the wrong number of values");
+  for (const double x : s)
     if (!std::isfinite(x)) fail("a case has a value that is not finite");
-  if (s.G != G) fail("a case has the wrong G");
   try {
-    validate_row(s);
+    const mdrmap::Case k = case_for(c, s);
+    mdrmap::validate(k);
+    if (k.history.size() != c.segments()) fail("a case has the wrong number of segments");
   } catch (const std::exception& e) {
     fail(std::string("a case is invalid: ") + e.what());
   }
@@ -85,20 +89,14 @@ void check_config(const StudyConfig& c) {
     return;
   }
   if (count > kExpandLimit) return;
-  std::vector<StepRow> cases;
+  std::vector<Row> cases;
   if (!returns_or_refuses("expand_cases", [&] { cases = expand_cases(c); })) {
     if (grid) fail("a parsed grid refused to expand (a case the parse-time check missed)");
     return;
   }
   if (cases.size() != count) fail("expand_cases and case_count disagree");
-  for (const StepRow& s : cases) {
-    check_row(s, c.run.G);
-    try {
-      mdrmap::validate(case_for(c, s));
-    } catch (const std::exception& e) {
-      fail(std::string("a case's Case is invalid: ") + e.what());
-    }
-  }
+  for (const Row& s : cases)
+    check_row(c, s);
   std::string text;
   if (returns_or_refuses("canonical", [&] { text = canonical(c); }) && text.empty())
     fail("canonical() is empty");
@@ -151,12 +149,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   write_fast(csv_path, csv);
   write_fast((fs::path(dir) / "failing.csv").string(), csv);
 
-  std::vector<StepRow> cases;
-  if (returns_or_refuses("read_cases_csv", [&] { cases = read_cases_csv(csv_path, 1.0); })) {
-    if (cases.empty()) fail("read_cases_csv returned no cases");
-    for (const StepRow& s : cases)
-      check_row(s, 1.0);
-  }
+  StudyConfig list;
+  if (returns_or_refuses("case list",
+                         [&] { list = parse_config("[cases]\nfile = cases.csv\n", dir, "l.ini"); }))
+    check_config(list);
 
   StudyConfig c;
   if (returns_or_refuses("parse_config", [&] { c = parse_config(ini, dir, "fuzz.ini"); }))
