@@ -2,7 +2,22 @@
 # pyrun-needs: numpy h5py
 """Summarise what an mdrmap map holds, and export its rows to CSV.
 
-Prints, for one map:
+Reads both layouts (the root attribute mdrmap_schema): mdrmap-map/2 maps (a
+history of K segments per case, docs/map-schema.md) and the older
+mdrmap-map/1 maps (one step v -> v1 per case). For an mdrmap-map/2 map the
+step-specific parts below read: the parameters are the loading (d or FN), R,
+tau, G, v and each segment's w1..wK, T1..TK; the similarity variable is
+zeta = v tau / a1 at depth, zeta0 = v tau / a0 under load (a0 the Hertz radius
+of FN); the results are the stationary state before t = 0 (*_pre, also
+mu_pre / (a/R)) and, per event k, mu_before, mu_after, mu_peak, mu_end, a, b,
+a - b (in units of a/R) and D_c (in units of a), with the number of undefined
+values (the fill value: holds, equal velocities, no 1/e decay); the
+residuals *_pre and *_jump measure numerical error, *_end_k the distance of
+segment k's end from the stationary state at w_k; the failed cases' messages
+come from /failures. Per-event datasets are CSV columns <name>_<k>
+(mu_peak_1, analytic_mu_ss_0, residual_mu_end_0), undefined values `nan`.
+
+Prints, for one map (mdrmap-map/1 names):
 
   - provenance: schema, program version and git commit, creation time (UTC),
     command line, MPI size, units, samples per case, whether time series are
@@ -38,45 +53,75 @@ Exit codes: 0 success, 2 bad input (one line on stderr).
 
 import argparse
 import csv
-import math
 import os
 import re
 import sys
 
-from maplib import CASE_COLS, SCHEMA, Parser, UserError, case_columns, open_map, run_tool, text
+from maplib import (CASE_COLS, SCHEMA1, SCHEMA2, Parser, UserError, case_columns,
+                    failure_messages, fmt, load_cases, open_map, read_masked, run_tool,
+                    schema_version, text)
 
 PROG = "map_summary"
-QUANT = ["FN", "Fx", "mu", "a2"]
+QUANT = ["FN", "Fx", "mu", "a2", "d", "a1"]
+EVENT_ROWS = ["mu_before", "mu_after", "mu_peak", "mu_end", "a", "b", "a_minus_b", "d_c"]
 WHEN = ["pre", "jump", "post"]
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
 MAX_FAILED = 20  # failed cases listed
 
 
-def fmt(x, digits=3):
-    x = float(x)
-    if x == 0:
-        return "0"
-    if not math.isfinite(x):
-        return str(x)
-    s = f"{x:.{digits}g}" if 1e-3 <= abs(x) < 1e5 else f"{x:.{digits - 1}e}"
-    if "e" in s:
-        mant, exp = s.split("e")
-        if "." in mant:
-            mant = mant.rstrip("0").rstrip(".")
-        return f"{mant}e{int(exp)}"
-    return s
+def load2(f, path, np):
+    """An mdrmap-map/2 map in the form summary() and columns() read."""
+    c = load_cases(f, path, np)
+    n, K = c["n"], c["K"]
+    m = {"path": path, "version": 2, "n": n, "K": K, "status": c["status"],
+         "message": c["message"], "loading": c["loading"], "a": c["a"],
+         "mu_scale": c["mu_scale"], "a_name": c["a_name"], "zeta_name": c["zeta_name"]}
+    m["attrs"] = {k: f.attrs[k] for k in f.attrs}
+    m["case_cols"] = list(c["cols"])
+    for k, x in c["cols"].items():
+        m[k] = x
+    m["seg_cols"] = [f"{kind}{j + 1}" for j in range(K) for kind in ("w", "T")]
+    for j in range(K):
+        m[f"w{j + 1}"] = c["w"][:, j]
+        m[f"T{j + 1}"] = c["T"][:, j]
+    m[c["zeta_name"]] = c["zeta"]
+    m["derived"] = [c["zeta_name"]]
+    m["groups"] = {}
+    for grp in ["results", "events", "analytic", "residuals"]:
+        cols = {}
+        if grp in f:
+            for name, ds in f[grp].items():
+                if name == "status" or not hasattr(ds, "dtype") or ds.dtype.kind not in "fiu":
+                    continue
+                if ds.shape == (n,):
+                    cols[name] = read_masked(ds).astype(float)
+                elif len(ds.shape) == 2 and ds.shape[0] == n:
+                    x = read_masked(ds).astype(float)
+                    for j in range(ds.shape[1]):
+                        cols[f"{name}_{j}"] = x[:, j]
+        m["groups"][grp] = cols
+    grid = c["grid"]
+    if grid:
+        grid = dict(grid, log=[bool(k) for k in grid["log"]])
+    m["grid"] = grid
+    m["timeseries"] = "timeseries" in f
+    m["config_text"] = text(f["provenance/config_text"][()]) if "provenance/config_text" in f \
+        else None
+    return m
 
 
 def load(path, np, h5py):
     f = open_map(path, h5py, PROG)
-    m = {"path": path}
+    if schema_version(f) == 2:
+        with f:
+            return load2(f, path, np)
+    m = {"path": path, "version": 1, "derived": DERIVED, "seg_cols": []}
     with f:
         m["attrs"] = {k: f.attrs[k] for k in f.attrs}
         n = f["results/status"].shape[0]
         m["n"] = n
         m["status"] = f["results/status"][()].astype(int)
-        m["message"] = ([text(x).rstrip("\0").strip() for x in f["results/message"][()]]
-                        if "results/message" in f else [""] * n)
+        m["message"] = failure_messages(f, n)
         # the /cases columns: from /schema (older maps: CASE_COLS); the derived
         # variables need those of CASE_COLS in any case
         m["case_cols"] = case_columns(f)
@@ -127,10 +172,11 @@ def ordered(names):
 
 def columns(m):
     """(header, getter) for the CSV, in order."""
-    cols = [("case", None)] + [(c, m[c]) for c in m["case_cols"] + DERIVED]
+    cols = [("case", None)] + [(c, m[c]) for c in m["case_cols"] + m["seg_cols"] + m["derived"]]
     cols.append(("status", m["status"]))
-    for grp, prefix in [("results", ""), ("analytic", "analytic_"), ("residuals", "residual_")]:
-        for name in ordered(m["groups"][grp]):
+    for grp, prefix in [("results", ""), ("events", ""), ("analytic", "analytic_"),
+                        ("residuals", "residual_")]:
+        for name in ordered(m["groups"].get(grp, {})):
             cols.append((prefix + name, m["groups"][grp][name]))
     return cols
 
@@ -161,6 +207,9 @@ def parse_where(specs, m, np):
 
 
 def case_text(m, i):
+    if m["version"] == 2:
+        s = " ".join(f"{c}={fmt(m[c][i])}" for c in m["case_cols"] if c != "G" or m["G"][i] != 1)
+        return s + " " + " ".join(f"{c}={fmt(m[c][i])}" for c in m["seg_cols"])
     s = (f"d={fmt(m['d'][i])} R={fmt(m['R'][i])} tau={fmt(m['tau'][i])} "
          f"v={fmt(m['v'][i])} v1={fmt(m['v1'][i])}")
     if m["G"][i] != 1:
@@ -183,14 +232,21 @@ def summary(m, keep, args, np, out):
     p(f"map: {m['path']}")
     p("provenance")
     schema = get("mdrmap_schema")
-    p(f"  schema        {schema}" + ("" if schema == SCHEMA else f"  (this tool reads {SCHEMA})"))
+    p(f"  schema        {schema}" + ("" if schema in (SCHEMA1, SCHEMA2) else
+                                       f"  (this tool reads {SCHEMA2} and {SCHEMA1})"))
     p(f"  program       mdrmap {get('program_version')} (commit {get('git_commit')})")
     p(f"  created (UTC) {get('created_utc')}")
     p(f"  command line  {get('command_line')}")
     p(f"  MPI size      {get('mpi_size')}")
     p(f"  units         {get('units')}")
-    p(f"  samples       {get('samples')} per case; time series "
-      f"{'stored (/timeseries)' if m['timeseries'] else 'not stored'}")
+    if m["version"] == 2:
+        p(f"  loading       {get('loading', m['loading'])}"
+          f" ({'FN given, depth solved' if m['loading'] == 'force' else 'depth d given'})")
+        p(f"  segments      {m['K']}; samples {get('samples')} per segment; time series "
+          f"{'stored (/timeseries)' if m['timeseries'] else 'not stored'}")
+    else:
+        p(f"  samples       {get('samples')} per case; time series "
+          f"{'stored (/timeseries)' if m['timeseries'] else 'not stored'}")
 
     st = m["status"]
     n = m["n"]
@@ -219,13 +275,17 @@ def summary(m, keep, args, np, out):
             p(f"  {a:<{w}}  {vals.size} values{' (log)' if lg else ''}: {listing}")
     else:
         p(f"case list (no /grid): {n} cases")
-        for c in m["case_cols"]:
+        for c in m["case_cols"] + m["seg_cols"]:
             u = np.unique(m[c])
             listing = ", ".join(fmt(v) for v in u) if u.size <= 8 else \
                 f"{fmt(u.min())} .. {fmt(u.max())}"
             p(f"  {c:<4}  {u.size} distinct: {listing}")
     sel = keep
-    for c, label in [("zeta", "zeta  = v tau / a1 "), ("zeta1", "zeta1 = v1 tau / a1")]:
+    zetas = [("zeta", "zeta  = v tau / a1 "), ("zeta1", "zeta1 = v1 tau / a1")]
+    if m["version"] == 2:
+        zetas = [(m["zeta_name"], f"{m['zeta_name']} = v tau / {m['a_name']}"
+                  + (" (a0: Hertz radius of FN)" if m["a_name"] == "a0" else " (a1 = sqrt(R d))"))]
+    for c, label in zetas:
         x = m[c][sel]
         x = x[np.isfinite(x)]
         if x.size:
@@ -246,7 +306,24 @@ def summary(m, keep, args, np, out):
                 name = f"{q}_{w}"
                 if name in res:
                     rows.append((name, res[name][done]))
-        for w in WHEN:
+        if m["version"] == 2:
+            an = m["a_name"]
+            if "mu_pre" in res:
+                rows.append((f"mu_pre / ({an}/R)", res["mu_pre"][done] / m["mu_scale"][done]))
+            ev = m["groups"]["events"]
+            for k in range(m["K"]):
+                for name in EVENT_ROWS:
+                    if f"{name}_{k}" not in ev:
+                        continue
+                    x = ev[f"{name}_{k}"][done]
+                    scale = m["a"][done] if name == "d_c" else m["mu_scale"][done]
+                    unit = an if name == "d_c" else f"{an}/R"
+                    undefined = int(np.sum(~np.isfinite(x)))
+                    label = f"event {k}: {name} / {unit}"
+                    if undefined:
+                        label += f" ({undefined} undefined)"
+                    rows.append((label, x / scale))
+        for w in WHEN if m["version"] == 1 else []:
             if f"mu_{w}" in res:
                 rows.append((f"mu_{w} / sqrt(d/R)", res[f"mu_{w}"][done] / m["sqrt_d_over_R"][done]))
         for name in ["error_estimate", "wall_seconds"]:
@@ -298,8 +375,11 @@ def summary(m, keep, args, np, out):
                 where = f"(case {i})" if r[ok].max() > 0 else "(all 0)"
                 p(f"  {k:<{w}}  {fmt(r[ok].min()):>10}  {fmt(np.median(r[ok])):>10}  "
                   f"{fmt(r[ok].max()):>10}   {where}")
-            p("  *_post: state at t_end vs the stationary state at v1; *_inf: before the step vs "
-              "v -> inf (eqs. 12-14); mu_post_drop: mu at t = 0+ vs 3/4 sqrt(d/R)")
+            if m["version"] == 2:
+                p("  *_end_k: the state at the end of segment k vs the stationary state at w_k")
+            else:
+                p("  *_post: state at t_end vs the stationary state at v1; *_inf: before the step "
+                  "vs v -> inf (eqs. 12-14); mu_post_drop: mu at t = 0+ vs 3/4 sqrt(d/R)")
 
     failed = np.flatnonzero(keep & (st == -1))
     if failed.size:
@@ -319,7 +399,7 @@ def summary(m, keep, args, np, out):
 
 def write_csv(m, keep, path, np):
     cols = columns(m)
-    params = set(["case"] + m["case_cols"] + DERIVED)
+    params = set(["case"] + m["case_cols"] + m["seg_cols"] + m["derived"])
     header = [c for c, _ in cols] + ["message"]
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)

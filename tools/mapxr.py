@@ -9,13 +9,20 @@ As a module (with tools/ on sys.path):
     g = mapxr.to_grid(ds)           # grid maps: one dimension per grid axis
 
 open_map(path) merges the map's groups into one Dataset with dimension
-`case` (and `sample` for the time series):
+`case` (and `event` for per-event values, `sample` for the time series). It
+reads both layouts (the root attribute mdrmap_schema):
 
-  - /cases columns (d, R, tau, v, v1, G) as coordinates along `case`;
-  - /results under their bare names (FN_pre, mu_jump, error_estimate,
-    wall_seconds, status, message);
+  - /cases columns as coordinates along `case` (mdrmap-map/2: d or FN, R, tau,
+    G, v, and w and T over (case, event); mdrmap-map/1: d, R, tau, v, v1, G);
+  - /results under their bare names (FN_pre, error_estimate, wall_seconds,
+    status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a
+    case failed ('' otherwise; mdrmap-map/2: from /failures/{case,message});
+  - /events (mdrmap-map/2) under their bare names over (case, event): t,
+    mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
+    fill value) are NaN;
   - /analytic as analytic_<name>, /residuals as residual_<name> (the names of
-    map_summary.py's CSV), /timeseries as ts_<name> over (case, sample);
+    map_summary.py's CSV), /timeseries as ts_<name> over (case, sample)
+    (mdrmap-map/2: also ts_segment over sample, the segment of each sample);
   - each variable with the attributes units and long_name from the map's
     /schema (maps written before /schema have none) and map_path (its
     dataset in the map);
@@ -29,16 +36,19 @@ renamed to case and sample.
 
 to_grid(ds) reshapes every variable along `case` to the grid's axes (C order,
 last axis fastest: the case order of a [grid] study), with the axis values as
-index coordinates, the other /cases columns (e.g. v1, G) as N-d coordinates,
-and a coordinate `case` holding each point's row number in the map. It checks
-that the /cases columns equal the grid (v1 = v1_over_v * v to 1e-12).
+index coordinates, the other /cases columns (e.g. v1, G; w and T) as N-d
+coordinates, and a coordinate `case` holding each point's row number in the
+map. The axes of an mdrmap-map/2 grid include the history's (w1_over_v,
+T1_over_tau, w2, ...: dimensions like any other). It checks that the /cases
+columns equal the grid (v1 = v1_over_v * v, wk = w[:, k-1], wk_over_v =
+w[:, k-1] / v, Tk_over_tau = T[:, k-1] / tau, to 1e-12).
 
 Command line: prints the Dataset (with --grid, the N-dimensional one).
 
 Usage:
     tools/pyrun tools/mapxr.py MAP.h5
     tools/pyrun tools/mapxr.py MAP.h5 --grid
-    tools/pyrun tools/mapxr.py MAP.h5 --grid --var mu_jump --var residual_mu_jump
+    tools/pyrun tools/mapxr.py MAP.h5 --grid --var mu_peak --var residual_mu_pre
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -49,12 +59,13 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import Parser, UserError, open_map as open_h5, run_tool, text  # noqa: E402
+from maplib import (Parser, UserError, failure_messages, open_map as open_h5,  # noqa: E402
+                    run_tool, schema_version, segment_axis, text)
 
 PROG = "mapxr"
 # map group -> variable name prefix
-GROUPS = [("cases", ""), ("results", ""), ("analytic", "analytic_"), ("residuals", "residual_"),
-          ("timeseries", "ts_")]
+GROUPS = [("cases", ""), ("results", ""), ("events", ""), ("analytic", "analytic_"),
+          ("residuals", "residual_"), ("timeseries", "ts_")]
 
 
 def _attr(value):
@@ -95,7 +106,9 @@ def _read_h5(path):
                                 f"{[len(v) for v in values]} do not fit {n} cases")
             grid = {"axes": axes, "values": values, "log": log, "described": described}
         scaled = "case" in f and f["case"].attrs.get("CLASS") == b"DIMENSION_SCALE"
-    return attrs, n, groups, grid, scaled
+        version = schema_version(f)
+        messages = failure_messages(f, n) if version == 2 else None
+    return attrs, n, groups, grid, scaled, version, messages
 
 
 def open_map(path):
@@ -103,21 +116,31 @@ def open_map(path):
     UserError (one line) when `path` is not a readable mdrmap map."""
     import xarray as xr
 
-    attrs, n, groups, grid, scaled = _read_h5(path)
+    import numpy as np
+
+    attrs, n, groups, grid, scaled, version, messages = _read_h5(path)
     parts = []
     for group, prefix in GROUPS:
         if group not in groups:
             continue
         try:
+            # mdrmap-map/2: the fill value of undefined values becomes NaN
             ds = xr.open_dataset(path, engine="h5netcdf", group=group, decode_times=False,
-                                 decode_timedelta=False, mask_and_scale=False,
+                                 decode_timedelta=False, mask_and_scale=version == 2,
                                  phony_dims=None if scaled else "sort")
         except (OSError, ValueError) as e:
             raise UserError(f"{path}: cannot open /{group} with xarray "
                             f"({str(e).splitlines()[0]})") from None
         if not scaled:  # a map without dimension scales: name the phony dimensions
-            first = next(iter(ds.data_vars.values()))
-            ds = ds.rename_dims(dict(zip(first.dims, ["case", "sample"])))
+            second = "sample" if group == "timeseries" else "event"
+            names = {}
+            for var in ds.data_vars.values():
+                want = ["case", second] if len(var.dims) == 2 or var.shape[0] == n else [second]
+                for dim, name in zip(var.dims, want):
+                    if names.setdefault(dim, name) != name:
+                        raise UserError(f"{path}: /{group} has no dimension scales and its "
+                                        f"dimensions are ambiguous")
+            ds = ds.rename_dims(names)
         if ds.sizes.get("case") != n:
             raise UserError(f"{path}: /{group} is not along the {n} cases")
         for name in ds.data_vars:
@@ -128,6 +151,10 @@ def open_map(path):
         ds.attrs = {}
         parts.append(ds)
     out = xr.merge(parts, compat="identical", join="exact", combine_attrs="override")
+    if messages is not None:
+        out["message"] = xr.Variable(("case",), np.array(messages, dtype=object),
+                                     {"long_name": "why a case failed (empty otherwise)",
+                                      "map_path": "failures/message"})
     out.attrs = dict(attrs)
     if grid:
         out.attrs["grid_axes"] = ",".join(grid["axes"])
@@ -166,12 +193,28 @@ def to_grid(ds):
     if "v1_over_v" in mesh and "v" in mesh:
         mesh.setdefault("v1", mesh["v1_over_v"] * mesh["v"])
     for a, want in mesh.items():
-        if a not in ds.variables:
+        seg = segment_axis(a) if a not in ds.variables else None
+        if seg is not None and seg[0] in ds.variables and ds[seg[0]].ndim == 2:
+            # an mdrmap-map/2 history axis: from /cases/w or /cases/T [N, K]
+            kind, k, over = seg
+            col = np.asarray(ds[kind].values, dtype=float)
+            if k > col.shape[1]:
+                raise UserError(f"grid axis {a!r} names segment {k}, the map has {col.shape[1]}")
+            have = col[:, k - 1]
+            if over:
+                ref = np.asarray(ds["v" if kind == "w" else "tau"].values, dtype=float)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    have = np.where(ref != 0, have / ref, np.nan)
+            have = have.reshape(shape)
+            ok = np.isfinite(have)  # Tk_over_tau at tau = 0: not a multiple of tau
+            same = np.allclose(have[ok], want[ok], rtol=1e-12, atol=0)
+        elif a not in ds.variables:
             continue
-        have = np.asarray(ds[a].values, dtype=float).reshape(shape)
-        exact = a in axes
-        same = np.array_equal(have, want) if exact else \
-            np.allclose(have, want, rtol=1e-12, atol=0)
+        else:
+            have = np.asarray(ds[a].values, dtype=float).reshape(shape)
+            exact = a in axes
+            same = np.array_equal(have, want) if exact else \
+                np.allclose(have, want, rtol=1e-12, atol=0)
         if not same:
             raise UserError(f"/cases/{a} does not follow the grid's axes {axes} in C order: "
                             f"not a grid study's case order")
@@ -189,7 +232,10 @@ def to_grid(ds):
     for name, var in ds.variables.items():
         if name in axes:
             continue  # now an index coordinate
-        if not var.dims or var.dims[0] != "case" or "case" in var.dims[1:]:
+        if "case" not in var.dims:  # e.g. ts_segment: kept as it is
+            (coords if name in ds.coords else data)[name] = var
+            continue
+        if var.dims[0] != "case" or "case" in var.dims[1:]:
             raise UserError(f"variable {name!r} is not along `case` first: cannot reshape it")
         rest = var.dims[1:]
         arr = np.asarray(var.values)
@@ -209,7 +255,7 @@ def main(argv=None):
     ap.add_argument("--grid", action="store_true",
                     help="print the N-dimensional Dataset of a grid study (to_grid)")
     ap.add_argument("--var", action="append", metavar="NAME",
-                    help="print only these variables (repeatable), e.g. mu_jump, residual_mu_jump")
+                    help="print only these variables (repeatable), e.g. mu_peak, residual_mu_pre")
     args = ap.parse_args(argv)
     ds = open_map(args.map)
     try:

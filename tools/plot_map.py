@@ -8,6 +8,18 @@ then /analytic, then /residuals; a prefixed one (`analytic/mu_post`,
 `residuals/mu_jump`) names its group. Several quantities give one panel each.
 Default: mu_jump (the friction coefficient right after the step).
 
+mdrmap-map/2 maps (a history of K segments, docs/map-schema.md) are read too:
+their per-event datasets ([N, K]: /events, analytic/<q>_ss, residuals/<q>_end)
+are quantities <name>_<k> for event k, e.g. `mu_after_0` (the friction just
+after the change at t = 0: the default), `mu_peak_1`, `a_0`, `d_c_0`,
+`analytic/mu_ss_0`, `residuals/mu_end_0`; bare names are looked up in
+/results, /events, /analytic, /residuals, in that order. Undefined values
+(the fill value) are drawn grey like cases not done. The grid's axes include
+the history's (w1_over_v, T1_over_tau, ...); `--slice v1_over_v=...` finds
+w1_over_v. `--scaled` divides mu by a/R and lengths by a, a = a1 = sqrt(R d)
+at depth or a0 = (3 FN R / (16 G))^(1/3) under load (forces by G a^3 / R);
+`--similarity` plots over zeta = v tau / a and zeta1 = w1 tau / a.
+
 Grid maps (with /grid): rows are reshaped with the /grid attributes `axes`,
 `shape` (C order, last axis fastest) and drawn over two grid axes, `--x` and
 `--y` (default: the two axes with the most values, the longer one on x; on a
@@ -44,22 +56,27 @@ import math
 import os
 import sys
 
-from maplib import (CASE_COLS, Parser, UserError, case_columns, open_map, run_tool, save_figure,
-                    schema, text)
+from maplib import (CASE_COLS, Parser, UserError, case_columns, load_cases, open_map,
+                    read_masked, resolve_axis, run_tool, save_figure, schema, schema_version, text)
 
 PROG = "plot_map"
 GROUPS = ["results", "analytic", "residuals"]
+GROUPS2 = ["results", "events", "analytic", "residuals"]  # mdrmap-map/2
 DERIVED = ["v1_over_v", "zeta", "zeta1"]
-SYMBOL = {"FN": "F$_N$", "Fx": "F$_x$", "mu": "\u03bc", "a2": "a$_2$"}
+SYMBOL = {"FN": "F$_N$", "Fx": "F$_x$", "mu": "\u03bc", "a2": "a$_2$", "a1": "a$_1$", "d": "d"}
 NAME = {"FN": "normal force", "Fx": "friction force", "mu": "friction coefficient",
-        "a2": "trailing edge"}
-UNIT = {"FN": "[G length$^2$]", "Fx": "[G length$^2$]", "mu": "", "a2": "[length]"}
+        "a2": "trailing edge", "a1": "leading edge", "d": "depth"}
+UNIT = {"FN": "[G length$^2$]", "Fx": "[G length$^2$]", "mu": "", "a2": "[length]",
+        "a1": "[length]", "d": "[length]"}
 SCALED = {"FN": "F$_N$ / (G a$_1$ d)", "Fx": "F$_x$ / (G d$^2$)", "mu": "\u03bc / \u221a(d/R)",
           "a2": "a$_2$ / a$_1$"}
 COLNAME = {"d": "depth d", "R": "radius R", "tau": "\u03c4 = \u03b7/G", "v": "velocity v",
            "v1": "velocity v$_1$ after the step", "G": "shear modulus G",
            "v1_over_v": "v$_1$ / v", "zeta": "\u03b6 = v\u03c4/a$_1$",
            "zeta1": "\u03b6$_1$ = v$_1$\u03c4/a$_1$"}
+# mdrmap-map/2: a = a1 = sqrt(R d) at depth, a0 (Hertz radius of FN) under load
+SCALED2 = {"FN": "F$_N$ / (G a$^3$/R)", "Fx": "F$_x$ / (G a$^3$/R)", "mu": "\u03bc / (a/R)",
+           "a2": "a$_2$ / a", "a1": "a$_1$ / a", "d": "d / (a$^2$/R)"}
 LABEL_BOX = {"facecolor": "white", "alpha": 0.7, "edgecolor": "none", "pad": 0.6}
 
 
@@ -78,9 +95,45 @@ def fmt(x):
 
 # ----------------------------------------------------------------- reading
 
+def load2(f, path, np):
+    """An mdrmap-map/2 map in the form the plots read (per-event datasets as
+    <group>/<name>_<k>)."""
+    c = load_cases(f, path, np)
+    n, K = c["n"], c["K"]
+    m = {"path": path, "version": 2, "data": {}, "n": n, "status": c["status"],
+         "schema": schema(f), "mu_scale": c["mu_scale"], "a": c["a"]}
+    seg = [f"{kind}{j + 1}" for j in range(K) for kind in ("w", "T")]
+    m["case_cols"] = list(c["cols"]) + seg
+    m.update(c["cols"])
+    for j in range(K):
+        m[f"w{j + 1}"], m[f"T{j + 1}"] = c["w"][:, j], c["T"][:, j]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        m["zeta"] = c["zeta"]
+        m["zeta1"] = c["w"][:, 0] * c["cols"]["tau"] / c["a"]
+    m["derived"] = ["zeta", "zeta1"]
+    for grp in GROUPS2:
+        if grp not in f:
+            continue
+        for name, ds in f[grp].items():
+            if not hasattr(ds, "dtype") or ds.dtype.kind not in "fiu":
+                continue
+            if ds.shape == (n,):
+                m["data"][f"{grp}/{name}"] = read_masked(ds).astype(float)
+            elif len(ds.shape) == 2 and ds.shape[0] == n:
+                x = read_masked(ds).astype(float)
+                for j in range(ds.shape[1]):
+                    m["data"][f"{grp}/{name}_{j}"] = x[:, j]
+    grid = c["grid"]
+    m["grid"] = dict(grid, log=[bool(k) for k in grid["log"]]) if grid else None
+    return m
+
+
 def load(path, np, h5py):
     f = open_map(path, h5py, PROG)
-    m = {"path": path, "data": {}}
+    if schema_version(f) == 2:
+        with f:
+            return load2(f, path, np)
+    m = {"path": path, "data": {}, "version": 1, "derived": DERIVED}
     with f:
         n = f["results/status"].shape[0]
         m["n"] = n
@@ -128,11 +181,15 @@ def resolve(m, name):
         if key in m["data"]:
             return key
     else:
-        for grp in GROUPS:
+        for grp in (GROUPS2 if m.get("version") == 2 else GROUPS):
             if f"{grp}/{key}" in m["data"]:
                 return f"{grp}/{key}"
     bare = sorted({k.split("/", 1)[1] for k in m["data"]},
                   key=lambda s: (s.split("_")[0] not in SYMBOL, s))
+    if m.get("version") == 2:
+        raise UserError(f"unknown quantity {name!r}; valid: {', '.join(bare)} (bare names come "
+                        f"from /results, /events, then /analytic; <name>_<k> is event k; prefix "
+                        f"analytic/ or residuals/ for those groups, e.g. residuals/mu_end_0)")
     raise UserError(f"unknown quantity {name!r}; valid: {', '.join(bare)} "
                     f"(bare names come from /results, then /analytic; prefix analytic/ or "
                     f"residuals/ for those groups, e.g. residuals/mu_jump)")
@@ -145,7 +202,7 @@ def base_of(key):
     return grp, parts[0], parts[1] if len(parts) > 1 else ""
 
 
-def describe(key, scaled, described=None):
+def describe(key, scaled, described=None, v2=False):
     """Colour bar label and short title for a dataset (one this tool does not know:
     its meaning and unit from the map's /schema, `described`)."""
     grp, q, when = base_of(key)
@@ -171,7 +228,7 @@ def describe(key, scaled, described=None):
                 "post_drop": "distance from 3/4 \u221a(d/R)"}.get(when, "")
         label = f"({SYMBOL[q]} \u2212 analytic) / |analytic|, {what}"
         return label, f"residual of {name}: {kind}"
-    sym = SCALED[q] if scaled else SYMBOL[q]
+    sym = (SCALED2 if v2 else SCALED)[q] if scaled else SYMBOL[q]
     unit = "" if scaled else UNIT[q]
     src = "analytic " if grp == "analytic" else ""
     label = f"{src}{sym} {what} {unit}".strip()
@@ -192,6 +249,20 @@ def colname(m, c):
 
 def scale_of(m, key):
     grp, q, _ = base_of(key)
+    name = key.split("/", 1)[1]
+    if m.get("version") == 2:
+        if grp == "residuals":
+            return None
+        a = m["a"]
+        if q == "mu" or name.startswith(("a_", "b_", "a_minus_b_")):
+            return m["mu_scale"]
+        if q in ("a2", "a1") or name.startswith(("d_c_", "slip_peak_")):
+            return a
+        if q == "d":
+            return a * a / m["R"]
+        if q in ("FN", "Fx"):
+            return m["G"] * a ** 3 / m["R"]
+        return None
     if grp == "residuals" or q not in SYMBOL:
         return None
     return {"FN": m["G"] * m["a1"] * m["d"], "Fx": m["G"] * m["d"] ** 2,
@@ -395,7 +466,7 @@ def main(argv=None):
     import h5py
 
     m = load(args.map, np, h5py)
-    quantities = args.quantity or ["mu_jump"]
+    quantities = args.quantity or (["mu_after_0"] if m["version"] == 2 else ["mu_jump"])
     keys = [resolve(m, q) for q in quantities]
     scaled = args.scaled or args.similarity
     if args.cmap:
@@ -408,8 +479,17 @@ def main(argv=None):
     grid = m["grid"]
     mode = "similarity" if args.similarity else ("grid" if grid else "cases")
     plan = {"mode": mode}
+    asked = {}
     if mode == "grid":
         axes = grid["axes"]
+        # history aliases (mdrmap-map/2): v1_over_v is the axis w1_over_v, and back
+        args.x = resolve_axis(args.x, axes) or args.x if args.x else None
+        args.y = resolve_axis(args.y, axes) or args.y if args.y else None
+        for k in list(slices_req):
+            a = resolve_axis(k, axes)
+            if a and a != k:
+                slices_req[a] = slices_req.pop(k)
+                asked[a] = k
         for name in (args.x, args.y):
             if name is not None and name not in axes:
                 raise UserError(f"--x/--y {name!r}: not a grid axis (axes: {', '.join(axes)}; "
@@ -448,7 +528,8 @@ def main(argv=None):
             if a in slices_req:
                 j = nearest(vals, slices_req[a], kind == "log", np)
                 lo, hi = float(vals.min()), float(vals.max())
-                msg = f"slice {a}={fmt(slices_req[a])} -> {a}={fmt(vals[j])} (value {j + 1} of {len(vals)})"
+                msg = (f"slice {asked.get(a, a)}={fmt(slices_req[a])} -> {a}={fmt(vals[j])} "
+                       f"(value {j + 1} of {len(vals)})")
                 if not lo * (1 - 1e-12) <= slices_req[a] <= hi * (1 + 1e-12) and len(vals) > 1:
                     msg += f"; note: {fmt(slices_req[a])} is outside [{fmt(lo)}, {fmt(hi)}]"
                 notes.append(msg)
@@ -461,7 +542,7 @@ def main(argv=None):
             slice_text.append(f"{a}={fmt(vals[j])}")
         plan.update(x=x, y=y, index=tuple(index), slice_text=slice_text)
     else:
-        cols = m["case_cols"] + DERIVED
+        cols = m["case_cols"] + m["derived"]
         if mode == "similarity":
             x, y = "zeta", "zeta1"
             if args.x or args.y:
@@ -528,7 +609,7 @@ def main(argv=None):
                         f"failed or pending)")
 
     for ax, key in zip(axs, keys):
-        label, short = describe(key, scaled, m["schema"])
+        label, short = describe(key, scaled, m["schema"], m["version"] == 2)
         vals = m["data"][key].copy()
         sc = scale_of(m, key) if scaled else None
         if sc is not None:

@@ -35,6 +35,14 @@ failed are skipped, and the tool says how many.
 F_x / (G d^2), mu / sqrt(d/R); cases with the same zeta = v tau / a1 and
 zeta1 = v1 tau / a1 then fall on the same curves.
 
+mdrmap-map/2 maps (a history of K segments, docs/map-schema.md) are read too:
+the time series run over all segments ([N, K*S]; t from the first change at
+t = 0), the dashed level is the stationary state of the last segment
+(analytic/<q>_ss), the a2 panel is a2 / a with a = a1 = sqrt(R d) at depth or
+a0 = (3 FN R / (16 G))^(1/3) under load, `--scaled` divides forces by
+G a^3 / R and mu by a/R, and `--select` names the parameters d or FN, R, tau,
+G, v, w1, T1, ... and zeta = v tau / a, zeta1 = w1 tau / a.
+
 Usage:
     tools/pyrun tools/plot_timeseries.py MAP.h5 -o figure2.png
     tools/pyrun tools/plot_timeseries.py MAP.h5 --case all --scaled -o figure2.png
@@ -48,7 +56,8 @@ import math
 import os
 import sys
 
-from maplib import CASE_COLS, Parser, UserError, case_columns, open_map, run_tool, save_figure, text
+from maplib import (CASE_COLS, Parser, UserError, case_columns, failure_messages, load_cases,
+                    open_map, read_masked, run_tool, save_figure, schema_version)
 
 PROG = "plot_timeseries"
 QUANT = ["FN", "Fx", "mu", "a2"]
@@ -72,8 +81,47 @@ def fmt(x):
     return s
 
 
+def load2(f, path, np):
+    """An mdrmap-map/2 map in the form the plot reads."""
+    c = load_cases(f, path, np)
+    n, K = c["n"], c["K"]
+    m = {"path": path, "version": 2, "n": n, "status": c["status"], "message": c["message"],
+         "a": c["a"], "mu_scale": c["mu_scale"], "loading": c["loading"], "K": K}
+    m.update(c["cols"])
+    seg = [f"{kind}{j + 1}" for j in range(K) for kind in ("w", "T")]
+    for j in range(K):
+        m[f"w{j + 1}"], m[f"T{j + 1}"] = c["w"][:, j], c["T"][:, j]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            m[f"w{j + 1}_over_v"] = c["w"][:, j] / c["cols"]["v"]
+            m[f"T{j + 1}_over_tau"] = c["T"][:, j] / c["cols"]["tau"]
+    m["case_cols"] = list(c["cols"]) + seg
+    m["v1"] = c["w"][:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        m["a1"] = c["a"]
+        m["v1_over_v"] = m["v1"] / m["v"]
+        m["zeta"] = c["zeta"]
+        m["zeta1"] = m["v1"] * m["tau"] / c["a"]
+    m["derived"] = ["zeta", "zeta1"] + [f"{kind}{j + 1}_over_{ref}" for j in range(K)
+                                        for kind, ref in (("w", "v"), ("T", "tau"))] + \
+        ["v1", "v1_over_v"]  # the seed's names of w1, w1_over_v
+    for q in QUANT:
+        for grp, name in [("results", f"{q}_pre"), ("analytic", f"{q}_jump")]:
+            if f"{grp}/{name}" in f and f[f"{grp}/{name}"].shape == (n,):
+                m[f"{grp}/{name}"] = read_masked(f[f"{grp}/{name}"])
+        if f"analytic/{q}_ss" in f:  # the stationary level of the last segment
+            m[f"analytic/{q}_post"] = read_masked(f[f"analytic/{q}_ss"]).reshape(n, K)[:, -1]
+    m["ts"] = {s: np.asarray(f[f"timeseries/{s}"][()], dtype=float) for s in ["t"] + QUANT}
+    return m
+
+
 def load(path, np, h5py):
     f = open_map(path, h5py, PROG)
+    if schema_version(f) == 2:
+        with f:
+            if "timeseries" not in f or any(f"timeseries/{s}" not in f for s in ["t"] + QUANT):
+                raise UserError(f"{path} has no /timeseries; rerun the study with "
+                                f"`--timeseries true` (or timeseries = true in [run])")
+            return load2(f, path, np)
     with f:
         if "timeseries" not in f or any(f"timeseries/{s}" not in f for s in ["t"] + QUANT):
             raise UserError(f"{path} has no /timeseries; rerun the study with "
@@ -82,8 +130,8 @@ def load(path, np, h5py):
         n = f["results/status"].shape[0]
         m["n"] = n
         m["status"] = f["results/status"][()].astype(int)
-        m["message"] = ([text(x).strip("\0 ") for x in f["results/message"][()]]
-                        if "results/message" in f else [""] * n)
+        m["message"] = failure_messages(f, n)
+        m["version"], m["derived"] = 1, DERIVED
         # the /cases columns: from /schema (older maps: CASE_COLS), with those
         # the derived variables need
         m["case_cols"] = case_columns(f)
@@ -143,6 +191,12 @@ def nearest_case(m, spec, np):
 
 def case_params(m, i, uni=True):
     tau, zeta, zeta1 = ("\u03c4", "\u03b6", "\u03b6\u2081") if uni else ("tau", "zeta", "zeta1")
+    if m["version"] == 2:
+        s = ", ".join(f"{tau if c == 'tau' else c}={fmt(m[c][i])}" for c in m["case_cols"]
+                      if c != "G" or m["G"][i] != 1)
+        if m["tau"][i] > 0:
+            s += f"  ({zeta}={fmt(m['zeta'][i])}, {zeta1}={fmt(m['zeta1'][i])})"
+        return s
     s = (f"d={fmt(m['d'][i])}, R={fmt(m['R'][i])}, {tau}={fmt(m['tau'][i])}, "
          f"v={fmt(m['v'][i])}, v1={fmt(m['v1'][i])}")
     if m["G"][i] != 1:
@@ -171,7 +225,7 @@ def choose_cases(args, m, np):
             raise UserError(f"--case {c}: the map has {n} cases (0..{n - 1})")
         wanted.append(i)
     for spec in args.select or []:
-        sel = parse_select(spec, m["case_cols"] + DERIVED)
+        sel = parse_select(spec, m["case_cols"] + m["derived"])
         i = nearest_case(m, sel, np)
         if i is None:
             break  # reported below: no done case
@@ -267,6 +321,13 @@ def main(argv=None):
     pre_len = 0.08 * xmax
 
     def scale(q, i):
+        if m["version"] == 2:
+            a, G, R = m["a"][i], m["G"][i], m["R"][i]
+            if q == "a2":
+                return a
+            if not args.scaled:
+                return 1.0
+            return {"FN": G * a ** 3 / R, "Fx": G * a ** 3 / R, "mu": a / R}[q]
         G, d, R, a1 = m["G"][i], m["d"][i], m["R"][i], m["a1"][i]
         if q == "a2":
             return a1
@@ -281,6 +342,15 @@ def main(argv=None):
                "\u03bc / \u221a(d/R)" if args.scaled else "\u03bc = F$_x$ / F$_N$"),
         "a2": ("(d) trailing edge", "a$_2$ / a$_1$"),
     }
+    if m["version"] == 2:
+        a = "a$_0$" if m["loading"] == "force" else "a$_1$"
+        labels["FN"] = ("(a) normal force", f"F$_N$ / (G {a}$^3$/R)" if args.scaled else
+                        "F$_N$  [G length$^2$]")
+        labels["Fx"] = ("(b) friction force", f"F$_x$ / (G {a}$^3$/R)" if args.scaled else
+                        "F$_x$  [G length$^2$]")
+        labels["mu"] = ("(c) friction coefficient", f"\u03bc / ({a}/R)" if args.scaled else
+                        "\u03bc = F$_x$ / F$_N$")
+        labels["a2"] = ("(d) trailing edge", f"a$_2$ / {a}")
     if len(cases) <= 10:
         colours = [plt.get_cmap("tab10")(k) for k in range(len(cases))]
     else:
@@ -338,7 +408,8 @@ def main(argv=None):
         if q == "a2":
             ref = [i for i in cases if m["tau"][i] > 0 and (
                 args.start_stop == "on" or
-                (args.start_stop == "auto" and m["v1_over_v"][i] <= 1e-3))]
+                (args.start_stop == "auto" and m["v1_over_v"][i] <= 1e-3
+                 and m.get("K", 1) == 1))]
             taus = sorted({1.0 if use_tau else float(m["tau"][i]) for i in ref})
             for tau_ref in taus:  # one curve on a t/tau axis, else one per tau
                 xr = np.linspace(0, xmax, 400)

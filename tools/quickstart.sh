@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up, builds mdrmap and runs the main job on the built-in example study:
-# an MPI friction map (jobs/examples/friction_map.ini) on all local cores,
-# written to out/friction_map.h5, then one single case as CSV.
+# a slide-hold-slide study under load (jobs/examples/shs_holds.ini) on all
+# local cores, written to out/shs_holds.h5, and its healing curve
+# (out/healing.png); then the seed's friction map and single cases as CSV.
 #
 #   bash tools/quickstart.sh
 #
@@ -64,8 +65,17 @@ study() {
 }
 
 # --- Examples ---------------------------------------------------------------
-# The main job: friction coefficient over sliding velocity and depth, before
-# and after a drop to v1 = 0.01 v (561 cases).
+# The main job: slide-hold-slide under a constant normal load (27 cases: holds
+# of 0.1 to 1000 tau at zeta0 = v tau / a0 = 0.1, 1, 10), and its healing
+# curve: the friction peak after the reslide grows with the hold time and
+# saturates after about 10 tau (0.196 a0/R at zeta0 = 1).
+study shs_holds jobs/examples/shs_holds.ini
+echo
+echo "== healing curve: tools/pyrun tools/map_healing.py $OUT_DIR/shs_holds.h5 -o $OUT_DIR/healing.png"
+tools/pyrun tools/map_healing.py "$OUT_DIR/shs_holds.h5" -o "$OUT_DIR/healing.png"
+
+# The seed's experiment as a map: friction coefficient over sliding velocity
+# and depth, before and after a drop to v1 = 0.01 v (561 cases).
 study friction_map jobs/examples/friction_map.ini
 
 # The seed paper's start-stop test: a fast slide, v tau / sqrt(R d) = 1e3

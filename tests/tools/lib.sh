@@ -9,6 +9,11 @@
 #                   checks and sets MDRMAP, PYRUN (relative to SRCDIR if need
 #                   be), SRCDIR, WORKDIR, and W = WORKDIR/SUBDIR, made empty
 #   allow_mpi_here  mpirun may oversubscribe and run as root (these tests only)
+#   expect_in NAME FILE TEXT
+#                   FILE contains TEXT
+#   refuses NAME EXPECTED CMD...
+#                   CMD -o $W/bad.png exits 2 with one stderr line containing
+#                   EXPECTED (in $W/NAME.err) and writes no PNG
 checks=0
 
 tool_test_args() {
@@ -56,4 +61,25 @@ run() {
     cat "$W/$name.err" >&2
     fail "$name: traceback"
   fi
+}
+
+# expect_in NAME FILE TEXT: FILE contains TEXT
+expect_in() {
+  grep -qF -- "$3" "$2" || {
+    cat "$2" >&2
+    fail "$1: '$3' not in $2"
+  }
+}
+
+refuses() {
+  local name=$1 expected=$2 rc=0 lines
+  shift 2
+  rm -f "$W/bad.png"
+  "$@" -o "$W/bad.png" >"$W/$name.out" 2>"$W/$name.err" || rc=$?
+  lines=$(wc -l <"$W/$name.err")
+  if ((rc != 2)) || ((lines != 1)) || ! grep -qF -- "$expected" "$W/$name.err"; then
+    cat "$W/$name.err" >&2
+    fail "$name: expected exit 2 and one stderr line with '$expected', got exit $rc, $lines lines"
+  fi
+  [[ ! -e "$W/bad.png" ]] || fail "$name: wrote a PNG"
 }

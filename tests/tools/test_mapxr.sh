@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Test of the map's self-description through xarray (tools/mapxr.py): maps made
 # here with `mpirun -np 2 mdrmap study` open with xarray.open_dataset(engine=
-# "h5netcdf", group=...) with named dimensions (case, sample) and the grid's
+# "h5netcdf", group=...) with named dimensions (case, event, sample) and the grid's
 # axes as coordinates of /grid; mapxr.open_map merges the groups with the
 # /schema units; to_grid turns a 5-axis grid (d, R, tau, v, v1_over_v:
 # 2 x 2 x 2 x 3 x 2 = 48 cases) into a 5-dimensional Dataset whose coordinates
-# are the axis values and whose values are the 1-D rows. A copy of the map
+# are the axis values and whose values are the 1-D rows (the maps are
+# mdrmap-map/2 maps: the step's axis is w1_over_v, or v1_over_v as the config
+# names it, and T1_over_tau may be a further axis of length 1; undefined
+# event metrics are NaN). A copy of the map
 # without /schema and dimension scales (as older maps are) still opens, and
 # map_summary says the same of it. One-line errors.
 #
@@ -58,7 +61,7 @@ with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "w") as b:
     for k, v in a.attrs.items():
         b.attrs[k] = v
     def copy(name, obj):
-        if name.startswith("schema") or name in ("case", "sample"):
+        if name.startswith("schema") or name in ("case", "event", "sample"):
             return
         if isinstance(obj, h5py.Group):
             b.require_group(name)
@@ -90,6 +93,20 @@ warnings.simplefilter("error")  # no phony-dimension or decoding warnings either
 AXES = {"d": [1e-3, 1e-2], "R": [1.0, 2.0], "tau": [0.5, 2.0], "v": [0.1, 1.0, 10.0],
         "v1_over_v": [1e-3, 0.5]}
 N = 48
+# the map's own name of the step's axis, and a T1_over_tau axis of length 1 if it has one
+with h5py.File(grid5, "r") as f:
+    map_axes = f["grid"].attrs["axes"]
+    map_axes = (map_axes.decode() if isinstance(map_axes, bytes) else str(map_axes)).split(",")
+step = "w1_over_v" if "w1_over_v" in map_axes else "v1_over_v"
+AXES[step] = AXES.pop("v1_over_v")
+if [a for a in map_axes if a in AXES] != list(AXES):
+    fail(f"/grid axes {map_axes}: not {list(AXES)} in this order")
+for extra in [a for a in map_axes if a not in AXES]:  # e.g. T1_over_tau (or G): one value
+    with h5py.File(grid5, "r") as f:
+        if f["grid"][extra].shape != (1,):
+            fail(f"/grid has the axis {extra} of length {f['grid'][extra].shape}")
+        AXES[extra] = list(f["grid"][extra][()])
+AXES = {a: AXES[a] for a in map_axes}  # the map's order
 
 
 def fail(msg):
@@ -99,8 +116,9 @@ def fail(msg):
 # 1. plain xarray, group by group: named dimensions, units from /schema
 with h5py.File(grid5, "r") as f:
     described = schema(f)
-for group, dims in [("cases", {"case": N}), ("results", {"case": N}), ("analytic", {"case": N}),
-                    ("residuals", {"case": N}), ("timeseries", {"case": N, "sample": 7})]:
+for group, dims in [("cases", {"case": N, "event": 1}), ("results", {"case": N}),
+                    ("events", {"case": N, "event": 1}), ("analytic", {"case": N, "event": 1}),
+                    ("residuals", {"case": N, "event": 1}), ("timeseries", {"case": N, "sample": 7})]:
     with xr.open_dataset(grid5, engine="h5netcdf", group=group) as ds:
         if dict(ds.sizes) != dims:
             fail(f"group {group}: dimensions {dict(ds.sizes)}, expected {dims}")
@@ -116,27 +134,29 @@ with xr.open_dataset(grid5, engine="h5netcdf", group="grid") as g:
         if not np.array_equal(g[a].values, vals):
             fail(f"/grid/{a} = {g[a].values}, expected {vals}")
     print(f"group grid: coordinates {dict(g.sizes)}")
-if [p for p in described if p.startswith("cases/")] != [f"cases/{c}" for c in CASE_COLS]:
+if sorted(p for p in described if p.startswith("cases/")) != \
+        sorted(f"cases/{c}" for c in ["d", "R", "tau", "G", "v", "w", "T"]):
     fail(f"/schema/cases lists {[p for p in described if p.startswith('cases/')]}")
 if described["cases/d"][0] != "length" or described["cases/v"][0] != "length/time":
     fail(f"/schema units of d, v: {described['cases/d']}, {described['cases/v']}")
 
 # 2. mapxr: one Dataset, and the 5-dimensional grid
 ds = mapxr.open_map(grid5)
-if dict(ds.sizes) != {"case": N, "sample": 7}:
+if dict(ds.sizes) != {"case": N, "event": 1, "sample": 7}:
     fail(f"open_map: dimensions {dict(ds.sizes)}")
-for name in ["d", "v1", "G"]:
+for name in ["d", "G", "w", "T"]:
     if name not in ds.coords:
         fail(f"open_map: /cases/{name} is not a coordinate")
-for name in ["mu_jump", "status", "analytic_mu_jump", "residual_mu_post_drop", "ts_mu"]:
+for name in ["mu_after", "mu_peak", "a", "d_c", "status", "message", "analytic_mu_jump",
+             "analytic_mu_ss", "residual_mu_end", "ts_mu", "ts_segment"]:
     if name not in ds.data_vars:
         fail(f"open_map: no variable {name}")
 if ds["FN_pre"].attrs.get("units") != "force" or ds["d"].attrs.get("units") != "length":
     fail(f"open_map: units {ds['FN_pre'].attrs} {ds['d'].attrs}")
 g = mapxr.to_grid(ds)
-want_dims = dict({a: len(v) for a, v in AXES.items()}, sample=7)
-if dict(g.sizes) != want_dims or list(g["mu_jump"].dims) != list(AXES):
-    fail(f"to_grid: dimensions {dict(g.sizes)} ({g['mu_jump'].dims}), expected {want_dims}")
+want_dims = dict({a: len(v) for a, v in AXES.items()}, event=1, sample=7)
+if dict(g.sizes) != want_dims or list(g["mu_after"].dims) != list(AXES) + ["event"]:
+    fail(f"to_grid: dimensions {dict(g.sizes)} ({g['mu_after'].dims}), expected {want_dims}")
 for a, vals in AXES.items():
     if not np.array_equal(g[a].values, vals) or a not in g.indexes:
         fail(f"to_grid: coordinate {a} = {g[a].values}, expected {vals}")
@@ -145,25 +165,27 @@ if g["ts_mu"].dims != tuple(AXES) + ("sample",):
 for name, var in ds.variables.items():
     if name in AXES:
         continue
+    if "case" not in var.dims:
+        continue  # ts_segment: not along the cases
     flat = g[name].values.reshape((N,) + var.shape[1:])
-    if not np.array_equal(flat, var.values):
+    if not np.array_equal(flat, var.values, equal_nan=var.dtype.kind == "f"):
         fail(f"to_grid: {name} differs from the 1-D rows")
 # and point by point: the case at given axis values is the row with those parameters
-pick = g.sel(d=1e-2, R=2.0, tau=0.5, v=10.0, v1_over_v=1e-3)
+pick = g.sel({"d": 1e-2, "R": 2.0, "tau": 0.5, "v": 10.0, step: 1e-3}).squeeze()
 i = int(pick["case"])
 row = ds.isel(case=i)
 for a in ["d", "R", "tau", "v"]:
     if float(row[a]) != float(pick[a]):
         fail(f"to_grid: case {i} has {a} = {float(row[a])}, the grid point {float(pick[a])}")
-if float(row["mu_jump"]) != float(pick["mu_jump"]):
-    fail("to_grid: mu_jump at a grid point is not its row's")
+if float(row["mu_after"].squeeze()) != float(pick["mu_after"].squeeze()):
+    fail("to_grid: mu_after at a grid point is not its row's")
 print(f"to_grid: {dict(g.sizes)}; coordinates {', '.join(g.indexes)}; "
       f"{len(g.data_vars)} variables equal the 1-D rows")
 ds.close()
 
 # 3. a [cases] map: merged, but no grid
 c = mapxr.open_map(cases)
-if dict(c.sizes) != {"case": 2}:
+if dict(c.sizes) != {"case": 2, "event": 1}:
     fail(f"cases map: dimensions {dict(c.sizes)}")
 try:
     mapxr.to_grid(c)
@@ -174,16 +196,16 @@ c.close()
 
 # 4. a map as written before /schema and the dimension scales
 with h5py.File(old, "r") as f:
-    if schema(f) or case_columns(f) != CASE_COLS:
+    if schema(f) or case_columns(f) != ["d", "R", "tau", "G", "v"]:
         fail(f"old map: schema {schema(f)} columns {case_columns(f)}")
 warnings.simplefilter("default")
 o = mapxr.open_map(old)
-if dict(o.sizes) != {"case": N, "sample": 7}:
+if dict(o.sizes) != {"case": N, "event": 1, "sample": 7}:
     fail(f"old map: dimensions {dict(o.sizes)}")
 go = mapxr.to_grid(o)
-if not np.array_equal(go["mu_jump"].values, g["mu_jump"].values):
+if not np.array_equal(go["mu_after"].values, g["mu_after"].values):
     fail("old map: to_grid differs from the new map's")
-print("old map (no /schema, no scales): opens with dimensions case, sample; same grid")
+print("old map (no /schema, no scales): opens with dimensions case, event, sample; same grid")
 o.close()
 EOF
 run check py "$W/check.py" "$SRCDIR/tools" "$W/grid5.h5" "$W/cases.h5" "$W/old.h5"
@@ -203,8 +225,9 @@ ok "map_summary: same summary and CSV with and without /schema"
 run help py "$XR" --help
 expect() { grep -qF -- "$3" "$2" || { cat "$2" >&2; fail "$1: '$3' not in $2"; }; }
 expect help "$W/help.out" "to_grid(ds)"
-run cli py "$XR" "$W/grid5.h5" --grid --var mu_jump
-expect cli "$W/cli.out" "(d, R, tau, v, v1_over_v) float64"
+run cli py "$XR" "$W/grid5.h5" --grid --var mu_after
+grep -qE "\(d, R, tau, G, v, v1_over_v, t_end_over_tau, event\) float64" "$W/cli.out" ||
+  { cat "$W/cli.out" >&2; fail "cli: mu_after is not over the grid's axes and event"; }
 bad() {
   local name=$1 expected=$2 rc=0
   shift 2

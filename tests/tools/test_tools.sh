@@ -4,8 +4,13 @@
 #
 #   bash tests/tools/test_tools.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
 #
+# The maps are mdrmap-map/2 maps (docs/map-schema.md) made from configs in the
+# seed's one-step syntax (v1_over_v in [grid], t_end_over_tau in [run]: the
+# history axis w1_over_v and T1_over_tau); the checks name their datasets
+# (mu_after_0, analytic/mu_ss_0, ...) and accept either name of the step's axis.
 # Makes, with `mpirun -np 2 MDRMAP_EXE study` (mpirun from PATH), in WORKDIR/tools_test:
-#   grid.h5       a 3 x 1 x 2 x 3 x 2 grid (d, R, tau with tau = 0, v, v1_over_v) with time series
+#   grid.h5       a 3 x 1 x 2 x 3 x 2 grid (d, R, tau with tau = 0, v, v1_over_v; G and
+#                 t_end_over_tau are axes of length 1 between them) with time series
 #   grid_nots.h5  the same grid without time series
 #   cases.h5      a [cases] map (no /grid) with time series, with v1 = 0 and tau = 0 cases
 #   failing.h5    a [cases] map with one failed case (the baseline solver refuses it)
@@ -73,14 +78,6 @@ join() {
   started=()
 }
 
-# expect_in NAME FILE TEXT: FILE contains TEXT
-expect_in() {
-  grep -qF -- "$3" "$2" || {
-    cat "$2" >&2
-    fail "$1: '$3' not in $2"
-  }
-}
-
 study() {
   mpirun -np 2 "$MDRMAP" study --quiet "$@" >"$W/study.log" 2>&1 || {
     cat "$W/study.log" >&2
@@ -140,19 +137,23 @@ with h5py.File(sys.argv[1], "w") as f:
 EOF
 cat >"$W/make_partial.py" <<'EOF'
 # pyrun-needs: h5py numpy
-"""A copy of a map as a killed study leaves it: every 4th case pending, case 1 failed."""
+"""A copy of a map as a killed study leaves it: every 4th case pending, case 1 failed
+(mdrmap-map/2: its message in /failures)."""
 import shutil
 import sys
 import h5py
+import numpy as np
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
     status = f["results/status"][()]
     status[::4] = 0
     status[1] = -1
     f["results/status"][...] = status
-    message = f["results/message"][()]
-    message[1] = b"injected failure"
-    f["results/message"][...] = message
+    for name in ("failures/case", "failures/message"):
+        if name in f:
+            del f[name]
+    f.create_dataset("failures/case", data=np.array([1], dtype=np.uint64))
+    f.create_dataset("failures/message", data=np.array([b"injected failure"]))
 EOF
 study --config "$W/grid.ini" --output "$W/grid.h5"
 study --config "$W/grid.ini" --output "$W/grid_nots.h5" --timeseries false
@@ -177,11 +178,11 @@ bg run ts_partial py "$TS" "$W/partial.h5" --case all --zoom -o "$W/ts_partial.p
 # plot_map
 bg run pm_default py "$PM" "$W/grid.h5" -o "$W/pm_default.png"
 bg run pm_partial py "$PM" "$W/partial.h5" -o "$W/pm_partial.png"
-bg run pm_slices py "$PM" "$W/grid.h5" mu_post residuals/mu_jump analytic/mu_inf --x v --y d \
+bg run pm_slices py "$PM" "$W/grid.h5" mu_end_0 residuals/mu_jump analytic/mu_ss_0 --x v --y d \
   --slice tau=0.9 --slice v1_over_v=0.2 --log-color --zeta-lines --contour 0.01 -o "$W/pm_slices.png"
 bg run pm_similarity py "$PM" "$W/grid_nots.h5" mu_jump --similarity -o "$W/pm_similarity.png"
 bg run pm_cases py "$PM" "$W/cases.h5" FN_jump -o "$W/pm_cases.png"
-bg run pm_failing py "$PM" "$W/failing.h5" --x v --y v1 -o "$W/pm_failing.png"
+bg run pm_failing py "$PM" "$W/failing.h5" --x v --y w1 -o "$W/pm_failing.png"
 # map_summary
 bg run ms_grid py "$MS" "$W/grid.h5"
 bg run ms_partial py "$MS" "$W/partial.h5" --no-config
@@ -231,7 +232,8 @@ ok "plot_timeseries: default case, --case/--select/--scaled, a [cases] map, fail
 expect_in pm_default "$W/pm_default.out" "axis tau not sliced: taking tau=0"
 expect_in pm_partial "$W/pm_partial.out" "skipped 6 of 9 cases in the plot: not done (0 failed, 6 pending)"
 expect_in pm_slices "$W/pm_slices.out" "slice tau=0.9 -> tau=1"
-expect_in pm_slices "$W/pm_slices.out" "slice v1_over_v=0.2 -> v1_over_v=0.1"
+expect_in pm_slices "$W/pm_slices.out" "slice v1_over_v=0.2 -> "
+grep -qE "slice v1_over_v=0.2 -> [vw]1_over_v=0.1 " "$W/pm_slices.out" || fail "pm_slices: v1_over_v"
 expect_in pm_failing "$W/pm_failing.out" "skipped 1 of 3 cases"
 ok "plot_map: default axes and slices, pending cells, --slice/--log-color/--zeta-lines/--contour with 3" \
   "panels, --similarity, [cases] scatter, a failed case"
@@ -271,17 +273,25 @@ join
 ok "11 PNGs: signature, IHDR chunk, width x height, size"
 
 # ---------------------------------------------------------------- summary and CSV
-for s in "cases: 36  done 36, failed 0, pending 0" "grid: 5 axes, shape 3 x 1 x 2 x 3 x 2" \
-  "d          3 values (log): 1e-4, 0.001, 0.01" "numerical error" "distance from a state or a limit" \
-  "mdrmap-map/1" "config text:" "MPI size      2" "samples       21 per case"; do
+for s in "cases: 36  done 36, failed 0, pending 0" "numerical error" "distance from a state or a limit" \
+  "mdrmap-map/2" "config text:" "MPI size      2" "samples 21 per segment" "segments      1;" \
+  "loading       depth" "zeta = v tau / a1"; do
   expect_in ms_grid "$W/ms_grid.out" "$s"
 done
+# the grid: d, R, tau, v and the step's axis (T1_over_tau may be listed too)
+for re in "^grid: 7 axes, shape 3 x 1 x 2 x 1 x 3 x 2 x 1 " "^  d +3 values \(log\): 1e-4, 0.001, 0.01$" \
+  "^  tau +2 values: 0, 1$" "^  [vw]1_over_v +2 values: 1e-4, 0.1$"; do
+  grep -qE -- "$re" "$W/ms_grid.out" || { cat "$W/ms_grid.out" >&2; fail "ms_grid: no line /$re/"; }
+done
 expect_in ms_partial "$W/ms_partial.out" "cases: 36  done 26, failed 1, pending 9"
-expect_in ms_partial "$W/ms_partial.out" "case 1: d=1e-4 R=1 tau=0 v=0.1 v1=0.01: injected failure"
+grep -qE "^  case 1: .*d=1e-4 .*v=0.1 w1=0.01 T1=.*: injected failure$" "$W/ms_partial.out" ||
+  fail "ms_partial: case 1's parameters and message"
 for s in "cases: 3  done 2, failed 1, pending 0" "case list (no /grid): 3 cases" "failed cases (1):" \
-  "case 1: d=0.001 R=1 tau=1 v=3e6 v1=3e5: baseline:" "top 3 by |value|:"; do
+  "top 3 by |value|:"; do
   expect_in ms_failing "$W/ms_failing.out" "$s"
 done
+grep -qE "^  case 1: .*d=0.001 .*v=3e6 w1=3e5 T1=.*: baseline:" "$W/ms_failing.out" ||
+  fail "ms_failing: case 1's parameters and message"
 expect_in ms_cases "$W/cases_summary.txt" "case list (no /grid): 4 cases"
 expect_in ms_where "$W/ms_where.out" "filter: status=1 keeps 2 of 3 cases"
 cat >"$W/check_csv.py" <<'EOF'
@@ -294,11 +304,14 @@ path, rows = sys.argv[1], int(sys.argv[2])
 with open(path, newline="") as f:
     table = list(csv.reader(f))
 head = table[0]
-start = ["case", "d", "R", "tau", "v", "v1", "G", "v1_over_v", "zeta", "zeta1", "status"]
-if head[: len(start)] != start or head[-1] != "message":
+# mdrmap-map/2: case, the /cases columns (d R tau G v, in the map's order), w1 T1, zeta, status
+params = ["d", "R", "tau", "G", "v"]
+start = head[: len(params) + 1]
+if start[0] != "case" or sorted(start[1:]) != sorted(params) or \
+        head[len(start): len(start) + 4] != ["w1", "T1", "zeta", "status"] or head[-1] != "message":
     sys.exit(f"{path}: header {head[:12]} ... {head[-1]}")
-for col in ["FN_pre", "mu_jump", "a2_post", "error_estimate", "analytic_mu_jump", "analytic_mu_inf",
-            "residual_mu_jump", "residual_mu_post_drop"]:
+for col in ["FN_pre", "mu_pre", "mu_after_0", "mu_peak_0", "a_0", "d_c_0", "error_estimate",
+            "analytic_mu_jump", "analytic_mu_ss_0", "residual_mu_jump", "residual_mu_end_0"]:
     if col not in head:
         sys.exit(f"{path}: no column {col}")
 if len(table) - 1 != rows:

@@ -3,11 +3,15 @@
 
 Usage: check_map.py MAP.h5 [--complete] [--expect-failed N] [--quiet]
 
-Checks every dataset of schema mdrmap-map/1 (names, shapes, types), the root
-provenance attributes, that status holds only -1/0/1, that no value is NaN or
-infinite, and that done cases carry a positive normal force. With --complete,
-also that no case is pending. Exits 0 when the map is valid, 1 otherwise,
-printing one line per problem.
+Checks every dataset of the map's schema, mdrmap-map/2 (docs/map-schema.md)
+or mdrmap-map/1 (names, shapes, types), the root provenance attributes, that
+status holds only -1/0/1, that no value is NaN or infinite, and that done
+cases carry a positive normal force. For mdrmap-map/2 also: the fill value
+(9.969209968386869e36) appears only in events/{a,b,a_minus_b,d_c}, which carry
+it as their attribute _FillValue; /timeseries/segment numbers the segments;
+every failed case has a message in /failures. With --complete, also that no
+case is pending. Exits 0 when the map is valid, 1 otherwise, printing one
+line per problem.
 """
 import argparse
 import sys
@@ -41,9 +45,140 @@ def expected_datasets(n, samples, timeseries):
     return d
 
 
+FILL = 9.969209968386869e36
+ROOT_ATTRS2 = ["mdrmap_schema", "n_cases", "segments", "samples", "loading", "program_version",
+               "git_commit", "created_utc", "command_line", "mpi_size", "units"]
+EVENTS = ["t", "FN_after", "Fx_after", "mu_after", "a2_after", "mu_before", "mu_peak", "t_peak",
+          "slip_peak", "FN_end", "Fx_end", "mu_end", "a2_end", "a", "b", "a_minus_b", "d_c"]
+FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c"}
+
+
+def expected_datasets2(n, k, s, load, timeseries):
+    q = ["FN", "Fx", "mu", "a2"] + (["d", "a1"] if load else [])
+    d = {f"cases/{c}": ((n,), "f8") for c in ["FN" if load else "d", "R", "tau", "G", "v"]}
+    d["cases/w"] = ((n, k), "f8")
+    d["cases/T"] = ((n, k), "f8")
+    d["results/status"] = ((n,), "i1")
+    d["results/error_estimate"] = ((n,), "f8")
+    d["results/wall_seconds"] = ((n,), "f8")
+    for x in q:
+        d[f"results/{x}_pre"] = ((n,), "f8")
+        d[f"analytic/{x}_pre"] = ((n,), "f8")
+        d[f"analytic/{x}_ss"] = ((n, k), "f8")
+        d[f"residuals/{x}_pre"] = ((n,), "f8")
+        d[f"residuals/{x}_end"] = ((n, k), "f8")
+    if not load:
+        for x in q:
+            d[f"analytic/{x}_jump"] = ((n,), "f8")
+            d[f"residuals/{x}_jump"] = ((n,), "f8")
+    for m in EVENTS + (["d_end", "a1_end"] if load else []):
+        d[f"events/{m}"] = ((n, k), "f8")
+    if timeseries:
+        for x in ["t"] + q:
+            d[f"timeseries/{x}"] = ((n, k * s), "f8")
+        d["timeseries/segment"] = ((k * s,), "i4")
+    d["failures/case"] = (None, "u8")
+    d["failures/message"] = (None, "S")
+    return d
+
+
+def check_grid_status(f, n, problems):
+    """Checks /grid (its shape multiplies to the n cases, one dataset per axis of
+    its length) and /results/status (only -1, 0, 1), appending to problems;
+    returns the status."""
+    if "grid" in f:
+        g = f["grid"]
+        axes = g.attrs["axes"]
+        axes = (axes.decode() if isinstance(axes, bytes) else str(axes)).split(",")
+        shape = tuple(int(x) for x in g.attrs["shape"])
+        if int(np.prod(shape)) != n:
+            problems.append(f"grid shape {shape} does not multiply to {n} cases")
+        for a, m in zip(axes, shape):
+            if a not in g or g[a].shape != (m,):
+                problems.append(f"/grid/{a} missing or not of length {m}")
+    status = f["results/status"][()]
+    bad = set(np.unique(status)) - {-1, 0, 1}
+    if bad:
+        problems.append(f"status holds values {sorted(bad)}")
+    return status
+
+
+def check2(f, complete, expect_failed):
+    problems = []
+    for a in ROOT_ATTRS2:
+        if a not in f.attrs:
+            problems.append(f"missing root attribute {a}")
+    if problems:
+        return problems, {}
+    n, k, s = (int(f.attrs[a]) for a in ("n_cases", "segments", "samples"))
+    load = "cases/FN" in f
+    loading = f.attrs["loading"]
+    loading = loading.decode() if isinstance(loading, bytes) else str(loading)
+    if loading != ("force" if load else "depth"):
+        problems.append(f"root attribute loading is {loading!r} but /cases has "
+                        f"{'FN' if load else 'd'}")
+    for name, (shape, kind) in expected_datasets2(n, k, s, load, "timeseries" in f).items():
+        if name not in f:
+            problems.append(f"missing dataset /{name}")
+            continue
+        ds = f[name]
+        if shape is not None and ds.shape != shape:
+            problems.append(f"/{name} has shape {ds.shape}, expected {shape}")
+        if kind == "S":
+            if ds.dtype.kind not in "SO":
+                problems.append(f"/{name} is {ds.dtype}, expected strings")
+            continue
+        if ds.dtype != np.dtype(kind):
+            problems.append(f"/{name} is {ds.dtype}, expected {kind}")
+            continue
+        if ds.dtype.kind == "f":
+            x = ds[()]
+            if not np.all(np.isfinite(x)):
+                problems.append(f"/{name} holds NaN or inf")
+            filled = x == FILL
+            if name in FILLED:
+                fv = ds.attrs.get("_FillValue")
+                if fv is None or float(np.ravel(fv)[0]) != FILL:
+                    problems.append(f"/{name} has no attribute _FillValue = {FILL!r}")
+            elif np.any(filled) and not name.startswith(("results/", "analytic/", "residuals/",
+                                                          "timeseries/", "events/")):
+                problems.append(f"/{name} holds the fill value")
+    status = check_grid_status(f, n, problems)
+    done = status == 1
+    if "results/FN_pre" in f and np.any(f["results/FN_pre"][()][done] <= 0):
+        problems.append("a done case has F_N <= 0 before t = 0")
+    if done.any():
+        for name in ("cases/w", "events/mu_after", "events/d_c"):
+            if name in f and name not in FILLED and np.any(f[name][()][done] == FILL):
+                problems.append(f"/{name} holds the fill value in a done case")
+    if "timeseries/segment" in f:
+        want = np.repeat(np.arange(k), s)
+        if not np.array_equal(f["timeseries/segment"][()], want):
+            problems.append("/timeseries/segment is not 0..K-1, each S times")
+    failed = np.flatnonzero(status == -1)
+    if "failures/case" in f and "failures/message" in f:
+        fc = [int(i) for i in f["failures/case"][()]]
+        msgs = dict(zip(fc, f["failures/message"][()]))
+        for i in failed:
+            if i not in msgs or len(msgs[i]) == 0:
+                problems.append(f"failed case {i} has no message in /failures")
+                break
+    if expect_failed is not None and failed.size != expect_failed:
+        problems.append(f"{failed.size} failed cases, expected {expect_failed}")
+    if complete and np.any(status == 0):
+        problems.append(f"{int(np.sum(status == 0))} cases are still pending")
+    counts = {"cases": n, "segments": k, "done": int(np.sum(status == 1)),
+              "failed": int(failed.size), "pending": int(np.sum(status == 0))}
+    return problems, counts
+
+
 def check(path, complete, expect_failed=None):
     problems = []
     with h5py.File(path, "r") as f:
+        schema = f.attrs.get("mdrmap_schema", b"")
+        schema = schema.decode() if isinstance(schema, bytes) else str(schema)
+        if schema == "mdrmap-map/2":
+            return check2(f, complete, expect_failed)
         for a in ROOT_ATTRS:
             if a not in f.attrs:
                 problems.append(f"missing root attribute {a}")
@@ -70,20 +205,9 @@ def check(path, complete, expect_failed=None):
                 problems.append(f"/{name} is {ds.dtype}, expected {kind}")
             elif ds.dtype.kind == "f" and not np.all(np.isfinite(ds[()])):
                 problems.append(f"/{name} holds NaN or inf")
-        if "grid" in f:
-            g = f["grid"]
-            axes = g.attrs["axes"]
-            axes = (axes.decode() if isinstance(axes, bytes) else str(axes)).split(",")
-            shape = tuple(int(x) for x in g.attrs["shape"])
-            if int(np.prod(shape)) != n:
-                problems.append(f"grid shape {shape} does not multiply to {n} cases")
-            for a, k in zip(axes, shape):
-                if a not in g or g[a].shape != (k,):
-                    problems.append(f"/grid/{a} missing or not of length {k}")
-        status = f["results/status"][()]
-        bad = set(np.unique(status)) - {-1, 0, 1}
-        if bad:
-            problems.append(f"status holds values {sorted(bad)}")
+        if problems:  # a layout this schema does not have: say so, read no further
+            return problems, {}
+        status = check_grid_status(f, n, problems)
         done = status == 1
         if np.any(f["results/FN_pre"][()][done] <= 0):
             problems.append("a done case has F_N <= 0 before the step")
