@@ -29,29 +29,50 @@ std::string residual(const std::string& sim, const std::string& an, const std::s
 } // namespace
 
 RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_force_(by_force) {
-  const auto add = [this](const std::string& path, const char* unit, const std::string& meaning,
-                          bool per_event = false, bool undefined = false) {
-    fields_.push_back({{path, unit, meaning}, per_event, undefined});
-  };
-  const auto each = [by_force](auto f, bool all = true) {
-    for (const Quantity& q : kQuantities)
-      if (by_force || !q.load_only) {
-        if (all || !q.load_only) f(q);
-      }
-  };
-  const std::string ss = by_force ? "in stationary sliding under the load FN at "
-                                  : "in stationary "
-                                    "sliding at ";
+  add_results();
+  add_events();
+  add_closed_forms();
+  add_residuals();
+  offsets_.push_back(0);
+  for (std::size_t f = 0; f < fields_.size(); ++f) {
+    offsets_.push_back(offsets_.back() + width(f));
+    index_[fields_[f].info.path] = f;
+  }
+  series_.push_back({"timeseries/t", "time", "output instant, from the first change at t = 0"});
+  for_each_quantity([&](const Quantity& q) {
+    series_.push_back({std::string("timeseries/") + q.name, q.unit,
+                       std::string(q.meaning) + " at the output instants t"});
+  });
+}
+
+void RowLayout::add(const std::string& path, const char* unit, const std::string& meaning,
+                    bool per_event, bool may_be_undefined) {
+  fields_.push_back({{path, unit, meaning}, per_event, may_be_undefined});
+}
+
+template <class F> void RowLayout::for_each_quantity(F f) const {
+  for (const Quantity& q : kQuantities)
+    if (by_force_ || !q.load_only) f(q);
+}
+
+std::string RowLayout::stationary() const {
+  return by_force_ ? "in stationary sliding under the load FN at " : "in stationary sliding at ";
+}
+
+void RowLayout::add_results() {
   add("results/error_estimate", "number",
       "the solver's estimate of the case's relative error (docs/design.md, error metric)");
   add("results/wall_seconds", "s", "wall-clock time the case took, in seconds");
-  each([&](const Quantity& q) {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("results/") + q.name + "_pre", q.unit,
-        std::string(q.meaning) + " " + ss + "v before t = 0, as solved");
+        std::string(q.meaning) + " " + stationary() + "v before t = 0, as solved");
   });
+}
+
+void RowLayout::add_events() {
   add("events/t", "time", "time of the velocity change at the segment's start (the first at t = 0)",
       true);
-  each([&](const Quantity& q) {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("events/") + q.name + "_after", q.unit,
         std::string(q.meaning) + " just after the change (the segment's first sample)", true);
   });
@@ -62,7 +83,7 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
       true);
   add("events/t_peak", "time", "time of mu_peak since the change", true);
   add("events/slip_peak", "length", "slip of mu_peak since the change", true);
-  each([&](const Quantity& q) {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("events/") + q.name + "_end", q.unit,
         std::string(q.meaning) + " at the segment's end (its last sample)", true);
   });
@@ -76,29 +97,33 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
       "slip over which |mu - mu_ss(w)| falls to 1/e of its value after the change; undefined "
       "during a hold or when it does not fall that far within the segment",
       true, true);
-  each([&](const Quantity& q) {
+}
+
+void RowLayout::add_closed_forms() {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("analytic/") + q.name + "_pre", q.unit,
-        std::string(q.meaning) + " " + ss + "v (closed form)");
+        std::string(q.meaning) + " " + stationary() + "v (closed form)");
   });
-  each([&](const Quantity& q) {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("analytic/") + q.name + "_ss", q.unit,
-        std::string(q.meaning) + " " + ss + "the segment's velocity (closed form)", true);
+        std::string(q.meaning) + " " + stationary() + "the segment's velocity (closed form)", true);
   });
-  if (!by_force)
-    each(
-        [&](const Quantity& q) {
-          add(std::string("analytic/") + q.name + "_jump", q.unit,
-              std::string(q.meaning) +
-                  " just after the first change (t = 0+), the corrected estimate (eqs. 15-16)");
-        },
-        false);
-  each([&](const Quantity& q) {
+  if (by_force_) return; // the seed's jump estimate: at fixed depth
+  for_each_quantity([&](const Quantity& q) {
+    add(std::string("analytic/") + q.name + "_jump", q.unit,
+        std::string(q.meaning) +
+            " just after the first change (t = 0+), the corrected estimate (eqs. 15-16)");
+  });
+}
+
+void RowLayout::add_residuals() {
+  for_each_quantity([&](const Quantity& q) {
     const std::string n = std::string(q.name) + "_pre";
     add("residuals/" + n, "number",
         residual("results/" + n, "analytic/" + n,
                  "numerical error of the stationary state before t = 0"));
   });
-  each([&](const Quantity& q) {
+  for_each_quantity([&](const Quantity& q) {
     add(std::string("residuals/") + q.name + "_end", "number",
         residual(std::string("events/") + q.name + "_end",
                  std::string("analytic/") + q.name + "_ss",
@@ -106,24 +131,12 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
                  "not error)"),
         true);
   });
-  if (!by_force)
-    each(
-        [&](const Quantity& q) {
-          add(std::string("residuals/") + q.name + "_jump", "number",
-              residual(std::string("events/") + q.name + "_after[0]",
-                       std::string("analytic/") + q.name + "_jump",
-                       "numerical error just after the first change"));
-        },
-        false);
-  offsets_.push_back(0);
-  for (std::size_t f = 0; f < fields_.size(); ++f) {
-    offsets_.push_back(offsets_.back() + width(f));
-    index_[fields_[f].info.path] = f;
-  }
-  series_.push_back({"timeseries/t", "time", "output instant, from the first change at t = 0"});
-  each([&](const Quantity& q) {
-    series_.push_back({std::string("timeseries/") + q.name, q.unit,
-                       std::string(q.meaning) + " at the output instants t"});
+  if (by_force_) return;
+  for_each_quantity([&](const Quantity& q) {
+    add(std::string("residuals/") + q.name + "_jump", "number",
+        residual(std::string("events/") + q.name + "_after[0]",
+                 std::string("analytic/") + q.name + "_jump",
+                 "numerical error just after the first change"));
   });
 }
 

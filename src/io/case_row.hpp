@@ -51,6 +51,14 @@ public:
   const std::vector<FieldInfo>& series() const { return series_; }
 
 private:
+  void add(const std::string& path, const char* unit, const std::string& meaning,
+           bool per_event = false, bool may_be_undefined = false);
+  template <class F> void for_each_quantity(F f) const; ///< FN, Fx, mu, a2 (d, a1 under load)
+  std::string stationary() const;                       ///< "in stationary sliding at "
+  void add_results();
+  void add_events();
+  void add_closed_forms();
+  void add_residuals();
   std::size_t K_;
   bool by_force_;
   std::vector<RowField> fields_;
