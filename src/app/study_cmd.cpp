@@ -277,33 +277,98 @@ Exit codes: 0 study complete (failed cases are recorded in the map: status
 )";
 }
 
+namespace {
+
+// A bad option, found before MPI starts: every rank sees the same arguments,
+// so only the first process (where the launcher says which it is) prints.
+int refuse_options(const InvalidInput& e, const char* env_rank, bool first, int argc, char** argv) {
+  if (!env_rank) { // no launcher: no MPI needed to say so
+    print_error(e);
+    return kExitBadInput;
+  }
+  // Under a launcher, end the job together after rank 0 has printed: a rank
+  // that exits early with an error may make the launcher kill rank 0 before
+  // its message is out.
+  MPI_Init(&argc, &argv);
+  if (first) {
+    print_error(e);
+    std::fflush(stderr);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  MPI_Finalize();
+  return kExitBadInput;
+}
+
+study::StudyRequest make_request(const StudyArgs& a, int argc, char** argv) {
+  study::StudyRequest req;
+  req.config = study::load_config(a.config);
+  study::apply_overrides(req.config, a.overrides);
+  req.output = a.output;
+  req.resume = a.resume;
+  req.overwrite = a.overwrite;
+  req.stop = &g_stop;
+  req.chunk_seconds = a.chunk_seconds;
+  std::string cl = "mdrmap";
+  for (int i = 1; i < argc; ++i)
+    cl += " " + shell_quote(argv[i]);
+  req.command_line = cl;
+  return req;
+}
+
+// Rank 0's last lines: a write failure, an interruption (and how the map
+// resumes) or the summary, then the ranks' peak memory.
+void print_outcome(const study::StudySummary& sum, const StudyArgs& a, int size,
+                   const std::string& memory) {
+  const std::size_t ran = sum.done + sum.failed;
+  const std::string resume_hint = "mpirun -np " + std::to_string(size) + " mdrmap study --config " +
+                                  shell_quote(a.config) + " --output " + shell_quote(a.output) +
+                                  " --resume";
+  if (!sum.write_failure.empty()) {
+    std::fprintf(stderr,
+                 "mdrmap study: error: %s; %zu of %zu cases are marked done in the map, %zu "
+                 "pending; fix the cause, then resume with: %s\n",
+                 sum.write_failure.c_str(), sum.already_done + ran, sum.total, sum.pending,
+                 resume_hint.c_str());
+    return;
+  }
+  if (sum.interrupted) {
+    // Inside a batch job the job script resumes the map (it requeues or
+    // resubmits itself): say so rather than suggest an mpirun of its own.
+    const char* slurm = std::getenv("SLURM_JOB_ID");
+    const char* pbs = std::getenv("PBS_JOBID");
+    std::string next = "resume with: " + resume_hint;
+    if (pbs != nullptr && *pbs != '\0') // (also under Slurm's PBS wrappers)
+      next = std::string("PBS job ") + pbs + ": the job resumes the map when it runs again";
+    else if (slurm != nullptr && *slurm != '\0')
+      next = std::string("Slurm job ") + slurm + ": the job resumes the map when it runs again";
+    std::fprintf(stderr,
+                 "mdrmap study: interrupted: %zu of %zu cases done (%zu this run), %zu "
+                 "pending; %s\n",
+                 sum.already_done + ran, sum.total, ran, sum.pending, next.c_str());
+  } else {
+    std::fprintf(stderr,
+                 "mdrmap study: %zu cases in %s: %zu done, %zu failed this run (%zu done "
+                 "before), wall %.2f s, %.0f cases/s, %d ranks, %zu chunks, %zu requests served\n",
+                 sum.total, a.output.c_str(), sum.done, sum.failed, sum.already_done,
+                 sum.wall_seconds,
+                 sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size,
+                 sum.chunks, sum.messages);
+  }
+  std::fprintf(stderr, "mdrmap study: %s\n", memory.c_str());
+}
+
+} // namespace
+
 int study_main(const std::vector<std::string>& args, int argc, char** argv) {
   bool help = false;
   StudyArgs a;
-  // Option errors are found before MPI starts: every rank sees the same
-  // arguments, only rank 0 would print, so print from the first process only
-  // where the rank is known (OMPI_COMM_WORLD_RANK / PMI_RANK).
   const char* env_rank = std::getenv("OMPI_COMM_WORLD_RANK");
   if (!env_rank) env_rank = std::getenv("PMI_RANK");
   const bool first = !env_rank || std::string(env_rank) == "0";
   try {
     a = parse(args, help);
   } catch (const InvalidInput& e) {
-    if (!env_rank) { // no launcher: no MPI needed to say so
-      print_error(e);
-      return kExitBadInput;
-    }
-    // Under a launcher, end the job together after rank 0 has printed: a
-    // rank that exits early with an error may make the launcher kill rank 0
-    // before its message is out.
-    MPI_Init(&argc, &argv);
-    if (first) {
-      print_error(e);
-      std::fflush(stderr);
-    }
-    MPI_Barrier(MPI_COMM_WORLD);
-    MPI_Finalize();
-    return kExitBadInput;
+    return refuse_options(e, env_rank, first, argc, argv);
   }
   if (help) {
     if (first) std::fputs(study_help().c_str(), stdout);
@@ -317,57 +382,11 @@ int study_main(const std::vector<std::string>& args, int argc, char** argv) {
   install_signal_handlers();
   int code = kExitOk;
   try {
-    study::StudyRequest req;
-    req.config = study::load_config(a.config);
-    study::apply_overrides(req.config, a.overrides);
-    req.output = a.output;
-    req.resume = a.resume;
-    req.overwrite = a.overwrite;
-    req.stop = &g_stop;
-    req.chunk_seconds = a.chunk_seconds;
-    std::string cl = "mdrmap";
-    for (int i = 1; i < argc; ++i)
-      cl += " " + shell_quote(argv[i]);
-    req.command_line = cl;
+    const study::StudyRequest req = make_request(a, argc, argv);
     StderrProgress progress(a.quiet);
     const auto sum = study::run_study(MPI_COMM_WORLD, req, rank == 0 ? &progress : nullptr);
     const std::string memory = peak_memory(MPI_COMM_WORLD);
-    const std::string resume_hint = "mpirun -np " + std::to_string(size) +
-                                    " mdrmap study --config " + shell_quote(a.config) +
-                                    " --output " + shell_quote(a.output) + " --resume";
-    if (rank == 0) {
-      const std::size_t ran = sum.done + sum.failed;
-      if (!sum.write_failure.empty()) {
-        std::fprintf(stderr,
-                     "mdrmap study: error: %s; %zu of %zu cases are marked done in the map, %zu "
-                     "pending; fix the cause, then resume with: %s\n",
-                     sum.write_failure.c_str(), sum.already_done + ran, sum.total, sum.pending,
-                     resume_hint.c_str());
-      } else if (sum.interrupted) {
-        // Inside a batch job the job script resumes the map (it requeues or
-        // resubmits itself): say so rather than suggest an mpirun of its own.
-        const char* slurm = std::getenv("SLURM_JOB_ID");
-        const char* pbs = std::getenv("PBS_JOBID");
-        std::string next = "resume with: " + resume_hint;
-        if (pbs != nullptr && *pbs != '\0') // (also under Slurm's PBS wrappers)
-          next = std::string("PBS job ") + pbs + ": the job resumes the map when it runs again";
-        else if (slurm != nullptr && *slurm != '\0')
-          next = std::string("Slurm job ") + slurm + ": the job resumes the map when it runs again";
-        std::fprintf(stderr,
-                     "mdrmap study: interrupted: %zu of %zu cases done (%zu this run), %zu "
-                     "pending; %s\n",
-                     sum.already_done + ran, sum.total, ran, sum.pending, next.c_str());
-      } else {
-        std::fprintf(
-            stderr,
-            "mdrmap study: %zu cases in %s: %zu done, %zu failed this run (%zu done "
-            "before), wall %.2f s, %.0f cases/s, %d ranks, %zu chunks, %zu requests served\n",
-            sum.total, a.output.c_str(), sum.done, sum.failed, sum.already_done, sum.wall_seconds,
-            sum.wall_seconds > 0 ? static_cast<double>(ran) / sum.wall_seconds : 0.0, size,
-            sum.chunks, sum.messages);
-      }
-      if (sum.write_failure.empty()) std::fprintf(stderr, "mdrmap study: %s\n", memory.c_str());
-    }
+    if (rank == 0) print_outcome(sum, a, size, memory);
     code = !sum.write_failure.empty() ? kExitRuntime : sum.interrupted ? kExitInterrupted : kExitOk;
   } catch (const InvalidInput& e) {
     // decided collectively (or identically on every rank): clean shutdown
