@@ -38,7 +38,6 @@ from maplib import (MU_STAR, SELECT_HELP, ZETA0_STAR, UserError, add_figure_opti
                     read_masked, run_tool, save_figure, select_cases)
 
 PROG = "map_friction_velocity"
-GROUP_COLS = ["FN", "d", "R", "tau", "G"]
 
 
 def closed_form(np, n=4000):
@@ -105,8 +104,9 @@ def main(argv=None):
     if elastic.any():
         notes.append(f"skipped {int(elastic.sum())} case(s) with tau = 0 (mu = 0)")
 
-    # one curve per (loading, R, tau, G); one point per velocity
-    gcols = [k for k in GROUP_COLS if k in c]
+    # one curve per value of the other case parameters (the loading, R, tau,
+    # G, as the map's /schema lists them); one point per velocity
+    gcols = [k for k in c if k != "v"]
     curves = {}
     for i in np.flatnonzero(use):
         key = tuple(float(c[k][i]) for k in gcols)

@@ -150,17 +150,19 @@ def schema(f):
 
 
 def case_columns(f, described=None):
-    """The 1-D /cases columns of an open map (one value per case): schema 2 in the
-    order of CASE_COLS2 (d or FN, R, tau, G, v); schema 1: those /schema lists
-    (map order) when the map has it, else CASE_COLS. The per-segment columns /cases/w and /cases/T of a
+    """The 1-D /cases columns of an open map (one value per case): those its
+    /schema lists (the map's order: the study's column order), else, for a map
+    without /schema, CASE_COLS2 (d or FN, R, tau, G, v; schema 2) or CASE_COLS. The per-segment columns /cases/w and /cases/T of a
     schema-2 map ([N, K]) are not among them. `described`: schema(f), when
     already read."""
-    if schema_version(f) == 2:  # always in the documented order
-        return [c for c in CASE_COLS2 if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
     described = schema(f) if described is None else described
     cols = [p.split("/", 1)[1] for p in described if p.startswith("cases/")]
     cols = [c for c in cols if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
-    return cols or list(CASE_COLS)
+    if cols:
+        return cols
+    if schema_version(f) == 2:  # a map without /schema: the documented order
+        return [c for c in CASE_COLS2 if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
+    return list(CASE_COLS)
 
 
 def failure_messages(f, n):
