@@ -124,15 +124,17 @@ void write_block(hid_t dset, hid_t mem_type, hid_t dxpl, hsize_t i0, hsize_t cou
   check_status(H5Dwrite(dset, mem_type, mspace.id(), fspace.id(), dxpl, data), what);
 }
 
-// /cases from the cases, taken by range in blocks of 65536 (memory
-// independent of the number of cases): the parameters, then w and T [N, K].
+// /cases [begin, end) from the cases, taken by range in blocks of 65536
+// (memory independent of the number of cases): the parameters, then w and T
+// [N, K].
 void write_cases(const std::vector<Handle>& sets, const std::vector<std::string>& params,
-                 hid_t dxpl, std::size_t n, std::size_t K, const MapFile::CaseRange& cases) {
+                 hid_t dxpl, std::size_t begin, std::size_t end, std::size_t K,
+                 const MapFile::CaseRange& cases) {
   constexpr std::size_t kBlock = 65536;
   std::vector<Case> rows;
   std::vector<double> col;
-  for (std::size_t i0 = 0; i0 < n; i0 += kBlock) {
-    const std::size_t i1 = std::min(n, i0 + kBlock);
+  for (std::size_t i0 = begin; i0 < end; i0 += kBlock) {
+    const std::size_t i1 = std::min(end, i0 + kBlock);
     cases(i0, i1, rows);
     if (rows.size() != i1 - i0) throw std::invalid_argument("MapFile::create: case count");
     const hsize_t count = rows.size();
@@ -352,11 +354,17 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   for (Handle* h : {&dims.cases, &dims.events, &dims.samples})
     h->close("closing a dimension scale");
   std::vector<Handle> grid_sets = create_grid(f, spec.grid);
-  // Raw data known up front: rank 0 writes it (independent I/O).
+  // Raw data known up front (independent I/O): every rank its share of
+  // /cases, rank 0 the rest.
   Handle dxpl = make_plist(H5Pcreate(H5P_DATASET_XFER), "transfer property list");
   check_status(H5Pset_dxpl_mpio(dxpl.id(), H5FD_MPIO_INDEPENDENT), "independent transfer");
+  int size = 1;
+  MPI_Comm_size(comm, &size);
+  const auto share = [&](int r) {
+    return spec.n_cases * static_cast<std::size_t>(r) / static_cast<std::size_t>(size);
+  };
+  write_cases(case_sets, params, dxpl.id(), share(rank), share(rank + 1), spec.segments, cases);
   if (rank == 0) {
-    write_cases(case_sets, params, dxpl.id(), spec.n_cases, spec.segments, cases);
     for (std::size_t i = 0; i < grid_sets.size(); ++i)
       write_doubles(grid_sets[i].id(), dxpl.id(), spec.grid.values[i].data(), "writing /grid");
     if (segment) {

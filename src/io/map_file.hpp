@@ -97,9 +97,10 @@ public:
   /// Cases [i0, i1) of the study into `out` (replacing its contents).
   using CaseRange = std::function<void(std::size_t i0, std::size_t i1, std::vector<Case>& out)>;
   /// Collective. Creates `path` (which must not exist) with every dataset
-  /// allocated and its blocks reserved; rank 0 writes /cases (taken by range
-  /// in blocks: no rank holds every case), the status (0), /grid and
-  /// /timeseries/segment. The file is closed (complete and valid) on return.
+  /// allocated and its blocks reserved; every rank writes its share of
+  /// /cases (taken by range in blocks: no rank holds every case; `cases` is
+  /// called on every rank), rank 0 /grid and /timeseries/segment; the status
+  /// is zero. The file is closed (complete and valid) on return.
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const CaseRange& cases);
   /// The same from a list of all the cases (tests, small studies).

@@ -118,7 +118,7 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
       bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));
   try {
     collectively(comm, [&] {
-      // rank 0 writes /cases taking the cases by range (no rank holds them all)
+      // every rank writes its share of /cases, taking the cases by range
       std::vector<Row> rows;
       io::MapFile::create(comm, tmp, plan.spec, prov,
                           [&](std::size_t i0, std::size_t i1, std::vector<Case>& out) {
