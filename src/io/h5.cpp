@@ -98,22 +98,27 @@ bool has_attr(hid_t obj, const std::string& name) {
   return r > 0;
 }
 
-void write_scalar_attr(hid_t obj, const std::string& name, long long value) {
+namespace {
+
+// A scalar attribute of type `file_type` from the value at `value` (`mem_type`).
+void write_scalar(hid_t obj, const std::string& name, hid_t file_type, hid_t mem_type,
+                  const void* value) {
   const std::string what = "attribute '" + name + "'";
   Handle space = make_space(H5Screate(H5S_SCALAR), what);
   Handle attr = make_attr(
-      H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT), what);
-  check_status(H5Awrite(attr.id(), H5T_NATIVE_LLONG, &value), what);
+      H5Acreate2(obj, name.c_str(), file_type, space.id(), H5P_DEFAULT, H5P_DEFAULT), what);
+  check_status(H5Awrite(attr.id(), mem_type, value), what);
   attr.close(what);
 }
 
+} // namespace
+
+void write_scalar_attr(hid_t obj, const std::string& name, long long value) {
+  write_scalar(obj, name, H5T_STD_I64LE, H5T_NATIVE_LLONG, &value);
+}
+
 void write_double_attr(hid_t obj, const std::string& name, double value) {
-  const std::string what = "attribute '" + name + "'";
-  Handle space = make_space(H5Screate(H5S_SCALAR), what);
-  Handle attr = make_attr(
-      H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT), what);
-  check_status(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, &value), what);
-  attr.close(what);
+  write_scalar(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
 }
 
 void write_int_array_attr(hid_t obj, const std::string& name, const std::vector<long long>& v) {

@@ -69,13 +69,21 @@ Handle create_ordered_group(hid_t loc, const std::string& name) {
 // Describes dataset `dset` (at info.path): CF attributes `units` and
 // `long_name` on it (what xarray shows), and /schema/<path> with string
 // attributes `unit` and `meaning` (the map's table of contents).
-void describe(hid_t file, hid_t dset, const FieldInfo& info) {
+void cf_attributes(hid_t dset, const FieldInfo& info) {
   write_string_attr(dset, "units", info.unit);
   write_string_attr(dset, "long_name", info.meaning);
+}
+
+void schema_entry(hid_t file, const FieldInfo& info) {
   Handle g = create_ordered_group(file, "schema/" + info.path);
   write_string_attr(g.id(), "unit", info.unit);
   write_string_attr(g.id(), "meaning", info.meaning);
   g.close("closing /schema/" + info.path);
+}
+
+void describe(hid_t file, hid_t dset, const FieldInfo& info) {
+  cf_attributes(dset, info);
+  schema_entry(file, info);
 }
 
 // A netCDF-4 dimension without a variable (xarray's named dimension): an
@@ -541,15 +549,14 @@ MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>
 // ---- RowWriter ------------------------------------------------------------------
 
 RowWriter::RowWriter(const std::string& path, MapLayout layout)
-    : path_(path), layout_(std::move(layout)) {
+    : path_(path), layout_(std::move(layout)), rows_(layout_.segments, layout_.by_force) {
   // the file stores little-endian float64: raw rows are written as in memory
   const std::uint16_t probe = 1;
   unsigned char first_byte = 0;
   std::memcpy(&first_byte, &probe, 1);
   if (first_byte != 1) throw std::runtime_error("writing maps needs a little-endian host");
-  const RowLayout rows(layout_.segments, layout_.by_force);
-  if (layout_.fields.size() != rows.fields().size() ||
-      layout_.series.size() != (layout_.timeseries ? rows.series().size() : 0))
+  if (layout_.fields.size() != rows_.fields().size() ||
+      layout_.series.size() != (layout_.timeseries ? rows_.series().size() : 0))
     throw std::invalid_argument("RowWriter: layout does not match this program's fields");
   fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd_ < 0)
@@ -594,7 +601,7 @@ void RowWriter::write_rows(std::size_t first, const std::vector<CaseRow>& rows) 
   if (fd_ < 0) throw std::logic_error("RowWriter::write_rows on a closed writer");
   if (first + count > layout_.n_cases)
     throw std::out_of_range("RowWriter::write_rows beyond the case count");
-  const RowLayout L(layout_.segments, layout_.by_force);
+  const RowLayout& L = rows_;
   std::vector<double> block;
   for (std::size_t f = 0; f < L.fields().size(); ++f) {
     const std::size_t w = L.width(f), at = L.offset(f);
@@ -698,15 +705,11 @@ void MapFile::write_failures(const std::string& path, const std::vector<Failure>
         H5Dcreate2(f, name, file_type, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), what);
     if (n > 0) check_status(H5Dwrite(d.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what);
     const FieldInfo& info = other_info(name);
-    write_string_attr(d.id(), "units", info.unit);
-    write_string_attr(d.id(), "long_name", info.meaning);
-    if (!has_link(f, std::string("schema/") + name)) {
+    cf_attributes(d.id(), info);
+    if (!has_link(f, std::string("schema/") + name)) { // the first /failures of the map
       if (!has_link(f, "schema/failures"))
         create_ordered_group(f, "schema/failures").close("closing /schema/failures");
-      Handle g = create_ordered_group(f, std::string("schema/") + name);
-      write_string_attr(g.id(), "unit", info.unit);
-      write_string_attr(g.id(), "meaning", info.meaning);
-      g.close(what);
+      schema_entry(f, info);
     }
     d.close(what);
   };

@@ -151,6 +151,7 @@ private:
   int fd_ = -1;
   std::string path_;
   MapLayout layout_;
+  RowLayout rows_ = RowLayout(1, false); ///< the datasets of layout_'s rows
 };
 
 } // namespace mdrmap::io
