@@ -6,20 +6,23 @@ namespace mdrmap::io {
 namespace {
 
 // The quantities of a state: the names of the map's fields and their
-// meanings come from this table and the instants below together.
+// meanings come from this table and the instants below together; the
+// quantities that move under load only come last.
 struct Quantity {
   const char* name;
   const char* unit;
   const char* meaning;
-  bool load_only; ///< moves under load control only (fixed at depth control)
+  bool load_only;                       ///< moves under load control only (fixed at depth control)
+  double State::*value;                 ///< its member of a State
+  std::vector<double> Series::*samples; ///< and of a Series
 };
 const Quantity kQuantities[] = {
-    {"FN", "force", "normal force", false},
-    {"Fx", "force", "friction force", false},
-    {"mu", "number", "friction coefficient Fx / FN", false},
-    {"a2", "length", "trailing edge a2 of the contact", false},
-    {"d", "length", "indentation depth", true},
-    {"a1", "length", "leading edge a1 of the contact", true},
+    {"FN", "force", "normal force", false, &State::FN, &Series::FN},
+    {"Fx", "force", "friction force", false, &State::Fx, &Series::Fx},
+    {"mu", "number", "friction coefficient Fx / FN", false, &State::mu, &Series::mu},
+    {"a2", "length", "trailing edge a2 of the contact", false, &State::a2, &Series::a2},
+    {"d", "length", "indentation depth", true, &State::d, &Series::d},
+    {"a1", "length", "leading edge a1 of the contact", true, &State::a1, &Series::a1},
 };
 
 std::string residual(const std::string& sim, const std::string& an, const std::string& measures) {
@@ -51,8 +54,27 @@ void RowLayout::add(const std::string& path, const char* unit, const std::string
 }
 
 template <class F> void RowLayout::for_each_quantity(F f) const {
+  for (std::size_t q = 0; q < quantities(); ++q)
+    f(kQuantities[q]);
+}
+
+std::size_t RowLayout::quantities() const {
+  std::size_t n = 0;
   for (const Quantity& q : kQuantities)
-    if (by_force_ || !q.load_only) f(q);
+    n += (by_force_ || !q.load_only) ? 1 : 0;
+  return n;
+}
+
+const char* RowLayout::quantity(std::size_t q) const {
+  return kQuantities[q].name;
+}
+
+double RowLayout::value(const State& s, std::size_t q) const {
+  return s.*(kQuantities[q].value);
+}
+
+const std::vector<double>& RowLayout::samples(const Series& x, std::size_t s) const {
+  return s == 0 ? x.t : x.*(kQuantities[s - 1].samples);
 }
 
 std::string RowLayout::stationary() const {

@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/state.hpp"
+
 namespace mdrmap::io {
 
 /// The netCDF default fill value of a double: undefined values (an event
@@ -49,6 +51,14 @@ public:
   std::size_t at(const std::string& path, std::size_t k = 0) const;
   /// The time series: t, FN, Fx, mu, a2 (and d, a1 under load), [N, K S].
   const std::vector<FieldInfo>& series() const { return series_; }
+  /// The quantities of a state the map stores: FN, Fx, mu, a2 (and d, a1 under load).
+  std::size_t quantities() const;
+  /// Name of quantity q (< quantities()), as in the datasets' names: "FN", ...
+  const char* quantity(std::size_t q) const;
+  /// Quantity q of a state.
+  double value(const State& s, std::size_t q) const;
+  /// Series s (series() order: t, then the quantities) of a run's samples.
+  const std::vector<double>& samples(const Series& x, std::size_t s) const;
 
 private:
   void add(const std::string& path, const char* unit, const std::string& meaning,

@@ -12,17 +12,6 @@
 namespace mdrmap::study {
 namespace {
 
-const char* const kQuantities[] = {"FN", "Fx", "mu", "a2", "d", "a1"};
-
-std::size_t quantities(const io::RowLayout& L) {
-  return L.by_force() ? 6 : 4;
-}
-
-double get(const State& s, std::size_t q) {
-  const double v[] = {s.FN, s.Fx, s.mu, s.a2, s.d, s.a1};
-  return v[q];
-}
-
 // (sim - analytic) / |analytic|; 0 when both vanish (tau = 0: F_x = mu = 0).
 double residual(double sim, double an) {
   if (an == 0.0) return sim == 0.0 ? 0.0 : (sim > 0.0 ? 1.0 : -1.0);
@@ -41,14 +30,13 @@ public:
   // group/<q><suffix> for every quantity of the layout
   void state(const std::string& group, const std::string& suffix, const State& s,
              std::size_t k = 0) {
-    for (std::size_t q = 0; q < quantities(L_); ++q)
-      put(group + "/" + kQuantities[q] + suffix, get(s, q), k);
+    for (std::size_t q = 0; q < L_.quantities(); ++q)
+      put(group + "/" + L_.quantity(q) + suffix, L_.value(s, q), k);
   }
-  void residuals(const std::string& suffix, const State& sim, const State& an, std::size_t k = 0,
-                 std::size_t n = 0) {
-    for (std::size_t q = 0; q < (n ? n : quantities(L_)); ++q)
-      put(std::string("residuals/") + kQuantities[q] + suffix, residual(get(sim, q), get(an, q)),
-          k);
+  void residuals(const std::string& suffix, const State& sim, const State& an, std::size_t k = 0) {
+    for (std::size_t q = 0; q < L_.quantities(); ++q)
+      put(std::string("residuals/") + L_.quantity(q) + suffix,
+          residual(L_.value(sim, q), L_.value(an, q)), k);
   }
 
 private:
@@ -88,19 +76,19 @@ void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const Run
   if (!L.by_force()) { // the seed's corrected estimate of the first change
     const State jump = analytic::jump(c, c.history.v0, c.history.segments.front().w);
     f.state("analytic", "_jump", jump);
-    f.residuals("_jump", x.at(0), jump, 0, 4);
+    f.residuals("_jump", x.at(0), jump);
   }
   for (double v : row.values)
     if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
 }
 
 void fill_series(io::CaseRow& row, const io::RowLayout& L, const Series& x) {
-  const std::vector<double>* all[] = {&x.t, &x.FN, &x.Fx, &x.mu, &x.a2, &x.d, &x.a1};
   row.series.clear();
   for (std::size_t s = 0; s < L.series().size(); ++s) {
-    for (double v : *all[s])
+    const std::vector<double>& samples = L.samples(x, s);
+    for (double v : samples)
       if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
-    row.series.push_back(*all[s]);
+    row.series.push_back(samples);
   }
 }
 
