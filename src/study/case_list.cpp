@@ -87,49 +87,73 @@ void no_cases_after_header(const std::string& path) {
                     path + ": no cases after the header; add one line of values per case");
 }
 
-std::vector<Axis> read_list_columns(const std::string& path) {
-  std::ifstream in = open_cases(path);
+namespace {
+
+/// The next line of a case list that is neither blank nor a comment, trimmed
+/// (a UTF-8 BOM on line 1 dropped), into `out`, and where it starts into
+/// `start`; false at the end of the file. `offset` and `line` are those of
+/// the next line to read.
+bool content_line(std::istream& in, const std::string& path, std::uint64_t& offset,
+                  std::uint64_t& line, std::string& out, std::uint64_t& start) {
   std::string raw;
-  std::uint64_t line = 0;
-  while (std::getline(in, raw)) {
+  while (true) {
+    const std::uint64_t here = offset;
+    if (!std::getline(in, raw)) break;
+    offset += raw.size() + (in.eof() ? 0 : 1);
     ++line;
     if (line == 1 && starts_with(raw, "\xEF\xBB\xBF")) raw.erase(0, 3); // UTF-8 BOM
-    const std::string text = trim(raw);
-    if (text.empty() || text[0] == '#') continue;
-    std::vector<Axis> out;
-    const std::vector<std::string> names = split(text, ',');
-    for (std::size_t k = 0; k < names.size(); ++k) {
-      const std::string here =
-          path + ":" + std::to_string(line) + ":" + std::to_string(k + 1) + ": ";
-      Axis a;
-      a.name = trim(names[k]);
-      a.section = "cases";
-      a.listed = true;
-      if (!parse_column(a.name, a.column))
-        throw ConfigError("cases.file", here + "unknown column " + shown(a.name) +
-                                            "; the header names the columns " + kAllColumns);
-      for (const Axis& b : out)
-        if (column_rank(b.column) == column_rank(a.column))
-          throw ConfigError(
-              "cases.file",
-              here + "column '" + a.name + "' " +
-                  (a.name == b.name ? "appears twice" : "sets what column '" + b.name + "' sets") +
-                  "; give each once");
-      out.push_back(a);
-    }
-    return out;
+    out = trim(raw);
+    if (out.empty() || out[0] == '#') continue;
+    start = here;
+    return true;
   }
   if (in.bad()) cannot_read(path, "read error");
-  throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
-                                      kAllColumns + " (in any order)");
+  return false;
+}
+
+/// The header line of a case list (its first content line). Throws ConfigError("cases.file").
+std::string header_line(std::istream& in, const std::string& path, std::uint64_t& offset,
+                        std::uint64_t& line) {
+  std::string header;
+  std::uint64_t start = 0;
+  if (!content_line(in, path, offset, line, header, start))
+    throw ConfigError("cases.file", path + ": no header; the first line must name the columns " +
+                                        kAllColumns + " (in any order)");
+  return header;
+}
+
+} // namespace
+
+std::vector<Axis> read_list_columns(const std::string& path) {
+  std::ifstream in = open_cases(path);
+  std::uint64_t offset = 0, line = 0;
+  const std::string text = header_line(in, path, offset, line);
+  std::vector<Axis> out;
+  const std::vector<std::string> names = split(text, ',');
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string here = path + ":" + std::to_string(line) + ":" + std::to_string(k + 1) + ": ";
+    Axis a;
+    a.name = trim(names[k]);
+    a.section = "cases";
+    a.listed = true;
+    if (!parse_column(a.name, a.column))
+      throw ConfigError("cases.file", here + "unknown column " + shown(a.name) +
+                                          "; the header names the columns " + kAllColumns);
+    for (const Axis& b : out)
+      if (column_rank(b.column) == column_rank(a.column))
+        throw ConfigError(
+            "cases.file",
+            here + "column '" + a.name + "' " +
+                (a.name == b.name ? "appears twice" : "sets what column '" + b.name + "' sets") +
+                "; give each once");
+    out.push_back(a);
+  }
+  return out;
 }
 
 CaseListReader::CaseListReader(const StudyConfig& c) : c_(&c), path_(c.cases_file) {
   in_ = open_cases(path_);
-  std::string line;
-  if (!next_line(line))
-    throw ConfigError("cases.file", path_ + ": no header; the first line must name the columns " +
-                                        kAllColumns + " (in any order)");
+  const std::string line = header_line(in_, path_, offset_, line_);
   for (const std::string& name : split(line, ','))
     for (std::size_t i = 0; i < c.axes.size(); ++i)
       if (c.axes[i].listed && c.axes[i].name == trim(name)) axis_of_column_.push_back(i);
@@ -147,21 +171,9 @@ CaseListReader::CaseListReader(const StudyConfig& c) : c_(&c), path_(c.cases_fil
 }
 
 bool CaseListReader::next_line(std::string& line) {
-  std::string raw;
-  while (true) {
-    const std::uint64_t start = offset_;
-    if (!std::getline(in_, raw)) break;
-    offset_ += raw.size() + (in_.eof() ? 0 : 1);
-    ++line_;
-    if (line_ == 1 && starts_with(raw, "\xEF\xBB\xBF")) raw.erase(0, 3); // UTF-8 BOM
-    line = trim(raw);
-    if (line.empty() || line[0] == '#') continue;
-    case_offset_ = start;
-    case_line_ = line_;
-    return true;
-  }
-  if (in_.bad()) cannot_read(path_, "read error");
-  return false;
+  if (!content_line(in_, path_, offset_, line_, line, case_offset_)) return false;
+  case_line_ = line_;
+  return true;
 }
 
 bool CaseListReader::next(Row& r) {
