@@ -246,19 +246,20 @@ TEST(RunLoadOrder, ConvergesInSpace) {
 // Done-criterion: on every load-controlled history of the set the solver at
 // rtol 1e-3 and 1e-4 (and 1e-2) is within rtol of a reference built by
 // refining it (4x the resolution, local step error 1e-9) and its estimate is
-// at least a third of its error. The two zeta0 = 1e6 histories against 2x and
-// 1e-7: a depth mode as fast as the contact time a1/v makes the step control
-// collapse at a tighter local tolerance (docs/design.md, "Load control").
+// at least a third of its error; the set includes drop-hold-rise histories (a
+// re-touch front from a tangency) and reslides whose travel is below the grid
+// of rtol's resolution. The two zeta0 = 1e6 histories against a local step
+// error of 1e-8: D ~ 2 L a1 / R carries rounding of ~1e-16 L / a1 relative
+// to d, which the step control sees at 1e-9 (docs/design.md, "Load control").
 TEST(RunLoadSet, WithinRtolWithAnHonestEstimate) {
   const auto set = load_case_set();
-  ASSERT_GE(set.size(), 20u);
+  ASSERT_GE(set.size(), 32u);
   for (const auto& nc : set) {
     const bool heavy = nc.name.find("zeta0=1e6") != std::string::npos;
     LoadOptions o;
     o.rtol = 1e-4;
     const RunResult finest = run_load(nc.c, o);
-    const Series ref =
-        at(nc.c, (heavy ? 2.0 : 4.0) * finest.info.cells_per_a1, heavy ? 1e-7 : 1e-9);
+    const Series ref = at(nc.c, 4.0 * finest.info.cells_per_a1, heavy ? 1e-8 : 1e-9);
     for (double rtol : {1e-2, 1e-3, 1e-4}) { // (1e-2: long trial steps)
       o.rtol = rtol;
       const RunResult r = rtol == finest.info.rtol ? finest : run_load(nc.c, o);

@@ -283,10 +283,15 @@ TEST(MdrBruteForce, ContinuumSolutionWithinTheDiscreteRunsOwnAccuracy) {
   for (const Case& c0 : scenes) {
     const Case c = sampled(c0, 61);
     const auto ex = run_exact(c, 1e-12);
+    // the fine brute-force run needs more than the default work budget
+    RunControl budget_coarse, budget_fine;
+    budget_coarse.max_work = budget_fine.max_work = 1e11;
     BaselineOptions b;
     b.cells_per_a1 = 400;
+    b.control = &budget_coarse;
     const auto coarse = run_baseline(c, b);
     b.cells_per_a1 = 1600;
+    b.control = &budget_fine;
     const auto fine = run_baseline(c, b);
     const double own = case_error(coarse.series, fine.series, c).max();
     const double e_fine = case_error(fine.series, ex.series, c).max();

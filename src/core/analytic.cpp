@@ -4,10 +4,6 @@
 
 namespace mdrmap::analytic {
 
-double a1(const Case& c) {
-  return c.a1();
-}
-
 double a2_stationary(const Case& c, double w) {
   const double L = w * c.material.tau;
   const double A = a1(c);

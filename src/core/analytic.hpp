@@ -12,7 +12,9 @@ namespace mdrmap {
 namespace analytic {
 
 /// Leading edge a1 = sqrt(R d).
-double a1(const Case& c);
+inline double a1(const Case& c) {
+  return c.a1();
+}
 
 /// Stationary trailing edge at velocity w, eq. (7) in the form
 /// a2 = R d / (sqrt(w^2 tau^2 + R d) + w tau), which keeps every digit.

@@ -67,6 +67,7 @@ Grid make_grid(const Case& c, const BaselineOptions& opt) {
 /// The element row over the whole travel path.
 struct Row {
   const Case& c;
+  const RunControl& control;
   double a1, dx, x0;
   std::vector<double> u;
   std::vector<unsigned char> contact;
@@ -78,6 +79,7 @@ struct Row {
   double xi(std::size_t i, double sp) const { return x0 + static_cast<double>(i) * dx + sp; }
 
   void step(double sp, double w, double dec) {
+    control.charge(static_cast<double>(u.size()), "baseline");
     for (std::size_t i = 0; i < u.size(); ++i) {
       const double x = xi(i, sp), hi = h(x);
       if (contact[i]) {
@@ -94,10 +96,12 @@ struct Row {
   }
   /// A velocity change takes no time: elements whose force turns negative let go.
   void change(double sp, double w) {
+    control.charge(static_cast<double>(u.size()), "baseline");
     for (std::size_t i = 0; i < u.size(); ++i)
       if (contact[i] && force(xi(i, sp), w) < 0.0) contact[i] = 0;
   }
   State measure(double sp, double w) const {
+    control.charge(static_cast<double>(u.size()), "baseline");
     double sN = 0.0, sX = 0.0, a2 = -a1;
     for (std::size_t i = 0; i < u.size(); ++i) {
       if (!contact[i]) continue;
@@ -117,12 +121,13 @@ struct Row {
   }
 };
 
-RunResult run_baseline_once(const Case& c, const BaselineOptions& opt) {
+RunResult run_baseline_once(const Case& c, const BaselineOptions& opt, const RunControl& control) {
   const Grid g = make_grid(c, opt);
   const double a1 = c.a1(), dx = a1 / opt.cells_per_a1, v0 = c.history.v0;
   // Lab positions x_i = x0 + i dx; the indenter coordinate is xi = x + s(t),
   // with s = 0 at the first change.
   Row row{c,
+          control,
           a1,
           dx,
           -a1 - (g.travel - v0 * g.dt * static_cast<double>(g.n_pre)) - 2.0 * dx,
@@ -172,12 +177,14 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt) {
 RunResult run_baseline(const Case& s, const BaselineOptions& opt) {
   validate(s);
   require_depth_control(s, "baseline");
-  RunResult res = run_baseline_once(s, opt);
+  const RunControl own;
+  const RunControl& control = opt.control != nullptr ? *opt.control : own;
+  RunResult res = run_baseline_once(s, opt, control);
   if (opt.estimate_error) {
     // First order: the difference to a half-resolution run is about the error.
     BaselineOptions half = opt;
     half.cells_per_a1 = std::max(2.0, 0.5 * opt.cells_per_a1);
-    const RunResult coarse = run_baseline_once(s, half);
+    const RunResult coarse = run_baseline_once(s, half, control);
     res.info.error_estimate = case_error(coarse.series, res.series, s, 1e-12).max();
     res.info.steps += coarse.info.steps;
     res.info.element_updates += coarse.info.element_updates;

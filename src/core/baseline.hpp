@@ -13,6 +13,8 @@ struct BaselineOptions {
   double steps_per_cell = 1.0;    ///< time step = dx / (steps_per_cell * largest velocity)
   long max_elements = 50'000'000; ///< refuse scenes that would need more
   bool estimate_error = true;     ///< run a half-resolution companion for error_estimate
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag).
+  const RunControl* control = nullptr;
 };
 
 RunResult run_baseline(const Case& c, const BaselineOptions& opt);

@@ -12,8 +12,10 @@
 //
 // Units are the user's (any consistent set); forces come out in units of
 // G * length^2. Time t is measured from the first velocity change.
+#include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mdrmap {
@@ -40,8 +42,9 @@ struct Indenter {
   double R = 0.0; ///< radius of curvature, > 0
   double g(double x) const { return x * x / R; }
   double slope(double x) const { return 2.0 * x / R; }
-  /// Half-width a of the MDR contact at depth d: g(a) = d.
-  double contact_radius(double d) const;
+  /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
+  /// solvers ask for it at every sample.)
+  double contact_radius(double d) const { return std::sqrt(R) * std::sqrt(d); }
 };
 
 /// Kelvin foundation: spring 4 G dx parallel to a dashpot 4 eta dx.
@@ -87,8 +90,21 @@ struct Sampling {
   long samples = 201;
   Spacing spacing = Spacing::Linear;
   double decades = 4.0; ///< log spacing: the first offset after 0 is T 10^-decades
-  /// Time since the segment's start of sample j.
-  double offset(long j, double T) const;
+  /// Time since the segment's start of sample j. (Inline: it is asked at
+  /// every sample.)
+  double offset(long j, double T) const {
+    if (j <= 0) return 0.0;
+    if (j >= samples - 1) return T;
+    if (spacing == Spacing::Linear) {
+      const double t = T * static_cast<double>(j) / static_cast<double>(samples - 1);
+      if (std::isfinite(t)) return t;
+    }
+    return inner_offset(j, T);
+  }
+
+private:
+  /// offset() of 0 < j < samples - 1: log spacing, or linear where T j overflows.
+  double inner_offset(long j, double T) const;
 };
 
 inline constexpr long kMaxSamples = 100'000'000;
@@ -115,6 +131,28 @@ struct Case {
 /// Throws InvalidInput naming the first offending parameter (as the CLI
 /// spells it). Checks every part and that the derived scales are representable.
 void validate(const Case& c);
+
+/// A case that passed validate(): made once where a case is built (a study's
+/// row: study::checked_case_for), then taken by the solvers (run_case,
+/// run_exact), which need not check it again.
+class CheckedCase {
+public:
+  /// Validates `c`; throws InvalidInput as validate() does.
+  explicit CheckedCase(Case c) : c_(std::move(c)) { validate(c_); }
+  const Case& get() const { return c_; }
+  /// The case itself, no longer marked as checked.
+  Case take() && { return std::move(c_); }
+  /// This case with the durations T of `segments` (one per segment; their
+  /// velocities must be this case's): only the history is checked again, as
+  /// nothing else validate() checks depends on the durations. Throws
+  /// InvalidInput("history") as validate() does.
+  CheckedCase with_durations(const std::vector<Segment>& segments) &&;
+
+private:
+  struct Trusted {};
+  CheckedCase(Case c, Trusted) : c_(std::move(c)) {}
+  Case c_;
+};
 
 /// The seed's experiment: one step v -> v1 at t = 0, observed over t_end
 /// (0: default_step_duration), `samples` linear samples.

@@ -79,6 +79,7 @@ double quad_root(const TailPiece& p, const Frame& f) {
 
 struct Root {
   double x, a1_minus_x, bracket;
+  double iterations; ///< gap evaluations of the root solve
 };
 
 /// The front inside piece p, between lo (gap >= 0) and end (gap < 0).
@@ -86,7 +87,7 @@ Root piece_root(const TailPiece& p, const Frame& f, double lo, double end, doubl
                 double g_end, int bits) {
   if (p.kind == TailPiece::Kind::Quad) {
     const double x = std::clamp(quad_root(p, f), lo, end);
-    return {x, f.a1 - x, 4.0 * std::numeric_limits<double>::epsilon() * f.a1};
+    return {x, f.a1 - x, 4.0 * std::numeric_limits<double>::epsilon() * f.a1, 1.0};
   }
   // in y = x - xa (never through x: xa + y would round y away when y << xa),
   // so that a1 - x = (a1 - xa) - y keeps its digits
@@ -96,12 +97,13 @@ Root piece_root(const TailPiece& p, const Frame& f, double lo, double end, doubl
   const auto r =
       boost::math::tools::toms748_solve(g, lo - p.xa, end - p.xa, g_lo, g_end, tol, iters);
   const double y = 0.5 * (r.first + r.second);
-  return {p.xa + y, p.a1_minus_xa - y, r.second - r.first};
+  return {p.xa + y, p.a1_minus_xa - y, r.second - r.first, static_cast<double>(iters)};
 }
 
 } // namespace
 
-ExactSolution::ExactSolution(const Case& c, int bits) : c_(c), bits_(std::clamp(bits, 8, 52)) {
+ExactSolution::ExactSolution(const Case& c, int bits, const RunControl* control)
+    : c_(c), bits_(std::clamp(bits, 8, 52)), control_(control) {
   a1_ = c.a1();
   const double v0 = c.history.v0;
   pre_ = analytic::stationary(c, v0);
@@ -153,6 +155,17 @@ SegmentStart ExactSolution::make_start(double w, std::vector<TailPiece> tail, do
   while (!tail.empty() && tail.back().lo >= a1_)
     tail.pop_back();
   seg.tail = std::move(tail);
+  seg.at_cap_throughout = seg.tail.empty() || seg.tail.front().lo >= seg.cap;
+  if (seg.tail.size() == 1) {
+    const TailPiece& p = seg.tail.front();
+    seg.gap_at_cap_grows =
+        p.kind == TailPiece::Kind::Exp && p.hi == kInf && w * c_.material.tau <= p.lam;
+    // gap = c0 - c1 y - y^2 (1/R + A phi2(y/lam)/lam^2), y <= Y: |c0| <= |c0| + |A| at the start
+    // (h falls outward, A decays), |c1 y| <= (g'(a1) + A/lam) Y, y^2 A phi2/lam^2 <= A Y/lam
+    const double Y = std::max(0.0, seg.cap - p.xa), R = c_.indenter.R, A = std::abs(p.A);
+    seg.cap_margin =
+        1e-9 * (std::abs(p.c0) + A + (2.0 * a1_ / R + 2.0 * A / p.lam) * Y + Y * Y / R);
+  }
   return seg;
 }
 
@@ -160,14 +173,28 @@ ExactSolution::Edge ExactSolution::front(const SegmentStart& seg, double offset)
   const Frame f{a1_, c_.indenter.R, c_.material.tau};
   const Edge at_cap{seg.cap, seg.a1_minus_cap, true};
   last_bracket_ = 0.0;
+  // the walk below would stop at the first piece
+  if (seg.at_cap_throughout || offset >= seg.at_cap_from) {
+    if (!seg.tail.empty()) charge(1.0);
+    return at_cap;
+  }
   for (const TailPiece& p0 : seg.tail) {
+    charge(1.0);
     const TailPiece p = advanced(p0, f, seg.w, offset);
-    if (p.lo >= seg.cap) return at_cap; // the edge material has reached the cap
+    if (p.lo >= seg.cap) { // the edge material has reached the cap
+      // (p.lo only grows with the offset: the walk stops here from now on)
+      if (&p0 == &seg.tail.front()) seg.at_cap_from = std::min(seg.at_cap_from, offset);
+      return at_cap;
+    }
     const double end = std::min(p.hi, seg.cap);
     const double g_end = gap(p, f, end);
     if (g_end >= 0.0) {
-      if (end == seg.cap) return at_cap;
-      continue; // the whole piece touches again
+      if (end != seg.cap) continue; // the whole piece touches again
+      // the gap at any later offset is larger, and positive as computed too
+      // (its rounding is far below the margin)
+      if (seg.gap_at_cap_grows && g_end >= seg.cap_margin)
+        seg.at_cap_from = std::min(seg.at_cap_from, offset);
+      return at_cap;
     }
     const double g_lo = gap(p, f, p.lo);
     if (!(g_lo > 0.0)) { // the edge sits on the piece's first material
@@ -176,6 +203,7 @@ ExactSolution::Edge ExactSolution::front(const SegmentStart& seg, double offset)
     }
     ++root_solves_;
     const Root r = piece_root(p, f, p.lo, end, g_lo, g_end, bits_);
+    charge(r.iterations);
     last_bracket_ = r.bracket;
     return {r.x, r.a1_minus_x, false};
   }
@@ -228,6 +256,7 @@ double ExactSolution::cap_time(const SegmentStart& seg, double T) const {
   std::uintmax_t iters = 200;
   const auto tol = boost::math::tools::eps_tolerance<double>(static_cast<unsigned>(bits_));
   const auto r = boost::math::tools::toms748_solve(gap_at_cap, 0.0, T, g0, gT, tol, iters);
+  charge(static_cast<double>(iters));
   return 0.5 * (r.first + r.second);
 }
 
@@ -314,12 +343,16 @@ double relative_error(const Case& c, const Series& s, const State& err) {
 
 } // namespace
 
-RunResult run_exact(const Case& c, double rtol) {
-  validate(c);
+RunResult run_exact(const Case& c, double rtol, const RunControl& control) {
+  return run_exact(CheckedCase(c), rtol, control);
+}
+
+RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& control) {
+  const Case& c = checked.get();
   require_depth_control(c, "exact");
   // Solve the roots to ~10 bits beyond what rtol asks, 52 bits at most.
   const int bits = std::clamp(static_cast<int>(std::ceil(-std::log2(rtol))) + 12, 24, 52);
-  ExactSolution ex(c, bits);
+  ExactSolution ex(c, bits, &control);
   RunResult res;
   res.info.solver = "exact";
   res.info.rtol = rtol;
@@ -333,6 +366,7 @@ RunResult run_exact(const Case& c, double rtol) {
     const double T = c.history.segments[k].T, t0 = c.history.start(k);
     for (long j = 0; j < N; ++j, ++i) {
       const double off = c.sampling.offset(j, T);
+      control.charge(1.0, "exact");
       const State st = ex.at(k, off);
       res.series.set(i, t0 + off, static_cast<int>(k), st);
       if (ex.last_bracket() > 0.0)

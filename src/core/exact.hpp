@@ -19,6 +19,7 @@
 // found by walking the pieces and solving one scalar root (closed form on a
 // Quad piece). Segment boundaries are processed once; samples are then
 // independent evaluations.
+#include <limits>
 #include <vector>
 
 #include "core/solver.hpp"
@@ -45,12 +46,33 @@ struct SegmentStart {
   double a1_minus_cap = 0.0; ///< a1 - cap without cancellation
   State at_cap;              ///< the stationary state at w: the state while the edge is at the cap
   std::vector<TailPiece> tail;
+  /// No free material before the cap (a rise or no change out of stationary
+  /// sliding, a restart): the edge sits at the cap throughout the segment,
+  /// as the walk of the pieces finds (material only moves outward at w >= 0).
+  bool at_cap_throughout = false;
+  /// One Exp piece reaching to infinity, carried no faster than it left the
+  /// cap (w tau <= lam: a drop or a hold out of stationary sliding): its
+  /// depression at the cap only shrinks, so the gap there only grows, and
+  /// once the edge is at the cap with a clear margin it stays there.
+  bool gap_at_cap_grows = false;
+  /// With gap_at_cap_grows: 1e-9 of a bound on every term of that gap at any
+  /// offset (the terms at the start, where the piece's anchor is farthest
+  /// from the cap); rounding stays far below it.
+  double cap_margin = 0.0;
+  /// The earliest offset at which the walk found the edge at the cap for
+  /// good (infinity: not yet): the first piece's material past the cap (its
+  /// start only moves outward), or with gap_at_cap_grows its gap at the cap
+  /// above cap_margin. Later offsets are at the cap without the walk: a
+  /// cache of the walk's own answer, filled as it is asked.
+  mutable double at_cap_from = std::numeric_limits<double>::infinity();
 };
 
 class ExactSolution {
 public:
   /// `bits`: binary digits the trailing-edge roots are solved to (<= 52).
-  explicit ExactSolution(const Case& c, int bits = 50);
+  /// `control` (if given, it must outlive the solution) is charged for every
+  /// piece walked and every root iteration.
+  explicit ExactSolution(const Case& c, int bits = 50, const RunControl* control = nullptr);
 
   /// Stationary state at v0 before t = 0.
   State pre() const { return pre_; }
@@ -80,6 +102,9 @@ private:
   double cap_time(const SegmentStart& seg, double T) const;
   SegmentStart next_start(const SegmentStart& seg, double T, double w_next) const;
   SegmentStart make_start(double w, std::vector<TailPiece> tail, double edge) const;
+  void charge(double units) const {
+    if (control_ != nullptr) control_->charge(units, "exact");
+  }
 
   Case c_;
   int bits_;
@@ -87,12 +112,17 @@ private:
   State pre_;
   std::vector<SegmentStart> starts_;
   std::vector<double> t_start_;
+  const RunControl* control_ = nullptr;
   mutable double last_bracket_ = 0.0;
   mutable long root_solves_ = 0;
 };
 
 /// Samples the continuum solution at the case's instants. rtol sets the root
-/// tolerance; info.error_estimate bounds the case error.
-RunResult run_exact(const Case& c, double rtol = 1e-12);
+/// tolerance; info.error_estimate bounds the case error. The work is charged
+/// to `control` (CaseAbandoned past its budget, Interrupted on a stop).
+RunResult run_exact(const CheckedCase& c, double rtol = 1e-12,
+                    const RunControl& control = RunControl{});
+/// The same for a case not yet checked: validates it first (InvalidInput).
+RunResult run_exact(const Case& c, double rtol = 1e-12, const RunControl& control = RunControl{});
 
 } // namespace mdrmap

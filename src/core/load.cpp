@@ -16,13 +16,17 @@ struct SingleRun {
   Series series;
   long steps = 0, updates = 0, elements = 0;
   LoadChecks checks;
+  double dx = 0.0;
+  double min_piece = std::numeric_limits<double>::infinity(); ///< LoadRow::min_piece
+  double max_unresolved = 0.0;                                ///< LoadRow::max_unresolved
 };
 
 struct RunSettings {
   double cells, phase, time_tol, dt_over_tau;
   LoadStart start;
-  int split = 1;         ///< adaptive steps per sample interval, at least
-  double window_a = 0.0; ///< the window is 1.6 window_a (+ 4 dx) on either side
+  int split = 1;            ///< adaptive steps per sample interval, at least
+  double window_a = 0.0;    ///< the window is 1.6 window_a (+ 4 dx) on either side
+  double piece_floor = 0.0; ///< free-material pieces this wide and wider are recorded
 };
 
 /// The deepest stationary contact of the history (its slowest velocity; a0
@@ -56,14 +60,19 @@ public:
   void restart() { h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol); }
   long steps() const { return steps_; }
 
+  /// `target` on the row's clock (the time since the segment's start).
   void advance_to(double target) {
     const double hmax = (target - row_.t()) / s_.split;
     while (row_.t() < target) {
       const double left = target - row_.t();
       double h = s_.dt_over_tau > 0.0 ? s_.dt_over_tau * tau_ : std::min(h_, hmax);
       if (h >= left * (1.0 - 1e-12)) h = left;
+      if (!(row_.t() + h > row_.t()))
+        throw CaseAbandoned("load: the time step (" + format_number(h) +
+                            ") fell below the resolution of the time " + format_number(row_.t()) +
+                            " within its segment");
       if (s_.dt_over_tau > 0.0 || left <= 1e-12 * (std::abs(target) + tau_)) {
-        LoadRow::Trial tr = row_.trial(h);
+        LoadRow::Trial tr = row_.trial(h, h);
         if (h == left) tr.t_end = target;
         row_.commit(tr);
         ++steps_;
@@ -86,7 +95,7 @@ private:
   void adaptive_step(double h, bool to_target, double target) {
     // (a trial that leaves the window is a rejected step, e.g. an undeformed
     // start, where D is unbounded as d -> 0)
-    const LoadRow::Trial big = row_.trial(h), half = row_.trial(0.5 * h);
+    const LoadRow::Trial big = row_.trial(h, h), half = row_.trial(0.5 * h, h);
     if (!row_.fits(big) || !row_.fits(half)) {
       reject_outside(big, half);
       h_ = 0.25 * h;
@@ -94,7 +103,7 @@ private:
     }
     row_.checkpoint();
     row_.commit(half);
-    const LoadRow::Trial two = row_.trial(0.5 * h);
+    const LoadRow::Trial two = row_.trial(0.5 * h, h);
     if (!row_.fits(two)) {
       row_.rollback();
       reject_outside(two, two);
@@ -150,14 +159,30 @@ SingleRun run_elastic(const Case& c) {
   return out;
 }
 
-SingleRun run_once(const Case& c, const RunSettings& s) {
+// Resolutions tried at most. Pieces of free material (LoadRow::min_piece)
+// narrower than kPieceFloor rtol a0 do not matter (they move the edge by less
+// than their width); a wider one with fewer than kPieceCells cells (the
+// companion: half as many) is not seen by the companion and gets
+// kCellsPerPiece cells, up to kMaxPieceElements elements in the window.
+constexpr int kAttempts = 5;
+constexpr double kPieceFloor = 0.3;
+constexpr double kPieceCells = 2.0;
+constexpr double kCellsPerPiece = 8.0;
+constexpr double kMaxPieceElements = 2e7;
+constexpr double kMaxElements = 2e7;
+
+SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& control) {
   if (!(c.material.tau > 0.0)) return run_elastic(c);
   const double dx = reference_radius(c, s.start) / s.cells;
   const double A = 1.6 * s.window_a + 4.0 * dx;
-  if (!(2.0 * A / dx < 2e8))
-    throw std::runtime_error("load: the element window would hold " + format_number(2.0 * A / dx) +
-                             " elements (more than 2e8)");
-  LoadRow row(c, dx, A, s.phase);
+  // (a window of kMaxElements elements is 320 MB of row; at zeta0 = 1e12 after
+  // sliding at zeta0 = 1 it would need 4e7 and a step refreshes all of them)
+  if (!(2.0 * A / dx <= kMaxElements))
+    throw CaseAbandoned("load: the element window would hold " + format_number(2.0 * A / dx) +
+                        " elements (more than " + format_number(kMaxElements) +
+                        "): the velocities of the history differ too much for this solver");
+  LoadRow row(c, dx, A, s.phase, control);
+  row.set_pieces(s.piece_floor, kPieceCells * dx);
   if (s.start == LoadStart::Stationary)
     row.start_stationary(c.history.v0);
   else if (s.start == LoadStart::Rest)
@@ -172,41 +197,85 @@ SingleRun run_once(const Case& c, const RunSettings& s) {
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const double t0 = c.history.start(k);
-    row.change_velocity(seg.w);
+    row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
     stepper.restart();
     for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      // (t0 + offset: the row's clock runs from the first change, as the samples)
-      stepper.advance_to(std::max(row.t(), t0 + c.sampling.offset(j, seg.T)));
+      const double off = c.sampling.offset(j, seg.T);
+      stepper.advance_to(std::max(row.t(), off));
       row.check_one_interval();
-      out.series.set(i, t0 + c.sampling.offset(j, seg.T), static_cast<int>(k), row.measure());
+      out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)
     }
   }
   out.steps = stepper.steps();
   out.updates = row.updates();
   out.elements = static_cast<long>(row.capacity());
   out.checks = row.checks();
+  out.dx = dx;
+  out.min_piece = row.min_piece();
+  out.max_unresolved = row.max_unresolved();
   return out;
 }
+
+// The local step tolerance, as a fraction of rtol. An edge that starts to
+// move from a tangency (a hold or a drop after the edge sat at the cap) moves
+// by ~sqrt(depth error): on a drop-hold-rise at zeta0 = 10 the depth error of
+// 1e-6 left by a tolerance of 0.05 rtol (rtol 1e-4) put a2 1.5 rtol off at the
+// hold's first sample, and the companion (4x the tolerance) shared most of it
+// (est/err 0.64). 0.02 rtol keeps it within rtol.
+constexpr double kTimeTol = 0.02;
 
 // Starting resolution and local time tolerance from rtol (refined below if
 // the companion disagrees by more than rtol).
 RunSettings initial_settings(const LoadOptions& o) {
-  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1, 0.0};
+  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1, 0.0, 0.0};
   if (!(s.cells > 0.0)) s.cells = std::clamp(std::ceil(0.5 / std::sqrt(o.rtol)), 16.0, 1e6);
-  if (!(s.time_tol > 0.0)) s.time_tol = 0.05 * o.rtol;
+  if (!(s.time_tol > 0.0)) s.time_tol = kTimeTol * o.rtol;
   return s;
 }
 
 // run_once; if the edge leaves a window sized below the Hertz contact, again
 // with the Hertz contact's window (s.window_a then says which was used).
-SingleRun run_widening(const Case& c, RunSettings& s) {
+SingleRun run_widening(const Case& c, RunSettings& s, const RunControl& control) {
   try {
-    return run_once(c, s);
+    return run_once(c, s, control);
   } catch (const WindowExceeded&) {
     if (!(s.window_a < c.a0())) throw;
     s.window_a = c.a0();
-    return run_once(c, s);
+    return run_once(c, s, control);
   }
+}
+
+// Refines s so that a piece `width` wide gets kCellsPerPiece cells (run at
+// spacing dx); false if that needs more than kMaxPieceElements elements.
+bool resolve_piece(RunSettings& s, double dx, double width) {
+  const double cells = std::ceil(s.cells * kCellsPerPiece * dx / width);
+  const double elements = 3.2 * s.window_a / (dx * s.cells / cells);
+  if (!(elements <= kMaxPieceElements)) return false;
+  s.cells = cells;
+  return true;
+}
+
+// The companion: half the resolution at a shifted phase (a read-out error
+// that depends on where the grid falls is not shared), four times the local
+// step error and at least two steps per sample interval (where the sample
+// spacing limits the steps, the companion does not repeat the step error).
+// The estimate is floored at the local step tolerance: below it the two runs'
+// difference no longer measures the error (it is within the scatter over grid
+// phases of an unresolved tail, ~1e-6 at zeta0 = 1e-4).
+double companion_estimate(const Case& c, RunSettings& s, const Series& fine, RunResult& res,
+                          const RunControl& control) {
+  RunSettings cs = s;
+  cs.cells = 0.5 * s.cells;
+  cs.phase = std::fmod(s.phase + 0.381966, 1.0);
+  cs.time_tol = 4.0 * s.time_tol;
+  cs.split = 2;
+  if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
+  const SingleRun coarse = run_widening(c, cs, control);
+  s.window_a = cs.window_a;
+  res.info.steps += coarse.steps;
+  res.info.element_updates += coarse.updates;
+  return std::max(case_error(coarse.series, fine, c, 1e-12).max(), s.time_tol) +
+         64.0 * std::numeric_limits<double>::epsilon();
 }
 
 void merge(LoadChecks& a, const LoadChecks& b) {
@@ -227,41 +296,37 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   res.info.rtol = opt.rtol;
   RunSettings s = initial_settings(opt);
   s.window_a = opt.window_a0 > 0.0 ? opt.window_a0 * c.a0() : history_radius(c, s.start);
+  s.piece_floor = kPieceFloor * opt.rtol * c.a0();
   const bool adaptive = !(opt.cells > 0.0);
+  const RunControl own;
+  const RunControl& control = opt.control != nullptr ? *opt.control : own;
   LoadChecks all;
   for (int attempt = 0;; ++attempt) {
-    SingleRun fine = run_widening(c, s);
+    SingleRun fine = run_widening(c, s, control);
     res.info.steps += fine.steps;
     res.info.element_updates += fine.updates;
     res.info.refinements = attempt + 1;
     merge(all, fine.checks);
+    // a piece of free material that matters but has fewer than kPieceCells
+    // cells: resolve it first (the companion would share the error)
+    const bool unresolved = fine.min_piece < kPieceCells * fine.dx;
+    if (adaptive && unresolved && attempt < kAttempts - 1 &&
+        resolve_piece(s, fine.dx, fine.min_piece))
+      continue;
     double est = 0.0;
-    if (opt.estimate_error || adaptive) {
-      // half the resolution at a shifted phase (a read-out error that depends
-      // on where the grid falls is not shared), four times the local step error
-      RunSettings cs = s;
-      cs.cells = 0.5 * s.cells;
-      cs.phase = std::fmod(s.phase + 0.381966, 1.0);
-      // and at least two steps per sample interval: where the sample spacing
-      // limits the steps, the companion does not repeat the step error
-      cs.time_tol = 4.0 * s.time_tol;
-      cs.split = 2;
-      if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
-      SingleRun coarse = run_widening(c, cs);
-      s.window_a = cs.window_a;
-      res.info.steps += coarse.steps;
-      res.info.element_updates += coarse.updates;
-      // floored at the local step tolerance: below it the two runs' difference
-      // no longer measures the error (it is within the scatter over grid
-      // phases of an unresolved tail, ~1e-6 at zeta0 = 1e-4)
-      est = std::max(case_error(coarse.series, fine.series, c, 1e-12).max(), s.time_tol) +
-            64.0 * std::numeric_limits<double>::epsilon();
-    }
+    if (opt.estimate_error || adaptive) est = companion_estimate(c, s, fine.series, res, control);
+    // (a piece left unresolved, the narrow ones below the floor included, can
+    // move the edge by up to its width, unseen by the companion)
+    if (opt.estimate_error || adaptive) est = std::max(est, fine.max_unresolved / c.a0());
     res.series = std::move(fine.series);
     res.info.error_estimate = est;
     res.info.cells_per_a1 = s.cells;
     res.info.elements = fine.elements;
-    if (!adaptive || est <= opt.rtol || attempt >= 4) break;
+    if (!adaptive || est <= opt.rtol) break;
+    if (attempt >= kAttempts - 1)
+      throw CaseAbandoned("load: the error estimate " + format_number(est) + " stays above rtol " +
+                          format_number(opt.rtol) + " after " + std::to_string(attempt + 1) +
+                          " resolutions (a_ref/dx up to " + format_number(s.cells) + ")");
     const double f = std::clamp(std::sqrt(est / opt.rtol), 1.5, 4.0);
     s.cells = std::ceil(s.cells * f);
     s.time_tol /= f * f;

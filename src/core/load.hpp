@@ -28,6 +28,10 @@ struct LoadOptions {
   /// stationary contact of the history); a run that goes deeper is rerun with
   /// the Hertz contact's window.
   double window_a0 = 0.0;
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag).
+  /// Every loop of the solver charges it (CaseAbandoned past the budget,
+  /// Interrupted on a stop request).
+  const RunControl* control = nullptr;
 };
 
 /// Runs a load-controlled case (c.loading.by_force()). The resolution is set
@@ -37,6 +41,11 @@ struct LoadOptions {
 /// edge leaves it.
 /// `checks`, if given, receives what the run detected about the model's
 /// structure (leading edge, one contact interval, deepest state).
+/// With the resolution chosen from rtol (cells == 0), a piece of free
+/// material narrower than two cells (a reslide's travel, a band let go at a
+/// change) that matters at rtol is resolved first, and a case whose error
+/// estimate stays above rtol after five resolutions throws CaseAbandoned
+/// (stating the estimate and rtol) instead of returning a result.
 RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks = nullptr);
 
 } // namespace mdrmap

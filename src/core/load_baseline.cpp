@@ -111,9 +111,9 @@ Grid make_grid(const Case& c, const LoadBaselineOptions& opt) {
 /// material is untouched, behind it it can never touch again while w >= 0).
 class LoadRow {
 public:
-  LoadRow(const Case& c, const Grid& g, double phase)
-      : c_(c), g_(g), x0_((phase - static_cast<double>(g.k0)) * g.dx), u_(g.n_elem, 0.0),
-        contact_(g.n_elem, 0) {}
+  LoadRow(const Case& c, const Grid& g, double phase, const RunControl& control)
+      : c_(c), g_(g), control_(control), x0_((phase - static_cast<double>(g.k0)) * g.dx),
+        u_(g.n_elem, 0.0), contact_(g.n_elem, 0) {}
 
   double depth() const { return d_; }
   long updates() const { return updates_; }
@@ -153,6 +153,7 @@ public:
       }
     }
     updates_ += static_cast<long>(last(s) - first(s1));
+    charge(last(s) - first(s1) + 1);
     if (dec == 0.0) // relaxed within the step (tau = 0 or tau << dt): elastic balance
       while (relax_elastic(s1, w)) {
       }
@@ -165,6 +166,7 @@ public:
   /// The state at travel s and velocity w (after the force balance).
   State measure(double s, double w) {
     const double D = settle(s, w), G4 = 4.0 * c_.material.G * g_.dx;
+    charge(last(s) - first(s));
     State st;
     st.a2 = -std::sqrt(c_.indenter.R * d_);
     for (std::size_t i = first(s); i < last(s); ++i) {
@@ -183,11 +185,13 @@ public:
 private:
   const Case& c_;
   const Grid& g_;
+  const RunControl& control_;
   double x0_, d_ = 0.0;
   std::vector<double> u_;
   std::vector<unsigned char> contact_;
   long updates_ = 0;
 
+  void charge(std::size_t n) const { control_.charge(static_cast<double>(n), "load baseline"); }
   double xi(std::size_t i, double s) const { return x0_ + static_cast<double>(i) * g_.dx + s; }
   double h(double x) const { return d_ - c_.indenter.g(x); }
   double q(double x, double w) const {
@@ -205,6 +209,7 @@ private:
   /// first element it meets.
   double settle(double s, double w) {
     for (;;) {
+      charge(last(s) - first(s) + 1);
       double n = 0.0, sq = 0.0;
       for (std::size_t i = first(s); i < last(s); ++i)
         if (contact_[i]) {
@@ -232,6 +237,7 @@ private:
   bool relax_elastic(double s, double w) {
     d_ = settle(s, w);
     const double a1 = std::min(std::sqrt(c_.indenter.R * d_), g_.a_lim);
+    charge(last(s) - first(s) + 1);
     bool touched = false;
     for (std::size_t i = first(s); i < last(s); ++i) {
       const double x = xi(i, s);
@@ -244,6 +250,7 @@ private:
   }
 
   void touch_first(double s) {
+    charge(last(s) - first(s) + 1);
     double dmin = INFINITY;
     for (std::size_t i = first(s); i < last(s); ++i)
       dmin = std::min(dmin, u_[i] + c_.indenter.g(xi(i, s)));
@@ -292,9 +299,9 @@ struct Stepper {
   }
 };
 
-RunResult run_once(const Case& c, const LoadBaselineOptions& opt) {
+RunResult run_once(const Case& c, const LoadBaselineOptions& opt, const RunControl& control) {
   const Grid g = make_grid(c, opt);
-  LoadRow row(c, g, opt.phase);
+  LoadRow row(c, g, opt.phase, control);
   RunResult res;
   res.info.solver = "load_baseline";
   res.info.cells_per_a1 = opt.cells_per_a0;
@@ -340,14 +347,16 @@ RunResult run_load_baseline(const Case& c, const LoadBaselineOptions& opt) {
   if (!c.loading.by_force())
     throw InvalidInput("solver", "the load-control baseline solves load control only (--FN); "
                                  "this case prescribes the depth (--d)");
-  RunResult res = run_once(c, opt);
+  const RunControl own;
+  const RunControl& control = opt.control != nullptr ? *opt.control : own;
+  RunResult res = run_once(c, opt, control);
   if (opt.estimate_error) {
     // First order in dx and dt: the difference to a run at half the
     // resolution in both is about the error.
     LoadBaselineOptions half = opt;
     half.cells_per_a0 = std::max(2.0, 0.5 * opt.cells_per_a0);
     half.dt = 2.0 * opt.dt;
-    const RunResult coarse = run_once(c, half);
+    const RunResult coarse = run_once(c, half, control);
     res.info.error_estimate = case_error(coarse.series, res.series, c, 1e-12).max();
     res.info.steps += coarse.info.steps;
     res.info.element_updates += coarse.info.element_updates;

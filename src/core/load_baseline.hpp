@@ -28,6 +28,9 @@ struct LoadBaselineOptions {
   bool graded_start = true;       ///< undeformed start: steps t dt / tau until t = tau
   long max_elements = 20'000'000; ///< refuse cases that would need more
   bool estimate_error = true;     ///< half-resolution companion for error_estimate
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag):
+  /// every step, balance and touch charges the elements it visits.
+  const RunControl* control = nullptr;
 };
 
 /// Runs a load-controlled case (c.loading.by_force()); throws InvalidInput for

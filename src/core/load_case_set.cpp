@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace mdrmap {
@@ -63,6 +64,20 @@ std::vector<NamedCase> load_case_set(long samples) {
   }
   add("3seg load 1e-12 G R^2", 1.0, 1e-12, {{0.1, 2.0}, {0.0, 2.0}, {1.0, 3.0}});
   add("3seg load 1e3 G R^2", 1.0, 1e3, {{0.1, 2.0}, {0.0, 2.0}, {1.0, 3.0}});
+  // drop to 0.1 v0, a short hold, a rise: the hold's re-touch front starts
+  // from the tangency the cap left, where a2 is most sensitive to the depth
+  for (const auto& [z, th, up] :
+       {std::tuple{10.0, 0.01, 1.0}, std::tuple{10.0, 0.1, 1.0}, std::tuple{3.0, 0.01, 1.0},
+        std::tuple{1.0, 0.1, 1.0}, std::tuple{30.0, 0.03, 1.0}, std::tuple{10.0, 0.3, 3.0}})
+    add(fmt("drop-hold-rise zeta0=%g", z) + fmt(" hold=%g", th) + fmt(" rise=%gx", up), z, F,
+        {{0.1, 1.0}, {0.0, th}, {up, 1.0}});
+  // after a long hold (the Hertz rest state), a reslide whose travel is a
+  // small fraction of a0 (and of the cells of rtol's resolution), then a
+  // hold: the front crosses the narrow pieces the reslide left
+  for (const auto& [z, th, T] : {std::tuple{1e-3, 100.0, 0.1}, std::tuple{1e-2, 10.0, 0.01},
+                                 std::tuple{1e-3, 100.0, 0.03}, std::tuple{0.1, 10.0, 0.005}})
+    add(fmt("sub-grid reslide zeta0=%g", z) + fmt(" travel=%g a0", z * T), z, F,
+        {{0.0, th}, {1.0, T}, {0.0, 1.0}});
   return out;
 }
 

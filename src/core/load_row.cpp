@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kNoMemory = -std::numeric_limits<double>::infinity(); // ln 0: fresh material
 constexpr long long kNoElement = std::numeric_limits<long long>::min();
+constexpr double kRootWork = 16.0; // work units of one evaluation of the edge
 
 /// phi(x) = 1 - (1 - exp(-x)) / x, the weight of D's change over a step of
 /// x = h / tau (series where the difference would cancel).
@@ -35,9 +36,9 @@ template <class F> double bracketed_root(F f, double lo, double hi, double flo, 
 
 } // namespace
 
-LoadRow::LoadRow(const Case& c, double dx, double A, double phase)
-    : c_(c), R_(c.indenter.R), G_(c.material.G), tau_(c.material.tau), F0_(c.loading.F0),
-      a0_(c.a0()), dx_(dx), A_(A), phase_(phase) {
+LoadRow::LoadRow(const Case& c, double dx, double A, double phase, const RunControl& control)
+    : c_(c), control_(control), R_(c.indenter.R), G_(c.material.G), tau_(c.material.tau),
+      F0_(c.loading.F0), a0_(c.a0()), dx_(dx), A_(A), phase_(phase) {
   if (!(tau_ > 0.0)) throw std::invalid_argument("LoadRow: tau must be > 0 (tau = 0 is Hertz)");
   cap_ = static_cast<std::size_t>(std::ceil(2.0 * A / dx)) + 8;
   lnU_.assign(cap_, kNoMemory);
@@ -167,7 +168,8 @@ double LoadRow::front_root(const Frame& f1, long long jf, double d1, double t1, 
 LoadRow::Edge LoadRow::edge_at(double d1, double h, const Frame& f1) const {
   const double a = std::sqrt(R_ * d1), t1 = t_ + h, L = w_ * tau_;
   // walk outward over the free elements of t0 that touched by t1
-  long long j = first_beyond(f_, e_);
+  const long long j0 = first_beyond(f_, e_);
+  long long j = j0;
   const long long top = jhi(f1);
   double front = a;
   const double a0e = a1(), he = (a0e - e_) * (a0e + e_) / R_; // u of the edge material at t0
@@ -185,18 +187,42 @@ LoadRow::Edge LoadRow::edge_at(double d1, double h, const Frame& f1) const {
     }
     ++j;
   }
+  // (a root evaluation: the walk, the front's bracketed root and the cap's
+  // Newton iteration, about 16 element updates' worth)
+  control_.charge(static_cast<double>(j - j0) + kRootWork, "load");
   front = std::min(front, a);
   const double cap = cap_joint(a, L);
   if (front < cap) return Edge{front, D_front(a, front, L)};
   return Edge{cap, cap * (cap + 2.0 * L) / R_};
 }
 
-LoadRow::Trial LoadRow::trial(double h) const {
-  const double x = h / tau_;
+// -dD/dd at the row's state (>= 0). At the cap D = c (c + 2L) / R with
+// (a + c)^2 (2c - a + 3L) = 4 a0^3, so dD/dd = -(c - a + 2L) / (2a); at a
+// front (held) dD/da = -F0 / (4G (a + e)^2) + ((2a - e)/3 - L) / R, and
+// da/dd = R / (2a).
+// Only the order of magnitude matters (any k >= 0 keeps the scheme second
+// order; a k near the true slope makes the coupling weak).
+double LoadRow::stiffness() const {
+  const double a = a1(), L = w_ * tau_, e = e_;
+  if (!(a > 0.0)) return 0.0;
+  double k = 0.0;
+  if (e >= cap_joint(a, L) * (1.0 - 1e-12))
+    k = (e - a + 2.0 * L) / (2.0 * a);
+  else
+    k = (F0_ / (4.0 * G_ * (a + e) * (a + e)) - ((2.0 * a - e) / 3.0 - L) / R_) * R_ / (2.0 * a);
+  return std::isfinite(k) ? std::max(k, 0.0) : 0.0;
+}
+
+LoadRow::Trial LoadRow::trial(double h, double h_gate) const {
+  // (where the plain coupling still damps the mode, k h / tau <= 10, it is
+  // used, k = 0: its error constant is the smaller one)
+  const double ks = stiffness(), k = ks * (h_gate / tau_) > 10.0 ? ks : 0.0, l = 1.0 + k;
+  const double x = l * (h / tau_);
   const double E = std::exp(-x), omE = -std::expm1(-x), ph = phi(x);
   const Frame f1 = frame_at(h);
-  const double base = d_ * E + D_ * omE;
-  auto r = [&](double d1) { return d1 - (base + (edge_at(d1, h, f1).D - D_) * ph); };
+  const double Dk0 = D_ + k * d_;
+  const double base = d_ * E + Dk0 / l * omE;
+  auto r = [&](double d1) { return d1 - (base + (edge_at(d1, h, f1).D + k * d1 - Dk0) / l * ph); };
   // r is strictly increasing in d1: bracket around the explicit guess
   // (D, hence base, may be negative while the depth falls fast: start from d)
   double lo = base > 0.0 ? base : 0.5 * d_, hi = lo;
@@ -213,6 +239,7 @@ LoadRow::Trial LoadRow::trial(double h) const {
   }
   Trial tr;
   tr.h = h;
+  tr.k = k;
   tr.t_end = t_ + h;
   if (!(rlo <= 0.0 && rhi >= 0.0 && lo > 0.0)) {
     // no positive depth balances the load over this step (the depth would
@@ -229,8 +256,9 @@ LoadRow::Trial LoadRow::trial(double h) const {
 
 // Depth a fraction theta into a trial step (the same exponential formula).
 double LoadRow::depth_within(double theta, const Trial& tr) const {
-  const double x = theta * tr.h / tau_;
-  return d_ * std::exp(-x) - D_ * std::expm1(-x) + (tr.D - D_) * theta * phi(x);
+  const double l = 1.0 + tr.k, x = l * (theta * tr.h / tau_);
+  const double Dk0 = D_ + tr.k * d_, Dk1 = tr.D + tr.k * tr.d;
+  return d_ * std::exp(-x) - Dk0 / l * std::expm1(-x) + (Dk1 - Dk0) / l * theta * phi(x);
 }
 
 // Elements in contact at t0 that lie beyond the new edge at t1 left it where
@@ -240,7 +268,8 @@ void LoadRow::detach(const Trial& tr, const Frame& f1) {
   const double move = w_ * tr.h, de = tr.e - e_;
   // (material ahead of the contact at t0 that is beyond the edge at t1 went
   // through the whole contact during the step: it left at the edge too)
-  long long j = std::min(first_beyond(f_, e_) - 1, jhi(f1));
+  const long long top = std::min(first_beyond(f_, e_) - 1, jhi(f1));
+  long long j = top;
   for (; j >= jlo(f1); --j) {
     const double x1 = xi(f1, j);
     const double x0 = xi(f_, j);
@@ -254,6 +283,7 @@ void LoadRow::detach(const Trial& tr, const Frame& f1) {
     const double tc = t_ + theta * tr.h;
     set_lnU(j, u > 0.0 ? std::log(u) + (tc - t_base_) / tau_ : kNoMemory);
   }
+  control_.charge(static_cast<double>(top - j + 1), "load");
 }
 
 bool LoadRow::fits(const Trial& tr) const {
@@ -324,12 +354,30 @@ void LoadRow::rebase_time() {
   }
   const double s = (t_ - t_base_) / tau_;
   if (s < 512.0) return;
+  control_.charge(static_cast<double>(cap_), "load");
   for (double& v : lnU_)
     if (v != kNoMemory) v -= s;
   t_base_ = t_;
 }
 
+// The clock then reads 0. Within 512 tau of the base the base moves along
+// (t - t_base is kept, nothing is rewritten: a short segment costs O(1));
+// beyond, the stored logarithms are rebased to the current instant.
+void LoadRow::restart_clock() {
+  const double s = (t_ - t_base_) / tau_;
+  if (s < 512.0) {
+    t_base_ -= t_;
+    t_ = 0.0;
+    return;
+  }
+  control_.charge(static_cast<double>(cap_), "load");
+  for (double& v : lnU_)
+    if (v != kNoMemory) v -= s; // (-inf after a hold of ~1e308 tau: u = 0, as it is)
+  t_ = t_base_ = 0.0;
+}
+
 void LoadRow::start_stationary(double w) {
+  control_.charge(static_cast<double>(cap_), "load");
   w_ = w;
   d_ = stationary_depth(c_, w);
   D_ = d_;
@@ -365,7 +413,15 @@ void LoadRow::start_undeformed(double d_rel) {
   checks_.max_a1_over_a0 = e_ / a0_;
 }
 
+void LoadRow::note_piece(double width) {
+  if (!(width > 0.0)) return;
+  if (width >= piece_floor_) min_piece_ = std::min(min_piece_, width);
+  if (width < piece_resolved_) max_unresolved_ = std::max(max_unresolved_, width);
+}
+
 void LoadRow::change_velocity(double w) {
+  if (w_ > 0.0 && t_ > 0.0) note_piece(w_ * t_); // what left the contact in the segment
+  restart_clock();
   w_ = w;
   const double a = a1(), L = w * tau_;
   const double cap = cap_joint(a, L);
@@ -380,6 +436,7 @@ void LoadRow::change_velocity(double w) {
     const double u = (a - x) * (a + x) / R_;
     set_lnU(j, u > 0.0 ? std::log(u) + (t_ - t_base_) / tau_ : kNoMemory);
   }
+  note_piece(e_ - cap);
   e_ = cap;
   D_ = cap * (cap + 2.0 * L) / R_;
 }
@@ -412,9 +469,10 @@ void LoadRow::check_one_interval() {
     if (psi < 0.0) gap_seen = true;
     if (gap_seen && psi > 1e-9 * d_) {
       ++checks_.second_contact;
-      return;
+      break;
     }
   }
+  control_.charge(static_cast<double>(j - first_beyond(f_, e_) + 1), "load");
 }
 
 } // namespace mdrmap

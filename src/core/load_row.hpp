@@ -23,11 +23,28 @@
 // beyond the cap would pull). Forces are then exact polynomial integrals over
 // [-a1, e]; the row only locates the front.
 //
-// The depth. d' = (D - d) / tau is integrated exponentially with D linear over
-// the step (exact for tau -> 0: d = D, Hertz): d1 = d0 E + D0 (1 - E) +
-// (D1 - D0) phi(h/tau), E = exp(-h/tau), phi(x) = 1 - (1 - exp(-x))/x. D1
-// depends on d1 through a1 and the contact set at the step's end: one scalar
-// equation, strictly increasing in d1, solved by a bracketed root.
+// The depth. tau d' = D - d, where D depends on d itself (through a1 and the
+// edge) with a slope -k that reaches ~L / a1 at zeta0 >> 1: a mode as fast as
+// the contact time a1 / v. Where k h / tau > 10, with k frozen over the step
+// (from the state at its start, core/load_row.cpp: stiffness), it is written
+// tau d' = Dk - (1 + k) d, Dk = D + k d, and integrated exponentially at the
+// rate (1 + k) / tau with Dk linear over the step: d1 = d0 E + Dk0 (1 - E) / l
+// + (Dk1 - Dk0) phi(x) / l, l = 1 + k, x = l h / tau, E = exp(-x),
+// phi(x) = 1 - (1 - exp(-x))/x. What is left of the coupling, Dk's slope
+// k - k_true, is weak, and the weight of Dk0 vanishes as x grows: the
+// coupling is L-stable (the fast mode is damped, not flipped from step to
+// step as by a trapezoid), second order for any k, and exact for tau -> 0
+// (d = D, Hertz); elsewhere k = 0, the plain exponential step with D linear.
+// Dk1 depends on d1 through a1 and the contact set at the step's end: one
+// scalar equation, solved by a bracketed root.
+//
+// Time. The row's clock runs from the start of the current segment
+// (restart_clock at each velocity change): a step after a hold of 1e18 tau
+// is as fine as after one of 1 tau (no digits are lost to the hold).
+//
+// Work. Every loop over elements and every root evaluation is charged to the
+// case's RunControl (a case past its budget throws CaseAbandoned, a stop
+// request Interrupted).
 //
 // The front. A free element touches when its gap psi = d - g(xi) - u >= 0
 // (below the cap a touched element stays in contact: psi' = p / (4 G tau) at
@@ -38,11 +55,13 @@
 // element (exact for material that left at the cap). In material coordinates
 // the front never moves back.
 #include <cstddef>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "core/case.hpp"
+#include "core/run_control.hpp"
 #include "core/state.hpp"
 
 namespace mdrmap {
@@ -63,8 +82,9 @@ public:
 
 class LoadRow {
 public:
-  /// dx the element spacing, A the half-width of the window (>= the largest a1).
-  LoadRow(const Case& c, double dx, double A, double phase);
+  /// dx the element spacing, A the half-width of the window (>= the largest
+  /// a1); `control` is charged with the row's work (it must outlive the row).
+  LoadRow(const Case& c, double dx, double A, double phase, const RunControl& control);
 
   void start_stationary(double w); ///< stationary sliding at w under F0
   void start_rest();               ///< fully relaxed at rest under F0: Hertz
@@ -72,15 +92,20 @@ public:
   /// ([-a1, a1]): the creep start (d ~ d0 (t/tau)^(2/3) from d = 0).
   void start_undeformed(double d_rel);
   /// Velocity change to w at the current instant: contact beyond the new cap
-  /// lets go at once (u = d - g), d is continuous, D jumps.
+  /// lets go at once (u = d - g), d is continuous, D jumps. The clock
+  /// restarts: t() is the time since this change.
   void change_velocity(double w);
 
   /// The state after a step h, computed without changing the row.
   struct Trial {
     double h = 0.0, d = 0.0, D = 0.0, e = 0.0;
+    double k = 0.0;     ///< the stiffness frozen over the step (see the header)
     double t_end = 0.0; ///< t + h (the stepper may snap it to a sample instant)
   };
-  Trial trial(double h) const;
+  /// `h_gate`: the stiff form (k > 0) is used where k h_gate / tau > 10 (the
+  /// plain coupling still damps the mode below); the stepper passes the same
+  /// h_gate for a step and its two halves.
+  Trial trial(double h, double h_gate) const;
   /// Whether a trial has a depth and its leading edge stays inside the window.
   bool fits(const Trial& tr) const;
   /// Whether the leading edge is within half a cell of the window's limit.
@@ -106,6 +131,22 @@ public:
   /// Counts free material touching beyond the front (the contact would not
   /// be one interval); called at samples.
   void check_one_interval();
+  /// Pieces of free material at least `floor` wide are recorded in
+  /// min_piece (narrower ones cannot move the edge by more than their
+  /// width); pieces narrower than `resolved` in max_unresolved.
+  void set_pieces(double floor, double resolved) {
+    piece_floor_ = floor;
+    piece_resolved_ = resolved;
+  }
+  /// The narrowest piece of free material recorded (infinity if none): a band
+  /// let go at a velocity change ([cap, e]) and the travel of a segment that
+  /// slid (what left the contact during it). A piece much narrower than dx is
+  /// not represented by any element: a later re-touch front crosses it at the
+  /// wrong time, in this run and in its half-resolution companion alike.
+  double min_piece() const { return min_piece_; }
+  /// The widest piece narrower than `resolved` (0 if none): the edge may be
+  /// off by up to its width where a front crosses it.
+  double max_unresolved() const { return max_unresolved_; }
 
 private:
   struct Frame { // position of the row: P = m + th cells of travel
@@ -130,10 +171,13 @@ private:
                     double lue) const;
   double cap_joint(double a, double L) const;
   double D_front(double a, double e, double L) const;
+  double stiffness() const;
   double depth_within(double theta, const Trial& tr) const;
+  void restart_clock();
   void detach(const Trial& tr, const Frame& f1);
 
   Case c_;
+  const RunControl& control_;
   double R_, G_, tau_, F0_, a0_;
   double dx_, A_, phase_;
   std::size_t cap_;
@@ -143,6 +187,9 @@ private:
   long double P_ = 0.0L;
   double t_ = 0.0, t_base_ = 0.0;
   double w_ = 0.0, d_ = 0.0, D_ = 0.0, e_ = 0.0;
+  double piece_floor_ = 0.0, min_piece_ = std::numeric_limits<double>::infinity();
+  double piece_resolved_ = 0.0, max_unresolved_ = 0.0;
+  void note_piece(double width);
   long updates_ = 0;
   LoadChecks checks_;
 

@@ -152,8 +152,10 @@ template <class F> double solve(F f, double lo, double hi) {
 
 class MdrRow {
 public:
-  MdrRow(const Case& s, double cells_per_a1, double phase, MdrSubgrid subgrid)
-      : s_(s), a1_(analytic::a1(s)), dx_(a1_ / cells_per_a1), phase_(phase), subgrid_(subgrid) {
+  MdrRow(const Case& s, double cells_per_a1, double phase, MdrSubgrid subgrid,
+         const RunControl& control)
+      : s_(s), a1_(analytic::a1(s)), dx_(a1_ / cells_per_a1), phase_(phase), subgrid_(subgrid),
+        control_(control) {
     cap_ = static_cast<std::size_t>(std::floor(2.0 * cells_per_a1)) + 5;
     nodes_.assign(cap_, Site{});
   }
@@ -196,6 +198,7 @@ public:
   /// negative (xi > a2(w)) let go at once with u = h(xi). Tracers mark the
   /// trailing edge (and the new cap after a rise); see the header comment.
   void change_velocity(double w) {
+    control_.charge(static_cast<double>(jhi_ - jlo_ + 1), "mdr");
     const long long jb = last_contact_node();
     const bool any = jb >= jlo_;
     const Edge e = any ? read_edge(jb) : Edge{};
@@ -236,10 +239,15 @@ public:
     }
     updates_ += jhi_ - jlo_ + 1;
     carry_markers(w_ * dt, st);
+    // the step's element updates, tracers and ghost sites
+    control_.charge(static_cast<double>(jhi_ - jlo_ + 1) +
+                        static_cast<double>(tracers_.size() + 3 * ghosts_.size()),
+                    "mdr");
   }
 
   /// Forces and trailing edge of the current state.
   State measure() const {
+    control_.charge(static_cast<double>(jhi_ - jlo_ + 1), "mdr");
     // first and last contact node
     long long ja = jhi_ + 1, jb = jlo_ - 1;
     for (long long j = jlo_; j <= jhi_; ++j) {
@@ -458,6 +466,7 @@ private:
   Case s_;
   double a1_, dx_, phase_;
   MdrSubgrid subgrid_;
+  const RunControl& control_;
   std::size_t cap_;
   std::vector<Site> nodes_;      // ring buffer over the window (x filled in by node())
   std::vector<Piece> pieces_;    // every piece made so far
@@ -707,9 +716,10 @@ void spin_up(MdrRow& row, const Case& c, double cells) {
   }
 }
 
-SingleRun run_once(const Case& c, double cells, double phase, const MdrOptions& opt) {
+SingleRun run_once(const Case& c, double cells, double phase, const MdrOptions& opt,
+                   const RunControl& control) {
   check_travel(c, cells);
-  MdrRow row(c, cells, phase, opt.subgrid);
+  MdrRow row(c, cells, phase, opt.subgrid, control);
   if (opt.spinup)
     spin_up(row, c, cells);
   else
@@ -747,6 +757,9 @@ double initial_cells(const MdrOptions& o) {
   return std::clamp(std::ceil(c), 16.0, 1e7);
 }
 
+// An estimate below this is rounding noise of the two runs, not a resolution error.
+constexpr double kRoundingLevel = 1e-11;
+
 } // namespace
 
 RunResult run_mdr(const Case& s, const MdrOptions& opt) {
@@ -763,9 +776,11 @@ RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   // a non-commensurate fraction of a cell, so that an error of the sub-grid
   // read-out that depends on where the grid falls is not shared by both runs.
   const double companion_phase = std::fmod(opt.phase + 0.381966, 1.0);
+  const RunControl own;
+  const RunControl& control = opt.control != nullptr ? *opt.control : own;
   double prev_est = 0.0;
   for (int attempt = 0;; ++attempt) {
-    SingleRun fine = run_once(s, cells, opt.phase, opt);
+    SingleRun fine = run_once(s, cells, opt.phase, opt, control);
     res.info.steps += fine.steps;
     res.info.element_updates += fine.updates;
     res.info.refinements = attempt + 1;
@@ -774,7 +789,7 @@ RunResult run_mdr(const Case& s, const MdrOptions& opt) {
       // with convergence of order p the difference is ~(2^p - 1) times the
       // error of the fine run; report it whole. Where both runs are exact
       // it is rounding noise of either sign: add a rounding floor, as exact does.
-      SingleRun coarse = run_once(s, 0.5 * cells, companion_phase, opt);
+      SingleRun coarse = run_once(s, 0.5 * cells, companion_phase, opt, control);
       res.info.steps += coarse.steps;
       res.info.element_updates += coarse.updates;
       est = case_error(coarse.series, fine.series, s, 1e-12).max() +
@@ -784,10 +799,16 @@ RunResult run_mdr(const Case& s, const MdrOptions& opt) {
     res.info.error_estimate = est;
     res.info.cells_per_a1 = cells;
     res.info.elements = fine.elements;
-    // stop when refining no longer helps: the estimate is at rounding level
-    const bool stagnant = attempt > 0 && est > 0.5 * prev_est;
+    // refining no longer helps once the estimate is rounding noise (it no
+    // longer falls); an estimate above rtol after the last refinement fails
+    const bool stagnant = attempt > 0 && est > 0.5 * prev_est && est < kRoundingLevel;
     prev_est = est;
-    if (!adaptive || est <= opt.rtol || stagnant || attempt >= 5 || cells >= 1e7) break;
+    if (!adaptive || est <= opt.rtol) break;
+    if (stagnant || attempt >= 5 || cells >= 1e7)
+      throw CaseAbandoned("mdr: the error estimate " + format_number(est) + " stays above rtol " +
+                          format_number(opt.rtol) + " after " + std::to_string(attempt + 1) +
+                          " resolutions (a1/dx up to " + format_number(cells) +
+                          "); the case cannot meet rtol with this solver");
     cells = std::min(1e7, std::ceil(cells * std::max(1.5, 1.2 * std::sqrt(est / opt.rtol))));
   }
   return res;

@@ -23,10 +23,13 @@ struct MdrOptions {
   double phase = 0.5;         ///< element offset at t = 0, in cells (x_i = (i + phase) dx)
   bool estimate_error = true; ///< run a half-resolution companion (other phase) for error_estimate
   MdrSubgrid subgrid = MdrSubgrid::Piecewise;
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag).
+  const RunControl* control = nullptr;
 };
 
 /// Runs the discrete model. With cells_per_a1 == 0 it picks dx from rtol and
-/// refines until its error estimate is below rtol.
+/// refines until its error estimate is below rtol; a case whose estimate stays
+/// above rtol throws CaseAbandoned (so does one past its work budget).
 RunResult run_mdr(const Case& c, const MdrOptions& opt);
 
 } // namespace mdrmap

@@ -60,50 +60,64 @@ void validate_rtol(double rtol) {
     throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
 }
 
+bool solver_handles(SolverKind kind, bool by_force) {
+  return !(by_force && kind == SolverKind::Exact); // exact: depth control only
+}
+
 namespace {
 
 // Load control (docs/design.md, "Load control"): auto and mdr run the load
 // solver; exact refuses (it solves depth control only).
-RunResult run_load_case(const Case& c, SolverKind kind, double rtol) {
+RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
   switch (kind) {
   case SolverKind::Auto:
   case SolverKind::Mdr: {
     LoadOptions o;
     o.rtol = rtol;
+    o.control = &control;
     return run_load(c, o);
   }
   case SolverKind::Baseline: {
     // the fixed-step check solver at its default resolution (rtol does not set it)
-    return run_load_baseline(c, LoadBaselineOptions{});
+    LoadBaselineOptions o;
+    o.control = &control;
+    return run_load_baseline(c, o);
   }
   case SolverKind::Exact:
     break;
   }
-  return run_exact(c, rtol); // refuses a force-controlled case
+  return run_exact(c, rtol, control); // refuses a force-controlled case
 }
 
 } // namespace
 
-RunResult run_case(const Case& c, SolverKind kind, double rtol) {
-  validate(c);
+RunResult run_case(const CheckedCase& checked, SolverKind kind, double rtol,
+                   const RunControl& control) {
   validate_rtol(rtol);
-  if (c.loading.by_force()) return run_load_case(c, kind, rtol);
+  const Case& c = checked.get();
+  if (c.loading.by_force()) return run_load_case(c, kind, rtol, control);
   switch (kind) {
   case SolverKind::Auto:
   case SolverKind::Exact:
-    return run_exact(c, rtol);
+    return run_exact(checked, rtol, control);
   case SolverKind::Mdr: {
     MdrOptions o;
     o.rtol = rtol;
+    o.control = &control;
     return run_mdr(c, o);
   }
   case SolverKind::Baseline: {
     BaselineOptions o; // first order: a1/dx ~ 1/rtol, within what a fixed-step run can afford
     o.cells_per_a1 = std::clamp(std::ceil(0.7 / rtol), 16.0, 4000.0);
+    o.control = &control;
     return run_baseline(c, o);
   }
   }
-  return run_exact(c, rtol);
+  return run_exact(checked, rtol, control);
+}
+
+RunResult run_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
+  return run_case(CheckedCase(c), kind, rtol, control);
 }
 
 } // namespace mdrmap

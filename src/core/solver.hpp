@@ -5,6 +5,7 @@
 
 #include "core/analytic.hpp"
 #include "core/case.hpp"
+#include "core/run_control.hpp"
 #include "core/state.hpp"
 
 namespace mdrmap {
@@ -36,8 +37,19 @@ const char* solver_name(SolverKind k);
 /// Throws InvalidInput("rtol") unless 0 < rtol <= 0.1.
 void validate_rtol(double rtol);
 
+/// Whether run_case solves cases of this loading with `kind`: under a
+/// prescribed normal force (by_force) or at a fixed depth. It refuses the
+/// others (InvalidInput("solver")): exact solves depth control only.
+bool solver_handles(SolverKind kind, bool by_force);
+
 /// Runs one case. `Auto` picks the cheapest solver that meets rtol: at fixed
-/// depth that is always the continuum solver.
-RunResult run_case(const Case& c, SolverKind kind, double rtol);
+/// depth that is always the continuum solver. Every solver charges its work to
+/// `control`: throws CaseAbandoned when the case needs more than its budget
+/// (or, for mdr, cannot meet rtol), Interrupted when its stop flag is set.
+RunResult run_case(const CheckedCase& c, SolverKind kind, double rtol,
+                   const RunControl& control = RunControl{});
+/// The same for a case not yet checked: validates it first (InvalidInput).
+RunResult run_case(const Case& c, SolverKind kind, double rtol,
+                   const RunControl& control = RunControl{});
 
 } // namespace mdrmap

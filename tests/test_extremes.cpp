@@ -1,0 +1,188 @@
+// Inputs at the edges of the number range, and the work budget (issue 23,
+// classes 3 and 7). A case is either refused at validation, naming the option
+// whose value puts a derived quantity (contact radius, w tau, w tau / a, slip,
+// sample time, forces) out of range, or computed finite and right; every
+// solver charges its loops to the case's RunControl, so no case runs past its
+// budget or on after a stop request.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <csignal>
+#include <string>
+#include <vector>
+
+#include "core/analytic.hpp"
+#include "core/case.hpp"
+#include "core/mdr.hpp"
+#include "core/solver.hpp"
+
+namespace mdrmap {
+namespace {
+
+Case depth_case(std::vector<Segment> segments, double d = 1e-3, double R = 1.0, double tau = 1.0,
+                double v = 1.0, long samples = 201) {
+  Case c;
+  c.loading.d = d;
+  c.indenter.R = R;
+  c.material.tau = tau;
+  c.history.v0 = v;
+  c.history.segments = std::move(segments);
+  c.sampling.samples = samples;
+  return c;
+}
+
+Case load_case(std::vector<Segment> segments, long samples = 11) {
+  Case c = depth_case(std::move(segments), 1e-3, 1.0, 1.0, 1.0, samples);
+  c.loading.d = 0.0;
+  c.loading.F0 = 16.0 / 3.0; // a0 = 1
+  return c;
+}
+
+/// The option validate() names, "" if it accepts the case.
+std::string refused_option(const Case& c) {
+  try {
+    validate(c);
+  } catch (const InvalidInput& e) {
+    return e.option();
+  }
+  return "";
+}
+
+bool all_finite(const Series& s) {
+  for (std::size_t k = 0; k < s.size(); ++k)
+    for (double x : {s.t[k], s.FN[k], s.Fx[k], s.mu[k], s.a2[k], s.d[k], s.a1[k]})
+      if (!std::isfinite(x)) return false;
+  return true;
+}
+
+TEST(Extremes, OutOfRangeScalesAreRefusedNamingTheirOption) {
+  struct Row {
+    const char* label;
+    Case c;
+    const char* option;
+  };
+  const std::vector<Row> rows = {
+      // w tau = 1e308 at a1 = 1: a2 and F_N lost the w tau terms (mu = 2e305 was stored)
+      {"a segment's w tau overflows the forces", depth_case({{1e308, 1.0}}, 1.0), "history"},
+      // was blamed on --tau
+      {"a segment's w tau / a overflows at a tiny contact",
+       depth_case({{1e300, 1.0}}, 1e-60, 1e-60), "history"},
+      {"v0 tau / a overflows", depth_case({{1.0, 1.0}}, 1e-3, 1.0, 1e300, 1e300), "tau"},
+      {"contact radius 3e-152 (F_x was nan)", depth_case({{1.0, 1.0}}, 1e-3, 1e-300), "d"},
+      {"contact radius 1e150 (F_N was nan)", depth_case({{1.0, 1.0}}, 1.0, 1e300), "d"},
+      {"a segment's slip W T overflows", depth_case({{1e300, 1e300}}), "history"},
+      // under load the contact shrinks as 1/sqrt(zeta0): a1 = 1.6e-154 (never returned)
+      {"under load a segment's W shrinks the contact to 1e-154", load_case({{5e307, 1.0}}),
+       "history"},
+  };
+  for (const Row& r : rows) {
+    SCOPED_TRACE(r.label);
+    EXPECT_EQ(refused_option(r.c), r.option);
+  }
+}
+
+// Accepted cases at the edges: finite, and equal to what the physics says.
+TEST(Extremes, HoldsNearTheLargestDoubleAreFiniteAndRight) {
+  // 201 samples of a hold of 1e306: j T overflowed (rows of inf and nan)
+  const Case c = depth_case({{0.0, 1e306}, {1.0, 1.0}});
+  ASSERT_EQ(refused_option(c), "");
+  const RunResult r = run_case(c, SolverKind::Auto, 1e-6);
+  ASSERT_TRUE(all_finite(r.series));
+  for (std::size_t k = 1; k < r.series.size(); ++k)
+    EXPECT_LE(r.series.t[k - 1], r.series.t[k]) << k;
+  EXPECT_EQ(r.series.t[200], 1e306);
+  // after a hold of 1000 tau (exp(-1000) = 0) the state no longer depends on
+  // the hold's length: every later hold sample, and the reslide, are the same
+  const Case ref_case = depth_case({{0.0, 1e3}, {1.0, 1.0}});
+  const RunResult ref = run_case(ref_case, SolverKind::Auto, 1e-6);
+  for (long j = 1; j < 201; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    EXPECT_NEAR(r.series.FN[k], ref.series.FN[200], 1e-14 * ref.series.FN[200]) << j;
+    EXPECT_EQ(r.series.a2[k], ref.series.a2[200]) << j;
+  }
+  for (std::size_t k = 201; k < 402; ++k) {
+    EXPECT_NEAR(r.series.FN[k], ref.series.FN[k], 1e-14 * ref.series.FN[k]) << k;
+    EXPECT_NEAR(r.series.mu[k], ref.series.mu[k], 1e-14 * ref.series.mu[k]) << k;
+  }
+}
+
+TEST(Extremes, TheLargestRepresentableSpeedsGiveTheirLimits) {
+  // zeta = w tau / a1 = 3e299: the limits of eqs. (12)-(14) to rounding
+  const Case c = depth_case({{1e308, 1.0}}, 1e-3, 1.0, 1e-10);
+  ASSERT_EQ(refused_option(c), "");
+  const RunResult r = run_case(c, SolverKind::Auto, 1e-6);
+  ASSERT_TRUE(all_finite(r.series));
+  const double w = 1e308;
+  EXPECT_NEAR(r.series.FN.back(), analytic::FN_inf(c, w), 1e-12 * analytic::FN_inf(c, w));
+  EXPECT_NEAR(r.series.Fx.back(), analytic::Fx_inf(c, w), 1e-12 * analytic::Fx_inf(c, w));
+  EXPECT_NEAR(r.series.mu.back(), analytic::mu_inf(c), 1e-12 * analytic::mu_inf(c));
+}
+
+// A three-segment history each solver can run, and a budget far below it.
+const Case& budget_case(bool load) {
+  static const Case depth =
+      depth_case({{0.1, 0.1}, {0.0, 0.1}, {1.0, 0.1}}, 1e-3, 1.0, 1.0, 1.0, 51);
+  static const Case under_load = load_case({{0.1, 0.1}, {0.0, 0.1}, {1.0, 0.1}}, 51);
+  return load ? under_load : depth;
+}
+
+struct SolverRow {
+  SolverKind kind;
+  bool load;
+  const char* name; ///< as the budget message names the solver
+};
+
+const std::vector<SolverRow>& solver_rows() {
+  static const std::vector<SolverRow> rows = {{SolverKind::Exact, false, "exact"},
+                                              {SolverKind::Mdr, false, "mdr"},
+                                              {SolverKind::Baseline, false, "baseline"},
+                                              {SolverKind::Auto, true, "load"}};
+  return rows;
+}
+
+TEST(Extremes, EverySolverStopsAtItsWorkBudget) {
+  for (const SolverRow& s : solver_rows()) {
+    SCOPED_TRACE(s.name);
+    RunControl small;
+    small.max_work = 100;
+    try {
+      run_case(budget_case(s.load), s.kind, 1e-3, small);
+      ADD_FAILURE() << "no CaseAbandoned";
+    } catch (const CaseAbandoned& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(s.name, 0), 0U) << what;
+      EXPECT_NE(what.find("budget"), std::string::npos) << what;
+    }
+    RunControl enough; // and the default budget runs it
+    EXPECT_NO_THROW(run_case(budget_case(s.load), s.kind, 1e-3, enough));
+    EXPECT_GT(enough.spent(), 100.0);
+  }
+}
+
+TEST(Extremes, EverySolverStopsOnAStopRequest) {
+  volatile std::sig_atomic_t stop = 1;
+  for (const SolverRow& s : solver_rows()) {
+    SCOPED_TRACE(s.name);
+    RunControl control;
+    control.stop = &stop;
+    EXPECT_THROW(run_case(budget_case(s.load), s.kind, 1e-3, control), Interrupted);
+  }
+}
+
+// The mdr solver's estimate cannot go below its rounding floor (64 eps): at
+// rtol 1e-15 the case fails with the estimate instead of being reported done.
+TEST(Extremes, MdrFailsACaseItCannotResolveToRtol) {
+  const Case& c = budget_case(false);
+  try {
+    run_case(c, SolverKind::Mdr, 1e-15);
+    ADD_FAILURE() << "no CaseAbandoned";
+  } catch (const CaseAbandoned& e) {
+    EXPECT_NE(std::string(e.what()).find("stays above rtol 1.0000000000000001e-15"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_LE(run_case(c, SolverKind::Mdr, 1e-6).info.error_estimate, 1e-6);
+}
+
+} // namespace
+} // namespace mdrmap
