@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <csignal>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -213,6 +214,35 @@ TEST(ComputeCase, ResidualsAreRelativeDifferences) {
   }
   EXPECT_GE(nonzero, 6); // the baseline's discretisation error shows
   EXPECT_GT(std::abs(value(row, "residuals/mu_end")), 1e-6);
+}
+
+// A case the solver cannot resolve to rtol fails with the estimate (it was
+// stored as done, issue 23 class 3); so does one whose derived scales are out
+// of range (w tau = 1e308 at a1 = 1 was stored as done with mu = 2e305).
+TEST(ComputeCase, ACaseBeyondRtolOrRangeFailsWithItsMessage) {
+  const CaseRow beyond = compute_case(config(1e-15), step_layout(), step(1e-3, 1.0, 1.0, 1.0, 0.1),
+                                      SolverKind::Mdr, false);
+  EXPECT_EQ(beyond.status, -1);
+  EXPECT_NE(beyond.message.find("stays above rtol"), std::string::npos) << beyond.message;
+  const CaseRow range = compute_case(config(1e-6), step_layout(), step(1.0, 1.0, 1.0, 1.0, 1e308),
+                                     SolverKind::Auto, false);
+  EXPECT_EQ(range.status, -1);
+  EXPECT_NE(range.message.find("1e+308"), std::string::npos) << range.message;
+}
+
+// A stop request (the study's SIGTERM flag) while a case runs: no row, the
+// case is left to the caller as pending (Interrupted), not failed.
+TEST(ComputeCase, AStopRequestInterruptsTheCase) {
+  volatile std::sig_atomic_t stop = 1;
+  for (SolverKind kind : {SolverKind::Auto, SolverKind::Mdr, SolverKind::Baseline})
+    EXPECT_THROW(compute_case(config(1e-3), step_layout(), step(1e-3, 1.0, 1.0, 1.0, 0.1), kind,
+                              false, &stop),
+                 mdrmap::Interrupted);
+  stop = 0;
+  EXPECT_EQ(compute_case(config(1e-3), step_layout(), step(1e-3, 1.0, 1.0, 1.0, 0.1),
+                         SolverKind::Auto, false, &stop)
+                .status,
+            1);
 }
 
 // Elastic foundation (tau = 0): no friction, F_x = mu = 0 in both the closed

@@ -1010,6 +1010,82 @@ TEST(StudyLoading, ByForceAndByDepth) {
   EXPECT_EQ(f.axes[0].values, std::vector<double>({2e-3}));
 }
 
+// The solver must solve the study's loading (the core's solver_handles):
+// exact solves depth control only and is refused under a load at once, from
+// the file or the command line, in a grid or a case list (it used to run and
+// fail every case, exit 0).
+TEST(StudyLoading, SolverMustSolveTheLoading) {
+  const auto force = [](const std::string& solver) {
+    return "[grid]\nFN = 1e-3\nR = 1\ntau = 1\nv = 0.1\n[history]\nw1_over_v = 10\n"
+           "T1_over_tau = 10\n[run]\nsolver = " +
+           solver + "\n";
+  };
+  const auto in_file = error_of([&] { parse(force("exact")); });
+  EXPECT_EQ(in_file.first, "run.solver") << in_file.second;
+  EXPECT_EQ(in_file.second.rfind("t.ini:10: ", 0), 0u) << in_file.second;
+  EXPECT_NE(in_file.second.find("exact does not solve load control"), std::string::npos)
+      << in_file.second;
+  EXPECT_NE(in_file.second.find("solver must be one of auto, mdr, baseline"), std::string::npos)
+      << in_file.second;
+  EXPECT_TRUE(one_line(in_file.second)) << in_file.second;
+  for (const char* ok : {"auto", "mdr", "baseline"})
+    EXPECT_TRUE(parse(force(ok)).by_force()) << ok;
+
+  StudyConfig f = parse(force("auto"));
+  const std::string before = canonical(f);
+  const auto cl = error_of([&] { apply_override(f, "run.solver", "exact"); });
+  EXPECT_EQ(cl.first, "run.solver") << cl.second;
+  EXPECT_EQ(cl.second.rfind("command line: ", 0), 0u) << cl.second;
+  EXPECT_EQ(canonical(f), before);
+  // depth control takes every solver; switching it to a load refuses exact
+  StudyConfig d = parse(base({}, "solver = exact\n"));
+  EXPECT_FALSE(d.by_force());
+  EXPECT_EQ(error_of([&] { apply_override(d, "grid.FN", "1e-3"); }).first, "run.solver");
+  // a case list whose loading is a column of its CSV
+  const std::string csv = tmp().write("fn_list.csv", "FN,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
+  EXPECT_EQ(error_of([&] { list_config(csv, "[run]\nsolver = exact\n"); }).first, "run.solver");
+  EXPECT_TRUE(list_config(csv, "[run]\nsolver = mdr\n").by_force());
+}
+
+// load_config with the command line's overrides applies them all, then checks
+// (README): a file without [history] takes its segment from --set, a problem
+// is located where its key was set.
+TEST(StudyOverride, LoadConfigTakesTheHistoryFromOverrides) {
+  const std::string ini = tmp().write("no_history.ini", "[grid]\nd = 1e-3\nR = 1\ntau = 2\n"
+                                                        "v = 1\n[run]\nsamples = 5\n");
+  const StudyConfig c =
+      load_config(ini, {{"history.w1_over_v", "0"}, {"history.T1_over_tau", "10"}});
+  EXPECT_EQ(c.segments(), 1u);
+  EXPECT_EQ(c.source_path, ini);
+  ASSERT_EQ(cases_of(c).size(), 1u);
+  EXPECT_EQ(cases_of(c).at(0).history.segments.at(0).w, 0.0);
+  EXPECT_EQ(cases_of(c).at(0).history.segments.at(0).T, 20.0);
+  // the same as the file with the [history] section, but for the file's text
+  const StudyConfig whole = parse_config("[grid]\nd = 1e-3\nR = 1\ntau = 2\nv = 1\n[run]\n"
+                                         "samples = 5\n[history]\nw1_over_v = 0\n"
+                                         "T1_over_tau = 10\n",
+                                         tmp().path(), "w.ini");
+  EXPECT_EQ(canonical(c), canonical(whole));
+  // half a segment from the command line: its missing duration is located there
+  const auto half = error_of([&] { load_config(ini, {{"history.w1_over_v", "0"}}); });
+  EXPECT_EQ(half.first, "history.T1") << half.second;
+  EXPECT_EQ(half.second.rfind("command line: ", 0), 0u) << half.second;
+  // no history at all: the file's problem, located in the file
+  const auto none = error_of([&] { load_config(ini, {{"grid.R", "2"}}); });
+  EXPECT_EQ(none.first, "history.w1") << none.second;
+  EXPECT_EQ(none.second.rfind(ini + ":1: ", 0), 0u) << none.second;
+  // a bad override value is the command line's; a key of the file it did not set stays the file's
+  EXPECT_EQ(error_of([&] { load_config(ini, {{"grid.R", "-1"}}); }).first, "grid.R");
+  const std::string big = tmp().write("big_series.ini", "[grid]\nd = linspace:1e-3:2e-3:100\n"
+                                                        "R = linspace:1:2:100\ntau = 1\nv = 1\n"
+                                                        "v1_over_v = 0.5\n[run]\n"
+                                                        "samples = 1000000\ntimeseries = true\n");
+  const auto file = error_of([&] { load_config(big, {{"grid.tau", "2"}}); });
+  EXPECT_EQ(file.first, "run.timeseries") << file.second;
+  EXPECT_EQ(file.second.rfind(big + ":9: ", 0), 0u) << file.second;
+  EXPECT_EQ(load_config(big, {{"run.samples", "5"}}).run.samples, 5);
+}
+
 TEST(StudyLoading, GAsAGridColumnAndTheSeedsRunG) {
   const StudyConfig g = parse(base({{3, "R = 1\nG = 0.5, 2"}}));
   EXPECT_EQ(g.axes[3].name, "G");

@@ -5,14 +5,20 @@
 // datasets, per-event datasets [N, K] on the dimension `event`, `_FillValue`
 // on the metrics that may be undefined, and the dimension scales xarray names
 // its dimensions by (/case, /event, /sample, /grid/<axis>); /failures is
-// written and read back; a map of the earlier schema is refused by name.
+// written in place into the slots reserved at creation and read back; a map
+// of the earlier schema is refused by name; a map's lock (io::MapLock) has
+// one holder and survives the closing of other descriptors of the file.
 #include <gtest/gtest.h>
 #include <hdf5_hl.h>
 #include <mpi.h>
 #include <unistd.h>
 
+#include <fcntl.h>
+
+#include <cerrno>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -21,6 +27,7 @@
 #include "io/case_row.hpp"
 #include "io/h5.hpp"
 #include "io/map_file.hpp"
+#include "io/map_lock.hpp"
 #include "study/columns.hpp"
 #include "study/config.hpp"
 #include "study/preflight.hpp"
@@ -357,13 +364,16 @@ TEST(MapFile, FailuresWrittenAndReadBack) {
       {1, "the solver refused: rtol must be a number in (0, 0.1], got 0.5"},
       {6, "x"},
       {7, std::string(300, 'm')}};
+  const auto bytes = std::filesystem::file_size(m.path);
   io::MapFile::write_failures(m.path, failures);
   auto back = io::MapFile::read_failures(m.path);
   ASSERT_EQ(back.size(), failures.size());
   for (std::size_t i = 0; i < failures.size(); ++i) {
     EXPECT_EQ(back[i].index, failures[i].index);
-    EXPECT_EQ(back[i].message, failures[i].message);
+    // a message longer than its slot is cut
+    EXPECT_EQ(back[i].message, failures[i].message.substr(0, io::kFailureMessageBytes - 1));
   }
+  EXPECT_EQ(back[2].message.size(), io::kFailureMessageBytes - 1);
   {
     Handle file = io::make_file(H5Fopen(m.path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "opening");
     EXPECT_EQ(attr(file.id(), "schema/failures/case", "unit"),
@@ -379,8 +389,53 @@ TEST(MapFile, FailuresWrittenAndReadBack) {
   EXPECT_EQ(back[0].message, "again");
   io::MapFile::write_failures(m.path, {});
   EXPECT_TRUE(io::MapFile::read_failures(m.path).empty());
-  EXPECT_EQ(io::MapFile::read_layout(m.path, nullptr).n_cases, m.spec.n_cases);
+  // one slot per case (min(N, kMaxFailureSlots)): more failures than slots
+  // keep the first ones
+  std::vector<io::Failure> many;
+  for (std::uint64_t i = 0; i < m.spec.n_cases + 4; ++i)
+    many.push_back({i, "failure " + std::to_string(i)});
+  io::MapFile::write_failures(m.path, many);
+  back = io::MapFile::read_failures(m.path);
+  ASSERT_EQ(back.size(), m.spec.n_cases);
+  EXPECT_EQ(back.back().message, "failure " + std::to_string(m.spec.n_cases - 1));
+  const io::MapLayout layout = io::MapFile::read_layout(m.path, nullptr);
+  EXPECT_EQ(layout.n_cases, m.spec.n_cases);
+  EXPECT_EQ(layout.failure_slots, m.spec.n_cases);
+  // written in place, into the space reserved at creation: the file never grows
+  EXPECT_EQ(std::filesystem::file_size(m.path), bytes);
+  EXPECT_LE(bytes, io::map_file_bytes(m.spec, std::string(kDepthIni).size()));
   std::filesystem::remove(m.path);
+}
+
+TEST(MapLock, OneHolderThatOtherDescriptorsDoNotRelease) {
+  const std::string p = temp_map("lock");
+  std::ofstream(p) << "a map";
+  io::MapLock a, b;
+  long holder = -1;
+  ASSERT_TRUE(a.acquire(p, &holder));
+  a.announce();
+  EXPECT_TRUE(a.held());
+  EXPECT_TRUE(a.names(p));
+  EXPECT_FALSE(b.acquire(p, &holder)); // another open file description: refused
+  EXPECT_FALSE(b.held());
+  // closing another descriptor of the file (as HDF5 does) drops POSIX record
+  // locks, not this one
+  const int fd = ::open(p.c_str(), O_RDONLY);
+  ASSERT_GE(fd, 0);
+  ::close(fd);
+  EXPECT_FALSE(b.acquire(p, &holder));
+  io::MapLock moved = std::move(a);
+  EXPECT_FALSE(b.acquire(p, &holder));
+  moved.release();
+  EXPECT_TRUE(b.acquire(p, &holder));
+  // a file renamed over keeps its lock, the path names another file then
+  const std::string q = temp_map("lock_other");
+  std::ofstream(q) << "another";
+  EXPECT_EQ(io::rename_no_replace(q, p), EEXIST); // never over an existing file
+  std::filesystem::rename(q, p);
+  EXPECT_FALSE(b.names(p));
+  std::filesystem::remove(p);
+  EXPECT_EQ(io::rename_no_replace(p, q), ENOENT);
 }
 
 TEST(MapFile, SchemaOneIsRefusedByName) {

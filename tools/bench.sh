@@ -13,6 +13,11 @@
 #   3b. runs mdrmap_bench_history (velocity histories: history.csv, history.md)
 #       and mdrmap_bench_load (load control against the fixed-step load
 #       baseline, issue 11: load.csv, load.md); both appended to bench.md;
+#   3d. the seed's own workload against the build before velocity histories
+#       (issue 22, tools/bench/seed_ratio.sh): CPU of the 1e5-case one-step
+#       grid, this build's mdrmap against commit 8876e42 built in a scratch
+#       directory, 5 alternating pairs, the median ratio in seed_ratio.txt
+#       and bench.md (target <= 1.00; skipped with --quick);
 #   4. plots $OUT_DIR/work_precision.png and load_work_precision.png
 #      (tools/pyrun tools/plot_bench.py);
 #   5. profiles with valgrind --tool=callgrind (skipped with --no-profile or
@@ -26,7 +31,8 @@
 #              Performance section takes them from
 #
 # Environment: BUILD_DIR=build-bench, OUT_DIR=out/bench (relative to the
-# repository root, or absolute), JOBS, CI (as tools/build.sh).
+# repository root, or absolute), JOBS, CI (as tools/build.sh), SCRATCH (where
+# step 3d builds 8876e42; default a temporary directory).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -39,7 +45,7 @@ for arg in "$@"; do
   --no-profile) profile=0 ;;
   --publish) publish=1 ;;
   -h | --help)
-    sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'
     exit 0
     ;;
   *)
@@ -57,7 +63,7 @@ log() { printf 'bench: %s\n' "$*" >&2; }
 # 1. build (Release: timings of an unoptimised build mean nothing)
 bash tools/setup.sh
 BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release \
-  BUILD_TARGETS="mdrmap_bench mdrmap_bench_history mdrmap_bench_load" \
+  BUILD_TARGETS="mdrmap mdrmap_bench mdrmap_bench_history mdrmap_bench_load" \
   bash tools/build.sh -DMDRMAP_BUILD_BENCH=ON
 BENCH="$BUILD_DIR/tools/bench/mdrmap_bench"
 [[ -x "$BENCH" ]] || {
@@ -117,6 +123,20 @@ log "$LOAD ${load_args[*]}"
   echo
   cat "$OUT_DIR/load.md"
 } >>"$OUT_DIR/bench.md"
+
+# 3d. the seed path against 8876e42 (SCRATCH: where to build it, kept if given)
+if ((!quick)); then
+  log "bash tools/bench/seed_ratio.sh $BUILD_DIR/src/mdrmap 5"
+  bash tools/bench/seed_ratio.sh "$BUILD_DIR/src/mdrmap" 5 >"$OUT_DIR/seed_ratio.txt"
+  {
+    echo
+    echo "## The seed's one-step grid against 8876e42 ($cmd, tools/bench/seed_ratio.sh)"
+    echo
+    echo '```'
+    cat "$OUT_DIR/seed_ratio.txt"
+    echo '```'
+  } >>"$OUT_DIR/bench.md"
+fi
 
 # 4. the plot
 cpu=$(lscpu | sed -n 's/^Model name:[[:space:]]*//p' | sed -n 1p)

@@ -46,6 +46,39 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
     series_.push_back({std::string("timeseries/") + q.name, q.unit,
                        std::string(q.meaning) + " at the output instants t"});
   });
+  resolve_slots();
+}
+
+RowSlots::PerQuantity RowLayout::per_quantity(const std::string& group, const char* suffix) const {
+  RowSlots::PerQuantity out{};
+  for (std::size_t q = 0; q < quantities(); ++q)
+    out[q] = at(group + "/" + quantity(q) + suffix);
+  return out;
+}
+
+void RowLayout::resolve_slots() {
+  RowSlots& s = slots_;
+  s.error_estimate = at("results/error_estimate");
+  s.wall_seconds = at("results/wall_seconds");
+  s.results_pre = per_quantity("results", "_pre");
+  s.analytic_pre = per_quantity("analytic", "_pre");
+  s.residuals_pre = per_quantity("residuals", "_pre");
+  s.event_t = at("events/t");
+  s.mu_before = at("events/mu_before");
+  s.mu_peak = at("events/mu_peak");
+  s.t_peak = at("events/t_peak");
+  s.slip_peak = at("events/slip_peak");
+  s.a = at("events/a");
+  s.b = at("events/b");
+  s.a_minus_b = at("events/a_minus_b");
+  s.d_c = at("events/d_c");
+  s.events_after = per_quantity("events", "_after");
+  s.events_end = per_quantity("events", "_end");
+  s.analytic_ss = per_quantity("analytic", "_ss");
+  s.residuals_end = per_quantity("residuals", "_end");
+  if (by_force_) return; // the seed's jump estimate: at fixed depth only
+  s.analytic_jump = per_quantity("analytic", "_jump");
+  s.residuals_jump = per_quantity("residuals", "_jump");
 }
 
 void RowLayout::add(const std::string& path, const char* unit, const std::string& meaning,

@@ -3,6 +3,7 @@
 // as computed (study/compute.hpp) and as written (io/map_file.hpp): which
 // per-case datasets a study's map has, their units and meanings, and the row
 // that holds one case's values. MPI- and HDF5-free.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -32,6 +33,21 @@ struct RowField {
   bool may_be_undefined = false; ///< holds kFillValue where undefined (`_FillValue`)
 };
 
+/// Where the fields a solved case fills start in CaseRow::values, resolved
+/// once from their names (RowLayout::slots()): the value of event k of a
+/// per-event field is at its start + k. Per-quantity starts are in the
+/// order of RowLayout::quantity().
+struct RowSlots {
+  static constexpr std::size_t kMaxQuantities = 6; ///< FN, Fx, mu, a2, d, a1
+  using PerQuantity = std::array<std::size_t, kMaxQuantities>;
+  std::size_t error_estimate = 0, wall_seconds = 0;
+  PerQuantity results_pre{}, analytic_pre{}, residuals_pre{};
+  std::size_t event_t = 0, mu_before = 0, mu_peak = 0, t_peak = 0, slip_peak = 0;
+  std::size_t a = 0, b = 0, a_minus_b = 0, d_c = 0; ///< may be undefined (kFillValue)
+  PerQuantity events_after{}, events_end{}, analytic_ss{}, residuals_end{};
+  PerQuantity analytic_jump{}, residuals_jump{}; ///< at fixed depth only
+};
+
 /// The per-case datasets of a study's map: K segments, under load (the depth
 /// and the leading edge move: d and a1 are quantities too) or at fixed depth
 /// (where the seed's jump estimate exists).
@@ -49,6 +65,8 @@ public:
   std::size_t row_width() const { return offsets_.back(); }
   /// Index in values() of field `path` (event k for a per-event field); throws std::out_of_range.
   std::size_t at(const std::string& path, std::size_t k = 0) const;
+  /// The fields a solved case fills, resolved by name once (at construction).
+  const RowSlots& slots() const { return slots_; }
   /// The time series: t, FN, Fx, mu, a2 (and d, a1 under load), [N, K S].
   const std::vector<FieldInfo>& series() const { return series_; }
   /// The quantities of a state the map stores: FN, Fx, mu, a2 (and d, a1 under load).
@@ -69,12 +87,15 @@ private:
   void add_events();
   void add_closed_forms();
   void add_residuals();
+  void resolve_slots();
+  RowSlots::PerQuantity per_quantity(const std::string& group, const char* suffix) const;
   std::size_t K_;
   bool by_force_;
   std::vector<RowField> fields_;
   std::vector<std::size_t> offsets_;                   ///< fields_.size() + 1
   std::unordered_map<std::string, std::size_t> index_; ///< path -> field
   std::vector<FieldInfo> series_;
+  RowSlots slots_;
 };
 
 /// results/status, /timeseries/segment, /failures/{case,message}.

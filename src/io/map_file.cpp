@@ -58,11 +58,17 @@ FieldInfo case_info(const std::string& name) {
 }
 
 // A group whose links iterate in creation order (h5py and xarray list them so).
-Handle create_ordered_group(hid_t loc, const std::string& name) {
+// With `dense_attributes`, its attributes live in a fractal heap outside the
+// object header (no 64 KiB limit: /grid's axes of 10000 segments).
+Handle create_ordered_group(hid_t loc, const std::string& name, bool dense_attributes = false) {
   const std::string what = "creating group /" + name;
   Handle gcpl = make_plist(H5Pcreate(H5P_GROUP_CREATE), what);
   check_status(H5Pset_link_creation_order(gcpl.id(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
                what);
+  if (dense_attributes) {
+    check_status(H5Pset_attr_creation_order(gcpl.id(), H5P_CRT_ORDER_TRACKED), what);
+    check_status(H5Pset_attr_phase_change(gcpl.id(), 0, 0), what);
+  }
   return make_group(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, gcpl.id(), H5P_DEFAULT), what);
 }
 
@@ -165,12 +171,27 @@ void write_cases(const std::vector<Handle>& sets, const std::vector<std::string>
   }
 }
 
+// A text as a uint8 dataset `name` (at least one byte: NUL when empty) along
+// a dimension of its own, `name`_byte (xarray opens the group without phony
+// dimensions).
 void write_text_dataset(hid_t loc, const std::string& name, const std::string& text) {
-  Handle d = create_dataset(loc, name, H5T_STD_U8LE, {std::max<std::size_t>(text.size(), 1)});
+  const std::size_t n = std::max<std::size_t>(text.size(), 1);
+  Handle dim = create_dimension(loc, name + "_byte", n);
+  Handle d = create_dataset(loc, name, H5T_STD_U8LE, {n});
+  attach(d.id(), dim.id(), 0, name);
   std::string buf = text.empty() ? std::string(1, '\0') : text;
   check_status(H5Dwrite(d.id(), H5T_NATIVE_UCHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()),
                "writing /" + name);
   d.close("closing /" + name);
+  dim.close("closing /" + name + "_byte");
+}
+
+// The fixed-length string type of /failures/message.
+Handle failure_message_type() {
+  Handle type = make_type(H5Tcopy(H5T_C_S1), "string type");
+  check_status(H5Tset_size(type.id(), kFailureMessageBytes), "string type");
+  check_status(H5Tset_strpad(type.id(), H5T_STR_NULLTERM), "string type");
+  return type;
 }
 
 Handle mpio_fapl(MPI_Comm comm, const std::string& what) {
@@ -199,9 +220,15 @@ std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
   std::uint64_t grid = 0;
   for (const auto& v : spec.grid.values)
     grid += 8 * v.size();
+  // /failures: its slots, reserved at creation
+  const std::uint64_t failures = failure_slots(spec.n_cases) * (8 + kFailureMessageBytes);
   // superblock, object headers, attributes and B-trees: about 32 KiB measured,
-  // plus about 100 KiB for /schema, the datasets' units and dimension scales
-  return n * per_case + grid + 4 * K * static_cast<std::uint64_t>(spec.samples) +
+  // plus about 100 KiB for /schema, the datasets' units and dimension scales;
+  // a grid's axes: their datasets, descriptions and dimension scales (about
+  // 1.1 KiB each measured, at 20004 axes)
+  const std::uint64_t grid_headers = 2048 * static_cast<std::uint64_t>(spec.grid.names.size());
+  return n * per_case + grid + failures + grid_headers +
+         4 * K * static_cast<std::uint64_t>(spec.samples) +
          2 * static_cast<std::uint64_t>(text_bytes) + 256 * 1024;
 }
 
@@ -275,11 +302,37 @@ void create_results(hid_t f, const Dimensions& dims, const MapSpec& spec) {
         .close("closing /" + info.path);
 }
 
+// /failures: its slots reserved now (case kNoFailure: unused; the messages
+// left unwritten, zero on disk), along a dimension `failure` of their own,
+// and written in place by RowWriter::write_failures.
+void create_failures(hid_t f, std::size_t n_cases) {
+  const hsize_t slots = failure_slots(n_cases);
+  Handle dim = create_dimension(f, "failures/failure", slots);
+  {
+    const std::string what = "creating dataset /failures/case";
+    Handle space = make_space(H5Screate_simple(1, &slots, nullptr), what);
+    Handle dcpl = dataset_plist(what, true);
+    check_status(H5Pset_fill_value(dcpl.id(), H5T_NATIVE_UINT64, &kNoFailure), what);
+    Handle d = make_dataset(H5Dcreate2(f, "failures/case", H5T_STD_U64LE, space.id(), H5P_DEFAULT,
+                                       dcpl.id(), H5P_DEFAULT),
+                            what);
+    describe(f, d.id(), other_info("failures/case"));
+    attach(d.id(), dim.id(), 0, "failures/case");
+    d.close(what);
+  }
+  Handle type = failure_message_type();
+  Handle m = create_dataset(f, "failures/message", type.id(), {slots}, false);
+  describe(f, m.id(), other_info("failures/message"));
+  attach(m.id(), dim.id(), 0, "failures/message");
+  m.close("closing /failures/message");
+  dim.close("closing /failures/failure");
+}
+
 // /grid/<axis>: the values of each axis, each a dimension scale of its own.
 std::vector<Handle> create_grid(hid_t f, const GridInfo& grid) {
   std::vector<Handle> sets;
   if (grid.names.empty()) return sets;
-  Handle g = create_ordered_group(f, "grid");
+  Handle g = create_ordered_group(f, "grid", true);
   std::string axes;
   std::vector<long long> shape, logs;
   for (std::size_t i = 0; i < grid.names.size(); ++i) {
@@ -332,6 +385,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   // every object is closed before the file: a map is closed complete
   std::vector<const char*> groups = {"cases", "results", "events", "analytic", "residuals"};
   if (spec.timeseries) groups.push_back("timeseries");
+  groups.push_back("failures");
   for (const char* group : groups)
     create_ordered_group(f, group).close(std::string("closing /") + group);
   {
@@ -352,6 +406,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
     case_sets.push_back(
         per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, K, dims.events.id(), false));
   create_results(f, dims, spec);
+  create_failures(f, spec.n_cases);
   Handle segment;
   if (spec.timeseries) {
     segment = create_dataset(f, "timeseries/segment", H5T_STD_I32LE,
@@ -390,10 +445,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
     h.close("closing /grid");
   if (segment) segment.close("closing /timeseries/segment");
   file.close("closing " + path);
-  if (rank == 0) {
-    write_failures(path, {}); // every map has /failures, empty until a run records some
-    reserve_blocks(path);
-  }
+  if (rank == 0) reserve_blocks(path);
 }
 
 bool MapFile::is_map(const std::string& path, std::string* why) {
@@ -431,14 +483,19 @@ std::vector<std::uint64_t> MapLayout::pack() const {
                                timeseries ? 1u : 0u,
                                status,
                                fields.size(),
-                               series.size()};
+                               series.size(),
+                               failure_slots,
+                               failure_width,
+                               failure_case,
+                               failure_message};
   v.insert(v.end(), fields.begin(), fields.end());
   v.insert(v.end(), series.begin(), series.end());
   return v;
 }
 
 MapLayout MapLayout::unpack(const std::vector<std::uint64_t>& v) {
-  if (v.size() < 8 || v.size() != 8 + v[6] + v[7])
+  constexpr std::size_t kHead = 12;
+  if (v.size() < kHead || v.size() != kHead + v[6] + v[7])
     throw std::invalid_argument("MapLayout::unpack: bad size");
   MapLayout m;
   m.n_cases = v[0];
@@ -447,9 +504,13 @@ MapLayout MapLayout::unpack(const std::vector<std::uint64_t>& v) {
   m.by_force = v[3] != 0;
   m.timeseries = v[4] != 0;
   m.status = v[5];
+  m.failure_slots = v[8];
+  m.failure_width = v[9];
+  m.failure_case = v[10];
+  m.failure_message = v[11];
   const auto nf = static_cast<long>(v[6]);
-  m.fields.assign(v.begin() + 8, v.begin() + 8 + nf);
-  m.series.assign(v.begin() + 8 + nf, v.end());
+  m.fields.assign(v.begin() + kHead, v.begin() + kHead + nf);
+  m.series.assign(v.begin() + kHead + nf, v.end());
   return m;
 }
 
@@ -487,6 +548,26 @@ std::uint64_t raw_offset(hid_t file, const std::string& name, hid_t want_type,
   }
   d.close("closing " + what);
   return off;
+}
+
+// /failures as created by this version (slots reserved, contiguous) into
+// m; a map whose /failures is not (an earlier version's) keeps 0 slots: its
+// failures are not recorded, and --resume runs them again.
+void read_failure_layout(hid_t f, std::uint64_t file_size, MapLayout& m) {
+  const hsize_t slots = failure_slots(m.n_cases);
+  if (!has_link(f, "failures/case") || !has_link(f, "failures/message")) return;
+  try {
+    Handle type = failure_message_type();
+    const std::uint64_t at_case = raw_offset(f, "failures/case", H5T_STD_U64LE, {slots}, file_size);
+    const std::uint64_t at_message =
+        raw_offset(f, "failures/message", type.id(), {slots}, file_size);
+    m.failure_slots = slots;
+    m.failure_width = kFailureMessageBytes;
+    m.failure_case = at_case;
+    m.failure_message = at_message;
+  } catch (const H5Error&) {
+    H5Eclear2(H5E_DEFAULT);
+  }
 }
 
 } // namespace
@@ -535,12 +616,17 @@ MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>
     for (const FieldInfo& info : layout.series())
       m.series.push_back(raw_offset(f, info.path, H5T_IEEE_F64LE,
                                     {N, m.segments * static_cast<hsize_t>(m.samples)}, file_size));
+  read_failure_layout(f, file_size, m);
   if (status) {
     status->assign(m.n_cases, 0);
     Handle d = make_dataset(H5Dopen2(f, "results/status", H5P_DEFAULT), "opening /results/status");
     check_status(H5Dread(d.id(), H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, status->data()),
                  "reading /results/status");
     d.close("closing /results/status");
+    for (std::size_t i = 0; i < status->size(); ++i) // a value no study writes: damage
+      if ((*status)[i] < -1 || (*status)[i] > 1)
+        throw H5Error("/results/status of case " + std::to_string(i + 1) + " is " +
+                      std::to_string((*status)[i]) + ", not 0 (pending), 1 (done) or -1 (failed)");
   }
   file.close("closing '" + path + "'");
   return m;
@@ -561,19 +647,6 @@ RowWriter::RowWriter(const std::string& path, MapLayout layout)
   fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd_ < 0)
     throw std::runtime_error("cannot open '" + path + "' for writing: " + std::strerror(errno));
-}
-
-bool RowWriter::lock(long* holder) {
-  struct flock fl {};
-  fl.l_type = F_WRLCK;
-  fl.l_whence = SEEK_SET; // l_start = l_len = 0: the whole file
-  if (::fcntl(fd_, F_SETLK, &fl) == 0) return true;
-  if (errno != EACCES && errno != EAGAIN) return true; // no locking here (ENOLCK, ...)
-  struct flock probe {};
-  probe.l_type = F_WRLCK;
-  probe.l_whence = SEEK_SET;
-  if (holder) *holder = ::fcntl(fd_, F_GETLK, &probe) == 0 ? static_cast<long>(probe.l_pid) : 0;
-  return false;
 }
 
 RowWriter::~RowWriter() {
@@ -634,6 +707,29 @@ void RowWriter::write_rows(std::size_t first, const std::vector<CaseRow>& rows) 
   pwrite_all(st.data(), count, layout_.status + first, "/results/status");
 }
 
+std::size_t RowWriter::write_failures(const std::vector<Failure>& failures) {
+  if (fd_ < 0) throw std::logic_error("RowWriter::write_failures on a closed writer");
+  const std::size_t slots = layout_.failure_slots, width = layout_.failure_width;
+  if (slots == 0) return 0; // an earlier version's map: nowhere to record them
+  const std::size_t n = std::min(failures.size(), slots);
+  std::vector<char> text(n * width, '\0');
+  std::vector<std::uint64_t> index(slots, kNoFailure);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string& msg = failures[i].message;
+    std::memcpy(&text[i * width], msg.data(), std::min(msg.size(), width - 1));
+    index[i] = failures[i].index;
+  }
+  // every slot unused first, then the messages, then the case indices: a
+  // slot counts once its index is written, so a write that fails part way
+  // never pairs a case with another case's message (the status column stays
+  // authoritative: an unrecorded failed case is retried on --resume)
+  const std::vector<std::uint64_t> unused(slots, kNoFailure);
+  pwrite_all(unused.data(), unused.size() * 8, layout_.failure_case, "/failures/case");
+  pwrite_all(text.data(), text.size(), layout_.failure_message, "/failures/message");
+  pwrite_all(index.data(), index.size() * 8, layout_.failure_case, "/failures/case");
+  return n;
+}
+
 void RowWriter::close() {
   if (fd_ < 0) return;
   const int fd = std::exchange(fd_, -1);
@@ -648,6 +744,21 @@ void RowWriter::close() {
 }
 
 // ---- failures -------------------------------------------------------------------
+
+namespace {
+
+// Rows [i0, i0 + count) of the fixed-length string dataset m into text
+// (count * len bytes).
+void read_message_block(hid_t m, hid_t type, hsize_t i0, hsize_t count, char* text) {
+  const std::string what = "reading /failures/message";
+  Handle fspace = make_space(H5Dget_space(m), what);
+  check_status(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, &i0, nullptr, &count, nullptr),
+               what);
+  Handle mspace = make_space(H5Screate_simple(1, &count, nullptr), what);
+  check_status(H5Dread(m, type, mspace.id(), fspace.id(), H5P_DEFAULT, text), what);
+}
+
+} // namespace
 
 std::vector<Failure> MapFile::read_failures(const std::string& path) {
   Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
@@ -664,58 +775,31 @@ std::vector<Failure> MapFile::read_failures(const std::string& path) {
   if (H5Tget_class(type.id()) != H5T_STRING || H5Tis_variable_str(type.id()) != 0 || len == 0)
     throw H5Error("/failures/message is not a fixed-length string");
   std::vector<std::uint64_t> idx(n);
-  std::vector<char> text(n * len + 1, '\0');
-  if (n > 0) {
+  if (n > 0)
     check_status(H5Dread(c.id(), H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, idx.data()),
                  "reading /failures/case");
-    check_status(H5Dread(m.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.data()),
-                 "reading /failures/message");
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const char* p = &text[i * len];
-    out.push_back({idx[i], std::string(p, strnlen(p, len))});
+  // the messages of the used slots only, by blocks: the table is reserved
+  // for up to 100000 failures (25.6 MB) and is mostly unused
+  constexpr std::size_t kBlock = 4096;
+  std::vector<char> text(kBlock * len);
+  for (std::size_t b = 0; b < n; b += kBlock) {
+    const std::size_t count = std::min(kBlock, n - b);
+    if (std::all_of(&idx[b], &idx[b] + count, [](std::uint64_t i) { return i == kNoFailure; }))
+      continue;
+    read_message_block(m.id(), type.id(), b, count, text.data());
+    for (std::size_t i = 0; i < count; ++i) {
+      if (idx[b + i] == kNoFailure) continue; // an unused slot
+      const char* p = &text[i * len];
+      out.push_back({idx[b + i], std::string(p, strnlen(p, len))});
+    }
   }
   return out;
 }
 
 void MapFile::write_failures(const std::string& path, const std::vector<Failure>& failures) {
-  Handle file = make_file(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT),
-                          "opening map file '" + path + "'");
-  const hid_t f = file.id();
-  if (has_link(f, "failures"))
-    check_status(H5Ldelete(f, "failures", H5P_DEFAULT), "replacing /failures");
-  create_ordered_group(f, "failures").close("closing /failures");
-  std::size_t len = 1;
-  for (const Failure& x : failures)
-    len = std::max(len, x.message.size() + 1);
-  std::vector<std::uint64_t> idx;
-  std::vector<char> text(failures.size() * len, '\0');
-  for (std::size_t i = 0; i < failures.size(); ++i) {
-    idx.push_back(failures[i].index);
-    std::memcpy(&text[i * len], failures[i].message.data(), failures[i].message.size());
-  }
-  const hsize_t n = failures.size();
-  Handle space = make_space(H5Screate_simple(1, &n, nullptr), "/failures");
-  Handle type = make_type(H5Tcopy(H5T_C_S1), "string type");
-  check_status(H5Tset_size(type.id(), len), "string type");
-  check_status(H5Tset_strpad(type.id(), H5T_STR_NULLTERM), "string type");
-  const auto dataset = [&](const char* name, hid_t file_type, hid_t mem_type, const void* data) {
-    const std::string what = std::string("writing /") + name;
-    Handle d = make_dataset(
-        H5Dcreate2(f, name, file_type, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), what);
-    if (n > 0) check_status(H5Dwrite(d.id(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), what);
-    const FieldInfo& info = other_info(name);
-    cf_attributes(d.id(), info);
-    if (!has_link(f, std::string("schema/") + name)) { // the first /failures of the map
-      if (!has_link(f, "schema/failures"))
-        create_ordered_group(f, "schema/failures").close("closing /schema/failures");
-      schema_entry(f, info);
-    }
-    d.close(what);
-  };
-  dataset("failures/case", H5T_STD_U64LE, H5T_NATIVE_UINT64, idx.data());
-  dataset("failures/message", type.id(), type.id(), text.data());
-  file.close("closing '" + path + "'");
+  RowWriter writer(path, read_layout(path, nullptr));
+  writer.write_failures(failures);
+  writer.close();
 }
 
 } // namespace mdrmap::io

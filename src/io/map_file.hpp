@@ -8,7 +8,8 @@
 //   /results, /events, /analytic, /residuals           io::RowLayout: float64 [N] or [N, K]
 //   /results/status                         int8 [N]   0 pending, 1 done, -1 failed
 //   /timeseries/<q> [N, K S], /timeseries/segment [K S]  with timeseries = true
-//   /failures/{case,message} [F]            the failed cases of the last run and why
+//   /failures/{case,message} [F]            the failed cases and why: F slots reserved
+//                                           at creation, unused ones case = kNoFailure
 //   /grid/<axis>, /provenance, /schema/<group>/<name>, root attributes
 // Every dataset has `units` and `long_name` (CF) and a /schema entry; the
 // dimension scales /case, /event, /sample name the dimensions for xarray.
@@ -22,7 +23,10 @@
 // collective), values first and status last. So a process killed at any
 // moment, or a rank whose write fails, leaves a file that opens, with every
 // case marked done intact; and a failing device cannot hang the job in a
-// collective close. A row's values are defined once its status is 1.
+// collective close. A row's values are defined once its status is 1. The
+// failed cases' messages go into /failures, also reserved at creation and
+// written in place at the end of a run: nothing the run writes needs space
+// that was not reserved when the map was created.
 #include <mpi.h>
 
 #include <cstdint>
@@ -37,6 +41,19 @@
 namespace mdrmap::io {
 
 inline constexpr const char* kSchema = "mdrmap-map/2";
+
+/// /failures holds at most this many failed cases (the slots reserved at
+/// creation: min(N, kMaxFailureSlots)); a failed case beyond them, or whose
+/// failure is not recorded, is run again by --resume.
+inline constexpr std::size_t kMaxFailureSlots = 100000;
+/// Bytes of a /failures/message slot (a fixed-length string, NUL-padded; a
+/// longer message is cut to kFailureMessageBytes - 1 bytes).
+inline constexpr std::size_t kFailureMessageBytes = 256;
+/// /failures/case of an unused slot.
+inline constexpr std::uint64_t kNoFailure = ~std::uint64_t{0};
+inline std::size_t failure_slots(std::size_t n_cases) {
+  return n_cases < kMaxFailureSlots ? n_cases : kMaxFailureSlots;
+}
 
 struct Provenance {
   std::string program_version, git_commit, created_utc, command_line, units;
@@ -65,8 +82,8 @@ struct MapSpec {
 };
 
 /// Bytes the map file of `spec` takes on disk (every dataset is allocated and
-/// its blocks reserved at creation), with `text_bytes` of provenance text; an
-/// upper bound within 256 KiB, failures' messages aside. A map that fits at
+/// its blocks reserved at creation, /failures included), with `text_bytes`
+/// of provenance text; an upper bound within 256 KiB. A map that fits at
 /// creation cannot run out of space later.
 std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes);
 
@@ -80,6 +97,10 @@ struct MapLayout {
   std::vector<std::uint64_t> fields; ///< RowLayout::fields() order
   std::uint64_t status = 0;          ///< int8 [N]
   std::vector<std::uint64_t> series; ///< RowLayout::series(): float64 [N, K S] (timeseries only)
+  /// /failures: slots (0: a map without reserved /failures, whose failures
+  /// are not recorded), bytes per message, offsets of /failures/case
+  /// (uint64 [slots]) and /failures/message (string [slots])
+  std::uint64_t failure_slots = 0, failure_width = 0, failure_case = 0, failure_message = 0;
 
   /// Flat form, to broadcast.
   std::vector<std::uint64_t> pack() const;
@@ -116,8 +137,8 @@ public:
   static MapLayout read_layout(const std::string& path, std::vector<std::int8_t>* status);
   /// Serial, read-only: the map's /failures (none when it has none).
   static std::vector<Failure> read_failures(const std::string& path);
-  /// Serial: replaces the map's /failures with `failures` (in case order).
-  /// Only while no RowWriter has the file open.
+  /// Serial: replaces the map's /failures with `failures` (RowWriter::
+  /// write_failures, then close). Only while no RowWriter has the file open.
   static void write_failures(const std::string& path, const std::vector<Failure>& failures);
 };
 
@@ -133,15 +154,15 @@ public:
   ~RowWriter();
 
   bool timeseries() const { return layout_.timeseries; }
-  /// Takes an exclusive POSIX record lock on the whole file (held until
-  /// close; HDF5 readers, which use flock, are not blocked). Returns false
-  /// when another process holds one, with its pid in `holder` (0 if remote);
-  /// true also where the file system has no locks.
-  bool lock(long* holder);
   /// Writes rows for cases first .. first + rows.size() - 1, every value
   /// first and the status last. Throws std::runtime_error naming the dataset
   /// and the system error (e.g. "No space left on device").
   void write_rows(std::size_t first, const std::vector<CaseRow>& rows);
+  /// Replaces /failures with the first min(size, slots) of `failures` (in
+  /// their order), in place: the messages first, then the case indices
+  /// (unused slots kNoFailure). Returns how many were recorded; throws
+  /// std::runtime_error as write_rows.
+  std::size_t write_failures(const std::vector<Failure>& failures);
   /// Flushes to stable storage (fsync) and closes; throws on error.
   void close();
 

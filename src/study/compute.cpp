@@ -23,20 +23,21 @@ double defined_or_fill(double x) {
   return std::isnan(x) ? io::kFillValue : x;
 }
 
+// Writes a case's values at the layout's slots (RowLayout::slots(): the
+// field names resolved once per layout, not per case).
 class Filler {
 public:
+  using PerQuantity = io::RowSlots::PerQuantity;
   Filler(const io::RowLayout& L, std::vector<double>& v) : L_(L), v_(v) {}
-  void put(const std::string& path, double x, std::size_t k = 0) { v_[L_.at(path, k)] = x; }
-  // group/<q><suffix> for every quantity of the layout
-  void state(const std::string& group, const std::string& suffix, const State& s,
-             std::size_t k = 0) {
+  void put(std::size_t at, double x, std::size_t k = 0) { v_[at + k] = x; }
+  // <group>/<q><suffix> for every quantity of the layout, at `at`
+  void state(const PerQuantity& at, const State& s, std::size_t k = 0) {
     for (std::size_t q = 0; q < L_.quantities(); ++q)
-      put(group + "/" + L_.quantity(q) + suffix, L_.value(s, q), k);
+      v_[at[q] + k] = L_.value(s, q);
   }
-  void residuals(const std::string& suffix, const State& sim, const State& an, std::size_t k = 0) {
+  void residuals(const PerQuantity& at, const State& sim, const State& an, std::size_t k = 0) {
     for (std::size_t q = 0; q < L_.quantities(); ++q)
-      put(std::string("residuals/") + L_.quantity(q) + suffix,
-          residual(L_.value(sim, q), L_.value(an, q)), k);
+      v_[at[q] + k] = residual(L_.value(sim, q), L_.value(an, q));
   }
 
 private:
@@ -44,39 +45,41 @@ private:
   std::vector<double>& v_;
 };
 
-void fill_event(Filler& f, const EventMetrics& e, const State& after, std::size_t k) {
-  f.put("events/t", e.t, k);
-  f.state("events", "_after", after, k);
-  f.put("events/mu_before", e.mu_before, k);
-  f.put("events/mu_peak", e.mu_peak, k);
-  f.put("events/t_peak", e.t_peak, k);
-  f.put("events/slip_peak", e.slip_peak, k);
-  f.state("events", "_end", e.end, k);
-  f.put("events/a", defined_or_fill(e.a), k);
-  f.put("events/b", defined_or_fill(e.b), k);
-  f.put("events/a_minus_b", defined_or_fill(e.a_minus_b), k);
-  f.put("events/d_c", defined_or_fill(e.d_c), k);
-  f.state("analytic", "_ss", e.ss_after, k);
-  f.residuals("_end", e.end, e.ss_after, k);
+void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, const State& after,
+                std::size_t k) {
+  f.put(S.event_t, e.t, k);
+  f.state(S.events_after, after, k);
+  f.put(S.mu_before, e.mu_before, k);
+  f.put(S.mu_peak, e.mu_peak, k);
+  f.put(S.t_peak, e.t_peak, k);
+  f.put(S.slip_peak, e.slip_peak, k);
+  f.state(S.events_end, e.end, k);
+  f.put(S.a, defined_or_fill(e.a), k);
+  f.put(S.b, defined_or_fill(e.b), k);
+  f.put(S.a_minus_b, defined_or_fill(e.a_minus_b), k);
+  f.put(S.d_c, defined_or_fill(e.d_c), k);
+  f.state(S.analytic_ss, e.ss_after, k);
+  f.residuals(S.residuals_end, e.end, e.ss_after, k);
 }
 
 // The row of a solved case. Throws for a non-finite value.
 void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const RunResult& r) {
   const Series& x = r.series;
+  const io::RowSlots& S = L.slots();
   const std::vector<EventMetrics> ev = event_metrics(c, x);
   Filler f(L, row.values);
-  f.put("results/error_estimate", r.info.error_estimate);
-  f.state("results", "_pre", x.pre);
+  f.put(S.error_estimate, r.info.error_estimate);
+  f.state(S.results_pre, x.pre);
   const State& an_pre = ev.front().ss_before; // stationary at v0, closed form
-  f.state("analytic", "_pre", an_pre);
-  f.residuals("_pre", x.pre, an_pre);
-  const auto S = static_cast<std::size_t>(c.sampling.samples);
+  f.state(S.analytic_pre, an_pre);
+  f.residuals(S.residuals_pre, x.pre, an_pre);
+  const auto N = static_cast<std::size_t>(c.sampling.samples);
   for (std::size_t k = 0; k < ev.size(); ++k)
-    fill_event(f, ev[k], x.at(k * S), k);
+    fill_event(f, S, ev[k], x.at(k * N), k);
   if (!L.by_force()) { // the seed's corrected estimate of the first change
     const State jump = analytic::jump(c, c.history.v0, c.history.segments.front().w);
-    f.state("analytic", "_jump", jump);
-    f.residuals("_jump", x.at(0), jump);
+    f.state(S.analytic_jump, jump);
+    f.residuals(S.residuals_jump, x.at(0), jump);
   }
   for (double v : row.values)
     if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
@@ -99,23 +102,27 @@ io::RowLayout row_layout(const StudyConfig& cfg) {
 }
 
 io::CaseRow compute_case(const StudyConfig& cfg, const io::RowLayout& layout, const Row& r,
-                         SolverKind kind, bool timeseries) {
+                         SolverKind kind, bool timeseries, const volatile std::sig_atomic_t* stop) {
   io::CaseRow row;
   row.values.assign(layout.row_width(), 0.0);
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    const Case c = case_for(cfg, r);
-    const RunResult res = run_case(c, kind, cfg.run.rtol);
-    fill_row(row, layout, c, res);
+    const CheckedCase c = checked_case_for(cfg, r); // checked once: run_case takes it as is
+    RunControl control;
+    control.stop = stop;
+    const RunResult res = run_case(c, kind, cfg.run.rtol, control);
+    fill_row(row, layout, c.get(), res);
     if (timeseries) fill_series(row, layout, res.series);
     row.status = 1;
+  } catch (const Interrupted&) {
+    throw; // not a failure: the case stays pending
   } catch (const std::exception& e) {
     std::fill(row.values.begin(), row.values.end(), 0.0);
     row.series.clear();
     row.status = -1;
     row.message = e.what();
   }
-  row.values[layout.at("results/wall_seconds")] =
+  row.values[layout.slots().wall_seconds] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return row;
 }

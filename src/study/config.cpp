@@ -38,12 +38,13 @@ void check_value(const Axis& a, double x) {
   }
 }
 
-/// Checks a resolved history value against the segment's own range.
-void check_resolved(const Axis& a, const ParamSpec& spec, double x, const std::string& how) {
+/// Checks a resolved history value against the segment's own range; `how`
+/// (called on failure only) says how it was resolved.
+template <class How> void check_resolved(const Axis& a, const ParamSpec& spec, double x, How how) {
   try {
     spec.check(x);
   } catch (const InvalidInput& e) {
-    throw InvalidInput(a.option(), how + " " + e.what());
+    throw InvalidInput(a.option(), how() + " " + e.what());
   }
 }
 
@@ -55,8 +56,8 @@ void set_velocity(Case& c, const Axis& a, double x) {
     return;
   }
   s.w = x * c.history.v0;
-  const std::string w = "w" + std::to_string(a.column.segment);
-  check_resolved(a, segment_velocity_spec(), s.w, w + " = " + a.name + " * v");
+  check_resolved(a, segment_velocity_spec(), s.w,
+                 [&] { return "w" + std::to_string(a.column.segment) + " = " + a.name + " * v"; });
 }
 
 /// Segment k's duration from its column's value (velocities already set).
@@ -65,12 +66,13 @@ void set_velocity(Case& c, const Axis& a, double x) {
 void set_duration(Case& c, const Axis& a, double x) {
   const std::size_t k = a.column.segment - 1;
   Segment& s = c.history.segments[k];
-  const std::string T = "T" + std::to_string(a.column.segment);
+  const auto T_name = [&] { return "T" + std::to_string(a.column.segment); };
   if (a.column.kind == Column::Kind::Duration) {
     s.T = x;
   } else if (c.material.tau > 0.0) {
     s.T = x * c.material.tau;
-    check_resolved(a, segment_duration_spec(), s.T, T + " = " + a.name + " * tau");
+    check_resolved(a, segment_duration_spec(), s.T,
+                   [&] { return T_name() + " = " + a.name + " * tau"; });
   } else {
     const double w0 = c.history.before(k), w1 = s.w;
     const double slow = (w0 > 0.0 && w1 > 0.0) ? std::min(w0, w1) : std::max(w0, w1);
@@ -78,11 +80,12 @@ void set_duration(Case& c, const Axis& a, double x) {
       throw InvalidInput(a.option(), a.name +
                                          " is relative to tau, and with tau = 0 a hold after "
                                          "a hold has no time scale; give " +
-                                         T + " instead");
+                                         T_name() + " instead");
     s.T = 6.0 * c.edge_scale() / slow;
-    check_resolved(a, segment_duration_spec(), s.T,
-                   "with tau = 0 the default duration " + T + " = 6 a / min(w) (a = " +
-                       (c.loading.by_force() ? "a0" : "a1 = sqrt(R d)") + ")");
+    check_resolved(a, segment_duration_spec(), s.T, [&] {
+      return "with tau = 0 the default duration " + T_name() +
+             " = 6 a / min(w) (a = " + (c.loading.by_force() ? "a0" : "a1 = sqrt(R d)") + ")";
+    });
   }
 }
 
@@ -147,6 +150,28 @@ void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
   }
 }
 
+/// Refuses a solver that does not solve the study's loading (the core says
+/// which do). Throws ConfigError("run.solver") without location.
+void check_solver(const StudyConfig& c) {
+  SolverKind kind = SolverKind::Auto;
+  try {
+    kind = parse_solver(c.run.solver);
+  } catch (const InvalidInput& e) {
+    throw ConfigError("run.solver", std::string("solver ") + e.what());
+  }
+  const bool force = c.by_force();
+  if (solver_handles(kind, force)) return;
+  std::string takes;
+  for (const SolverKind k :
+       {SolverKind::Auto, SolverKind::Exact, SolverKind::Mdr, SolverKind::Baseline})
+    if (solver_handles(k, force)) takes += std::string(takes.empty() ? "" : ", ") + solver_name(k);
+  throw ConfigError("run.solver",
+                    std::string("solver ") + solver_name(kind) + " does not solve " +
+                        (force ? "load control (the study prescribes the normal force FN)"
+                               : "depth control (the study prescribes the depth d)") +
+                        "; solver must be one of " + takes);
+}
+
 std::string canonical_values(const Axis& a) {
   if (a.listed) return a.name + " = (listed)\n";
   std::string out = a.name + " =";
@@ -192,6 +217,10 @@ bool StudyConfig::by_force() const {
 }
 
 Case case_for(const StudyConfig& c, const Row& r) {
+  return checked_case_for(c, r).take();
+}
+
+CheckedCase checked_case_for(const StudyConfig& c, const Row& r) {
   if (r.size() != c.axes.size()) // a caller's bug, not an input's
     throw std::invalid_argument("case_for: a row of " + std::to_string(r.size()) +
                                 " values for a study of " + std::to_string(c.axes.size()) +
@@ -214,19 +243,18 @@ Case case_for(const StudyConfig& c, const Row& r) {
     Case probe = out; // the derived scales (a, 16 G d^2) before the durations use them
     for (Segment& s : probe.history.segments)
       s.T = 1.0;
-    validate(probe);
+    CheckedCase checked(std::move(probe));
     for (std::size_t i = 0; i < c.axes.size(); ++i)
       if (c.axes[i].column.history() && !(c.axes[i].column.kind == Column::Kind::Velocity ||
                                           c.axes[i].column.kind == Column::Kind::VelocityOverV))
         set_duration(out, c.axes[i], r[i]);
-    validate(out);
+    return std::move(checked).with_durations(out.history.segments); // (the history checked again)
   } catch (const InvalidInput& e) {
     if (e.option().find('.') != std::string::npos) throw; // a column's own message
     const std::string option = column_option(c, e.option());
     const std::string name = option.substr(option.find('.') + 1);
     throw InvalidInput(option, name + " " + e.what());
   }
-  return out;
 }
 
 std::string describe(const StudyConfig& c, const Row& r) {
@@ -271,6 +299,11 @@ std::string detail::canonical_case_list(const StudyConfig& c, std::uint64_t coun
 }
 
 void detail::check_study(const StudyConfig& c, const WhereFn& where) {
+  try {
+    check_solver(c);
+  } catch (const InvalidInput& e) {
+    rethrow_at(e, where(e.option()));
+  }
   if (c.kind != StudyConfig::Kind::Grid) return; // case lists: checked when read
   try {
     check_grid_size(c);

@@ -108,6 +108,14 @@ StudyConfig parse_config(const std::string& text, const std::string& base_dir,
 /// Reads and parses a file; errors name the file and line.
 StudyConfig load_config(const std::string& path);
 
+/// Reads a file, sets the command-line overrides (as apply_overrides), then
+/// makes the study whole and checks it once: the overrides may supply what
+/// the file lacks (a file without [history] takes its segments from
+/// "history.w1", "history.T1_over_tau", ...). A problem is located at the
+/// command line when an override set its key, else in the file.
+StudyConfig load_config(const std::string& path,
+                        const std::vector<std::pair<std::string, std::string>>& overrides);
+
 /// Overrides one setting, as from the command line: key is "section.key"
 /// (e.g. "run.samples", "grid.FN", "history.T1_over_tau") and value as in the
 /// INI. A [grid] or [history] key the config does not have adds the column.
@@ -147,6 +155,8 @@ std::size_t case_count(const StudyConfig& c);
 /// [run], then the whole case. Throws InvalidInput whose option() is the
 /// column's option ("grid.R", "history.T1_over_tau", ...) or "run.samples".
 Case case_for(const StudyConfig& c, const Row& r);
+/// The same, marked as checked: what the solvers take without checking again.
+CheckedCase checked_case_for(const StudyConfig& c, const Row& r);
 
 /// "FN = 0.001, R = 1, ...": a row for a message.
 std::string describe(const StudyConfig& c, const Row& r);

@@ -44,14 +44,37 @@ void check_schema(const std::string& out) {
                                      "--overwrite it)");
 }
 
-// Rank 0's checks of the output path before anything is written.
+// What a file that is not a regular file is, for a message.
+const char* kind_of(mode_t mode) {
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Refuses a map path that is not a regular file (or a new name), by stat
+// alone: opening a FIFO would wait for a writer forever. A symbolic link to
+// a regular file is taken (the map it names).
+void check_regular(const std::string& out, const struct stat& st) {
+  if (S_ISDIR(st.st_mode))
+    throw InvalidInput("output", "'" + out + "' is a directory; give a file name");
+  if (S_ISREG(st.st_mode)) return;
+  struct stat lst {};
+  const bool link = ::lstat(out.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode);
+  throw InvalidInput("output", "'" + out + "' is " + (link ? "a symbolic link to " : "") +
+                                   kind_of(st.st_mode) +
+                                   ", not a regular file; a map must be a regular file (give a "
+                                   "file name)");
+}
+
+// Rank 0's checks of the output path before anything is written or opened.
 void check_output(const StudyRequest& req) {
   const std::string& out = req.output;
   if (out.empty()) throw InvalidInput("output", "must name the map file to write");
   struct stat st {};
   const bool exists = ::stat(out.c_str(), &st) == 0;
-  if (exists && S_ISDIR(st.st_mode))
-    throw InvalidInput("output", "'" + out + "' is a directory; give a file name");
+  if (exists) check_regular(out, st);
   const std::string dir = parent_dir(out);
   struct stat dst {};
   if (::stat(dir.c_str(), &dst) != 0)

@@ -13,10 +13,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <sys/stat.h>
 #include <sys/statvfs.h>
 #include <utility>
 #include <vector>
 
+#include "io/map_lock.hpp"
 #include "mdrmap/version.hpp"
 #include "study/compute.hpp"
 #include "study/preflight.hpp"
@@ -98,9 +100,70 @@ std::string describe_write_failure(const std::string& out, const std::string& wh
 
 // ---- the map ------------------------------------------------------------------
 
+// " (process N)" when the holder of a map's lock is known.
+std::string holder_text(long holder) {
+  return holder > 0 ? " (process " + std::to_string(holder) + ")" : "";
+}
+
+// Rank 0, --overwrite: locks the map to be replaced (held until the new one
+// is in its place), refused while another job holds it. Nothing to lock when
+// there is no file (any more): the new map is then created as without
+// --overwrite.
+void lock_replaced(const std::string& out, io::MapLock& replaced) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    struct stat st {};
+    if (::stat(out.c_str(), &st) != 0 && errno == ENOENT) return;
+    long holder = 0;
+    if (!replaced.acquire(out, &holder))
+      throw InvalidInput("output", "'" + out + "' is being written by another mdrmap job" +
+                                       holder_text(holder) + "; refusing to replace it");
+    if (replaced.names(out)) return; // not replaced while we locked it
+  }
+  throw InvalidInput("output", "'" + out +
+                                   "' keeps being replaced by other jobs; refusing to "
+                                   "replace it");
+}
+
+// Rank 0: puts the complete map `tmp` (locked by `lock`) in its place: over
+// the locked map it replaces, or where there is no file (never over a map
+// another job created meanwhile).
+void install_map(const std::string& tmp, const std::string& out, const io::MapLock& replaced,
+                 io::MapLock& lock) {
+  long holder = 0;
+  if (!lock.acquire(tmp, &holder))
+    throw std::runtime_error("'" + tmp + "' is locked by another process" + holder_text(holder));
+  lock.announce();
+  if (replaced.held()) {
+    if (!replaced.names(out))
+      throw InvalidInput("output", "'" + out +
+                                       "' was replaced by another job meanwhile; "
+                                       "refusing to replace it");
+    if (std::rename(tmp.c_str(), out.c_str()) != 0)
+      throw std::runtime_error("cannot rename '" + tmp + "' to '" + out +
+                               "': " + std::strerror(errno));
+    return;
+  }
+  const int err = io::rename_no_replace(tmp, out);
+  if (err == EEXIST) {
+    io::MapLock probe;
+    holder = 0;
+    const bool busy = !probe.acquire(out, &holder);
+    throw InvalidInput("output", "'" + out + "' was created meanwhile by another " +
+                                     (busy ? "mdrmap job" + holder_text(holder) +
+                                                 ", which is writing it; refusing to replace it"
+                                           : "job; pass --resume to continue it or --overwrite "
+                                             "to replace it"));
+  }
+  if (err != 0)
+    throw std::runtime_error("cannot rename '" + tmp + "' to '" + out + "': " + std::strerror(err));
+}
+
 // Collective. Creates the map under a temporary name and renames it when
-// complete; on failure the temporary file is removed.
-void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan& plan) {
+// complete (never over a map another job holds or created meanwhile); on
+// failure the temporary file is removed. Rank 0 holds `lock` on the map on
+// return.
+void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan& plan,
+                io::MapLock& lock) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -116,6 +179,10 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   prov.mpi_size = size;
   const std::string tmp =
       bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));
+  io::MapLock replaced;
+  collectively(comm, [&] {
+    if (rank == 0 && req.overwrite) lock_replaced(req.output, replaced);
+  });
   try {
     collectively(comm, [&] {
       // every rank writes its share of /cases, taking the cases by range
@@ -129,12 +196,11 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
                           });
     });
     collectively(comm, [&] {
-      if (rank == 0 && std::rename(tmp.c_str(), req.output.c_str()) != 0)
-        throw std::runtime_error("cannot rename '" + tmp + "' to '" + req.output +
-                                 "': " + std::strerror(errno));
+      if (rank == 0) install_map(tmp, req.output, replaced, lock);
     });
   } catch (...) {
     if (rank == 0) std::remove(tmp.c_str());
+    lock.release();
     throw;
   }
 }
@@ -157,9 +223,11 @@ public:
       if (status_[i] == -1 && !std::binary_search(kept.begin(), kept.end(), i)) status_[i] = 0;
     left_ = static_cast<std::size_t>(std::count(status_.begin(), status_.end(), 0));
     total_ = left_;
+    failed_ = static_cast<std::size_t>(std::count(status_.begin(), status_.end(), -1));
   }
-  std::size_t total() const { return total_; } ///< pending at the start
-  std::size_t left() const { return left_; }   ///< pending and not handed out yet
+  std::size_t total() const { return total_; }   ///< pending at the start
+  std::size_t failed() const { return failed_; } ///< failed before, recorded: not run again
+  std::size_t left() const { return left_; }     ///< pending and not handed out yet
 
   // The next pending cases, at most k of them in at most kMaxRanges ranges.
   Chunk take(std::size_t k) {
@@ -183,21 +251,38 @@ public:
 
 private:
   std::vector<std::int8_t> status_;
-  std::size_t cursor_ = 0, left_ = 0, total_ = 0;
+  std::size_t cursor_ = 0, left_ = 0, total_ = 0, failed_ = 0;
 };
+
+// Rank 0, --resume: locks the map, refused while another job holds it.
+void lock_resumed(const std::string& out, io::MapLock& lock) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    long holder = 0;
+    if (!lock.acquire(out, &holder))
+      throw InvalidInput("resume", "'" + out + "' is being written by another mdrmap job" +
+                                       holder_text(holder) + "; refusing to touch it");
+    if (lock.names(out)) return; // not replaced while we locked it
+  }
+  throw InvalidInput("resume", "'" + out +
+                                   "' keeps being replaced by other jobs; refusing to "
+                                   "touch it");
+}
 
 // Collective. Where the rows go, and what is left to do: every rank gets rank
 // 0's read of the map's layout and opens the map for its rows; rank 0 keeps
-// the status column and the recorded failures, and locks the map (one job
-// at a time).
+// the status column and the recorded failures, and holds the map's lock (one job
+// at a time: taken here on --resume).
 PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_cases,
-                      std::optional<io::RowWriter>& map, std::vector<io::Failure>& recorded) {
+                      io::MapLock& lock, std::optional<io::RowWriter>& map,
+                      std::vector<io::Failure>& recorded) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<std::int8_t> status;
   std::vector<std::uint64_t> packed;
   collectively(comm, [&] {
     if (rank != 0) return;
+    // one job at a time: a created map is locked since its creation
+    if (!lock.held()) lock_resumed(req.output, lock);
     try {
       packed = io::MapFile::read_layout(req.output, &status).pack();
     } catch (const io::H5Error& e) {
@@ -210,18 +295,10 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
                                        " cases, the study " + std::to_string(n_cases) +
                                        "; refusing to touch it");
     recorded = io::MapFile::read_failures(req.output);
+    lock.announce(); // closing HDF5's descriptors of the file dropped the PID's lock
   });
   bcast_from_root(comm, packed);
-  collectively(comm, [&] {
-    map.emplace(req.output, io::MapLayout::unpack(packed));
-    // one job at a time: a second --resume of a map in use is refused
-    long holder = 0;
-    if (rank == 0 && !map->lock(&holder))
-      throw InvalidInput(req.resume ? "resume" : "output",
-                         "'" + req.output + "' is being written by another mdrmap job" +
-                             (holder > 0 ? " (process " + std::to_string(holder) + ")" : "") +
-                             "; refusing to touch it");
-  });
+  collectively(comm, [&] { map.emplace(req.output, io::MapLayout::unpack(packed)); });
   return PendingCases(std::move(status), recorded);
 }
 
@@ -262,7 +339,12 @@ public:
         for (const Row& r : in_) {
           if (stop_requested()) break;
           const auto t0 = Clock::now();
-          out_.push_back(compute_case(req.config, layout_, r, kind_, map_.timeseries()));
+          try {
+            out_.push_back(
+                compute_case(req.config, layout_, r, kind_, map_.timeseries(), req.stop));
+          } catch (const Interrupted&) {
+            break; // stopped during the case: it stays pending (status 0)
+          }
           compute_seconds += seconds_since(t0);
           if (between_cases) between_cases();
         }
@@ -319,6 +401,7 @@ public:
   // dismissed; fills sum's counts, and reports a last time.
   void run() {
     sum_.already_done = sum_.total - pending_.total();
+    sum_.already_failed = pending_.failed();
     while (true) {
       if (w_.stop_requested()) stopping_ = true;
       serve(false);
@@ -512,15 +595,17 @@ void pull_work(Worker& w) {
 
 // Everyone agrees on rank 0's counts.
 void share_outcome(MPI_Comm comm, StudySummary& sum) {
-  long long counts[5] = {static_cast<long long>(sum.done), static_cast<long long>(sum.failed),
-                         static_cast<long long>(sum.pending), sum.interrupted ? 1 : 0,
-                         static_cast<long long>(sum.already_done)};
-  MPI_Bcast(counts, 5, MPI_LONG_LONG, 0, comm);
+  long long counts[6] = {
+      static_cast<long long>(sum.done),         static_cast<long long>(sum.failed),
+      static_cast<long long>(sum.pending),      sum.interrupted ? 1 : 0,
+      static_cast<long long>(sum.already_done), static_cast<long long>(sum.already_failed)};
+  MPI_Bcast(counts, 6, MPI_LONG_LONG, 0, comm);
   sum.done = static_cast<std::size_t>(counts[0]);
   sum.failed = static_cast<std::size_t>(counts[1]);
   sum.pending = static_cast<std::size_t>(counts[2]);
   sum.interrupted = counts[3] != 0;
   sum.already_done = static_cast<std::size_t>(counts[4]);
+  sum.already_failed = static_cast<std::size_t>(counts[5]);
   MPI_Bcast(&sum.wall_seconds, 1, MPI_DOUBLE, 0, comm);
 }
 
@@ -553,17 +638,25 @@ void close_map(Worker& w, StudySummary& sum) {
   }
 }
 
-// Rank 0 writes the failures into the closed map (in case order).
-void record_failures(MPI_Comm comm, const std::string& out, std::vector<io::Failure>& failures,
+// Rank 0 writes the failures (in case order) into /failures, in place: its
+// slots were reserved when the map was created, so a full disk cannot fail
+// it; a failed write (a failing device) fails the study with one line, and
+// the failed cases it did not record are run again by --resume.
+void record_failures(MPI_Comm comm, io::RowWriter& map, std::vector<io::Failure>& failures,
                      StudySummary& sum) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
+  sum.recorded = sum.already_failed; // (kept where the write fails)
   try {
     collectively(comm, [&] {
       if (rank != 0) return;
       std::sort(failures.begin(), failures.end(),
                 [](const io::Failure& a, const io::Failure& b) { return a.index < b.index; });
-      io::MapFile::write_failures(out, failures);
+      try {
+        sum.recorded = std::max(sum.recorded, map.write_failures(failures));
+      } catch (const std::exception& e) {
+        throw std::runtime_error("rank 0: " + std::string(e.what()));
+      }
     });
   } catch (const CollectiveFailure& e) {
     if (sum.write_failure.empty())
@@ -578,10 +671,11 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   const detail::StudyPlan plan = detail::preflight(comm, req);
-  if (!req.resume) create_map(comm, req, plan);
+  io::MapLock lock; // rank 0: one job at a time on the map, until the end
+  if (!req.resume) create_map(comm, req, plan, lock);
   std::optional<io::RowWriter> map;
   std::vector<io::Failure> failures; // rank 0: the recorded ones, then this run's
-  PendingCases pending = open_map(comm, req, plan.cases->size(), map, failures);
+  PendingCases pending = open_map(comm, req, plan.cases->size(), lock, map, failures);
 
   Worker w(comm, req, *plan.cases, *map, plan.kind);
   StudySummary sum;
@@ -591,8 +685,8 @@ StudySummary run_study(MPI_Comm comm, const StudyRequest& req, ProgressSink* sin
   else
     pull_work(w);
   share_outcome(comm, sum);
+  record_failures(comm, *map, failures, sum);
   close_map(w, sum);
-  record_failures(comm, req.output, failures, sum);
   return sum;
 }
 

@@ -58,8 +58,10 @@ public:
 struct StudySummary {
   bool interrupted = false;
   std::size_t total = 0, already_done = 0, done = 0, failed = 0, pending = 0;
-  std::size_t chunks = 0;   ///< chunks handed out (to workers and to rank 0 itself)
-  std::size_t messages = 0; ///< request/assignment pairs rank 0 served
+  std::size_t already_failed = 0; ///< of already_done: failed before, with a recorded message
+  std::size_t recorded = 0;       ///< rank 0: failed cases whose message /failures holds at the end
+  std::size_t chunks = 0;         ///< chunks handed out (to workers and to rank 0 itself)
+  std::size_t messages = 0;       ///< request/assignment pairs rank 0 served
   double wall_seconds = 0.0;
   /// Non-empty when writing the map failed on some rank (full disk, I/O
   /// error): the study stopped, every row written before is intact, and the

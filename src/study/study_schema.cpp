@@ -312,25 +312,31 @@ void set_override(StudyConfig& n, const std::string& key, const std::string& val
   }
 }
 
-} // namespace
-
-StudyConfig parse_config(const std::string& text, const std::string& base_dir,
-                         const std::string& source_name) {
+/// A config file read: its values set and its columns in, not yet made
+/// whole or checked as a study (overrides may come first).
+struct ReadFile {
   StudyConfig c;
+  IniLines lines;
+};
+
+ReadFile read_file(const std::string& text, const std::string& base_dir,
+                   const std::string& source_name) {
+  ReadFile r;
+  StudyConfig& c = r.c;
   c.source_text = text;
   FileValues values{c, {}, base_dir};
   IniHandlers on;
   on.section = check_one_kind;
   on.value = [&values](const std::string& section, const std::string& key, const std::string& value,
                        const IniLines& seen) { values.set(section, key, value, seen); };
-  const IniLines lines = read_ini(text, source_name, study_schema(), on);
+  r.lines = read_ini(text, source_name, study_schema(), on);
 
-  const bool grid = lines.section_line.count("grid") > 0;
-  const bool cases = lines.section_line.count("cases") > 0;
+  const bool grid = r.lines.section_line.count("grid") > 0;
+  const bool cases = r.lines.section_line.count("cases") > 0;
   if (!grid && !cases)
     throw ConfigError("config", Where{source_name, 0}.prefix() +
                                     "no [grid] or [cases] section; a study needs one of them");
-  const WhereFn where = where_in_file(lines, source_name);
+  const WhereFn where = where_in_file(r.lines, source_name);
   if (cases) {
     c.kind = StudyConfig::Kind::Cases;
     if (c.cases_file.empty())
@@ -341,25 +347,26 @@ StudyConfig parse_config(const std::string& text, const std::string& base_dir,
   try {
     for (Axis& a : values.columns)
       add_column(c, std::move(a));
+  } catch (const InvalidInput& e) {
+    rethrow_at(e, where(e.option()));
+  }
+  return r;
+}
+
+/// Makes the columns whole and checks the study; errors located by where.
+void finish(StudyConfig& c, const WhereFn& where) {
+  try {
     complete_columns(c);
   } catch (const InvalidInput& e) {
     rethrow_at(e, where(e.option()));
   }
   check_study(c, where);
-  return c;
 }
 
-StudyConfig load_config(const std::string& path) {
-  const std::string text = read_config_file(path);
-  StudyConfig c = parse_config(text, std::filesystem::path(path).parent_path().string(), path);
-  c.source_path = path;
-  return c;
-}
-
-void apply_overrides(StudyConfig& c,
-                     const std::vector<std::pair<std::string, std::string>>& settings) {
+/// Sets each override in turn (each key's own checks), without finishing.
+void set_overrides(StudyConfig& n,
+                   const std::vector<std::pair<std::string, std::string>>& settings) {
   const Where cl{"command line", 0};
-  StudyConfig n = c;
   for (const auto& [key, value_text] : settings) {
     if (!known_override(key)) {
       const std::string near = nearest(key, override_keys());
@@ -376,12 +383,49 @@ void apply_overrides(StudyConfig& c,
       rethrow_at(e, cl);
     }
   }
-  try {
-    complete_columns(n); // after all of them: a new segment takes two keys
-  } catch (const InvalidInput& e) {
-    rethrow_at(e, cl);
-  }
-  check_study(n, [&cl](const std::string&) { return cl; });
+}
+
+} // namespace
+
+StudyConfig parse_config(const std::string& text, const std::string& base_dir,
+                         const std::string& source_name) {
+  ReadFile r = read_file(text, base_dir, source_name);
+  finish(r.c, where_in_file(r.lines, source_name));
+  return r.c;
+}
+
+StudyConfig load_config(const std::string& path) {
+  return load_config(path, {});
+}
+
+StudyConfig load_config(const std::string& path,
+                        const std::vector<std::pair<std::string, std::string>>& overrides) {
+  const std::string text = read_config_file(path);
+  ReadFile r = read_file(text, std::filesystem::path(path).parent_path().string(), path);
+  r.c.source_path = path;
+  set_overrides(r.c, overrides);
+  // checked once, with every override in: a problem of a key the command line
+  // set, or of one neither sets in a section the command line added to (a
+  // segment without its duration), is located there, any other in the file
+  const WhereFn in_file = where_in_file(r.lines, path);
+  finish(r.c, [&](const std::string& option) {
+    const std::size_t dot = option.find('.');
+    const std::string section = option.substr(0, dot == std::string::npos ? 0 : dot + 1);
+    const bool elsewhere = !section.empty() && r.lines.key_line.count(option) == 0;
+    for (const auto& kv : overrides)
+      if (kv.first == option || (elsewhere && starts_with(kv.first, section.c_str())))
+        return Where{"command line", 0};
+    return in_file(option);
+  });
+  return r.c;
+}
+
+void apply_overrides(StudyConfig& c,
+                     const std::vector<std::pair<std::string, std::string>>& settings) {
+  const Where cl{"command line", 0};
+  StudyConfig n = c;
+  set_overrides(n, settings);
+  finish(n, [&cl](const std::string&) { return cl; }); // after all: a new segment takes two keys
   c = std::move(n);
 }
 

@@ -8,6 +8,8 @@
 //   MDRMAP_FAULT_ERRNO  ENOSPC (default), EIO or EFBIG
 //   MDRMAP_FAULT_RANK   fail only in the process with this OMPI_COMM_WORLD_RANK
 //   MDRMAP_FAULT_FSYNC  1: writes succeed, fsync/fdatasync of the file fail (EIO)
+//   MDRMAP_FAULT_BYTES  LO:HI: only positional writes touching bytes [LO, HI)
+//                       of the file fail (e.g. one dataset's), the others pass
 //
 // Without MDRMAP_FAULT_PATH every call passes straight through.
 #ifndef _GNU_SOURCE
@@ -65,9 +67,20 @@ bool fsync_mode() {
   return f && std::strcmp(f, "1") == 0;
 }
 
-// True when this write to fd must fail (sets errno).
-bool must_fail(int fd) {
-  if (fsync_mode() || !is_target(fd)) return false;
+// Does a positional write of `count` bytes at `off` touch MDRMAP_FAULT_BYTES
+// (always, when it is not set; never for a write without an offset)?
+bool in_range(long long off, std::size_t count) {
+  const char* r = std::getenv("MDRMAP_FAULT_BYTES");
+  if (!r || !*r) return true;
+  long long lo = 0, hi = 0;
+  if (off < 0 || std::sscanf(r, "%lld:%lld", &lo, &hi) != 2) return false;
+  return off < hi && off + static_cast<long long>(count) > lo;
+}
+
+// True when this write to fd must fail (sets errno); `off` -1 when the write
+// has no offset.
+bool must_fail(int fd, long long off = -1, std::size_t count = 0) {
+  if (fsync_mode() || !is_target(fd) || !in_range(off, count)) return false;
   const char* skip_text = std::getenv("MDRMAP_FAULT_SKIP");
   const long skip = skip_text ? std::atol(skip_text) : 0;
   if (g_matching_calls.fetch_add(1) < skip) return false;
@@ -91,13 +104,13 @@ ssize_t write(int fd, const void* buf, size_t count) {
 
 ssize_t pwrite(int fd, const void* buf, size_t count, off_t off) {
   static auto real = next<ssize_t (*)(int, const void*, size_t, off_t)>("pwrite");
-  if (must_fail(fd)) return -1;
+  if (must_fail(fd, off, count)) return -1;
   return real(fd, buf, count, off);
 }
 
 ssize_t pwrite64(int fd, const void* buf, size_t count, off64_t off) {
   static auto real = next<ssize_t (*)(int, const void*, size_t, off64_t)>("pwrite64");
-  if (must_fail(fd)) return -1;
+  if (must_fail(fd, off, count)) return -1;
   return real(fd, buf, count, off);
 }
 

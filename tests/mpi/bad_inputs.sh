@@ -54,6 +54,19 @@ cp "$fixture/map.h5" "$fixture/ok.h5" # the default output of --config ok.ini
 head -c 3000 "$fixture/map.h5" >"$fixture/trunc.h5"
 echo "not a map" >"$fixture/notes.txt"
 mkdir "$fixture/adir"
+# a map whose first status byte is 7, a value no study writes
+cp "$fixture/map.h5" "$fixture/status7.h5"
+"$PYRUN" "$here/set_status.py" "$fixture/status7.h5" 0 7 || fail "cannot make status7.h5"
+# map paths that are not regular files: a FIFO (opening it would wait
+# forever), links to it and to a device, and as root a device node
+mkfifo "$fixture/fifo"
+ln -s fifo "$fixture/fifolink"
+ln -s /dev/null "$fixture/devlink"
+root_skip="not root: mknod of a device node needs root"
+if $is_root; then
+  root_skip=""
+  mknod "$fixture/dev" c 1 3 2>"$logs/mknod.err" || root_skip="mknod failed: $(cat "$logs/mknod.err")"
+fi
 
 snapshot() { # snapshot DIR: every entry with its type, then every file's sha256
   (
@@ -87,6 +100,9 @@ check_row() {
   mkdir -p "$dir" && cp -a "$fixture/." "$dir/"
   if [[ $how == single ]]; then
     launch=()
+  elif [[ $how == root && -n $root_skip ]]; then
+    echo "skip: $root_skip" >"$verdict"
+    return
   elif [[ $how == nobody ]] && ! $is_root; then
     chmod 555 "$dir"
     if [[ -w $dir ]]; then
@@ -187,8 +203,8 @@ while IFS=$'\t' read -r what how args key problem extra; do
   [[ -z $what || $what == \#* ]] && continue
   n=$((n + 1))
   whats[n]=$what
-  if [[ -z $problem || -n $extra || ! $how =~ ^(mpi|single|nobody)$ ]]; then
-    echo "table row $n ($what): need 5 TAB-separated columns and how = mpi|single|nobody" \
+  if [[ -z $problem || -n $extra || ! $how =~ ^(mpi|single|nobody|root)$ ]]; then
+    echo "table row $n ($what): need 5 TAB-separated columns and how = mpi|single|nobody|root" \
       >"$logs/$n.verdict"
     continue
   fi

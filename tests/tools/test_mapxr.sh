@@ -10,7 +10,9 @@
 # names it, and T1_over_tau may be a further axis of length 1; undefined
 # event metrics are NaN). A copy of the map
 # without /schema and dimension scales (as older maps are) still opens, and
-# map_summary says the same of it. One-line errors.
+# map_summary says the same of it. Every group of a map, /failures (with and
+# without failed cases) and /provenance included, opens with plain xarray
+# without phony dimensions. One-line errors.
 #
 #   bash tests/tools/test_mapxr.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
 set -euo pipefail
@@ -47,9 +49,18 @@ d,R,tau,v,v1
 1e-2,2,0.5,100,1
 EOF
 printf '[cases]\nfile = cases.csv\n[run]\nsamples = 5\n' >"$W/cases.ini"
+# under load, the second of three cases fails (w1 = 1e100): /failures holds it
+cat >"$W/failing.csv" <<'EOF'
+FN,R,tau,v,w1,T1
+5.333333333333333,1,1,1,0.5,1
+5.333333333333333,1,1,1,1e100,1
+5.333333333333333,1,1,1,2,1
+EOF
+printf '[cases]\nfile = failing.csv\n[run]\nsamples = 5\nrtol = 1e-3\n' >"$W/failing.ini"
 study --config "$W/grid5.ini" --output "$W/grid5.h5"
 study --config "$W/cases.ini" --output "$W/cases.h5"
-ok "made grid5.h5 (48 cases, np = 2) and cases.h5"
+study --config "$W/failing.ini" --output "$W/failing.h5"
+ok "made grid5.h5 (48 cases, np = 2), cases.h5 and failing.h5"
 
 # a copy as maps were before /schema: the same data and root attributes, no
 # /schema, no dimension scales, no dataset attributes
@@ -208,6 +219,49 @@ if not np.array_equal(go["mu_after"].values, g["mu_after"].values):
 print("old map (no /schema, no scales): opens with dimensions case, event, sample; same grid")
 o.close()
 EOF
+cat >"$W/walk.py" <<'EOF'
+# pyrun-needs: numpy h5py xarray h5netcdf
+"""walk.py MAP...: every group of each map opens with xarray, no phony dimensions."""
+import sys
+import warnings
+
+import h5py
+import numpy as np
+import xarray as xr
+
+warnings.simplefilter("error")
+NONE = np.iinfo(np.uint64).max  # /failures/case of an unused slot
+for path in sys.argv[1:]:
+    with h5py.File(path, "r") as f:
+        groups = [""]
+        f.visititems(lambda name, obj: groups.append(name) if isinstance(obj, h5py.Group) else None)
+        status = f["results/status"][()]
+    for group in groups:
+        try:
+            with xr.open_dataset(path, engine="h5netcdf", group=group or None) as ds:
+                ds.load()
+        except (ValueError, OSError) as e:
+            sys.exit(f"walk: {path}: group /{group}: {str(e).splitlines()[0]}")
+    with xr.open_dataset(path, engine="h5netcdf", group="failures") as ds:
+        if list(ds.sizes) != ["failure"] or ds.sizes["failure"] != status.size:
+            sys.exit(f"walk: {path}: /failures dimensions {dict(ds.sizes)}: one slot per case")
+        case = ds["case"].values
+        used = case != NONE
+        if sorted(case[used]) != list(np.flatnonzero(status == -1)):
+            sys.exit(f"walk: {path}: /failures/case {case[used]}, failed {np.flatnonzero(status == -1)}")
+        if any(len(m) == 0 for m in ds["message"].values[used]):
+            sys.exit(f"walk: {path}: a failed case without a message")
+    with xr.open_dataset(path, engine="h5netcdf", group="provenance") as ds:
+        text = bytes(ds["config_text"].values).decode()
+        if "[run]" not in text or set(ds.sizes) != {"config_text_byte", "config_canonical_byte"}:
+            sys.exit(f"walk: {path}: /provenance {dict(ds.sizes)}: {text[:40]!r}")
+    print(f"{path}: {len(groups)} groups open with xarray; /failures lists "
+          f"{int(used.sum())} failed case(s)")
+EOF
+run walk py "$W/walk.py" "$W/grid5.h5" "$W/cases.h5" "$W/failing.h5"
+cat "$W/walk.out"
+grep -q "failing.h5: .* lists 1 failed case" "$W/walk.out" || fail "walk: the failed case of failing.h5"
+ok "xarray: every group of every map opens, /failures and /provenance included"
 run check py "$W/check.py" "$SRCDIR/tools" "$W/grid5.h5" "$W/cases.h5" "$W/old.h5"
 cat "$W/check.out"
 ok "xarray: named dimensions in every group, /grid coordinates; mapxr.to_grid: 5-d, coordinates" \
