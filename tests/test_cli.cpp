@@ -3,8 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -16,7 +20,9 @@
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <utility>
 #include <vector>
@@ -83,7 +89,10 @@ private:
 };
 
 /// Runs MDRMAP_EXE with `args`, capturing stdout and stderr through files.
-Outcome run_mdrmap(const std::vector<std::string>& args) {
+/// With limit_seconds > 0, a run still going after that long is killed and
+/// reported as code -1 with "timed out" in err (a hang fails the test
+/// instead of blocking it).
+Outcome run_mdrmap(const std::vector<std::string>& args, int limit_seconds = 0) {
   TempDir io;
   const std::string out_path = (io.path() / "stdout").string();
   const std::string err_path = (io.path() / "stderr").string();
@@ -111,11 +120,25 @@ Outcome run_mdrmap(const std::vector<std::string>& args) {
     return r;
   }
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
+  bool timed_out = false;
+  if (limit_seconds > 0) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limit_seconds);
+    while (::waitpid(pid, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        ::kill(pid, SIGKILL);
+        timed_out = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10)); // poll for the exit
+    }
   }
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (limit_seconds <= 0 || timed_out)
+    while (::waitpid(pid, &status, 0) < 0) {
+    }
+  r.code = WIFEXITED(status) && !timed_out ? WEXITSTATUS(status) : -1;
   r.out = read_file(out_path);
   r.err = read_file(err_path);
+  if (timed_out) r.err += "timed out after " + std::to_string(limit_seconds) + " s";
   return r;
 }
 
@@ -503,6 +526,139 @@ TEST(cli, SimulateOutputFileEqualsStdout) {
   EXPECT_EQ(without_wall_time(dash.out), without_wall_time(to_stdout.out));
 }
 
+// --- --output onto links and special files ------------------------------------
+
+/// Runs that must not wait for anything: a generous bound for a loaded
+/// machine (each takes well under a second).
+constexpr int kNoHangSeconds = 120;
+
+bool is_link_to(const fs::path& p, const fs::path& target) {
+  std::error_code ec;
+  return fs::is_symlink(fs::symlink_status(p, ec)) && fs::read_symlink(p, ec) == target;
+}
+
+std::vector<std::string> small_run(const std::vector<std::string>& extra = {}) {
+  auto args = simulate_args(transient_scene());
+  args.insert(args.end(), {"--samples", "5"});
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+/// Exit 2 with one line naming --output.
+void expect_output_refused(const Outcome& r, const std::string& words) {
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(starts_with(r.err, "mdrmap simulate: error: --output: ")) << r.err;
+  EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+// A symbolic link to a regular file: the file it names is replaced (a
+// temporary beside it, renamed over it); the link stays a link.
+TEST(cli, SimulateOutputLinkToAFileReplacesTheFile) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "data");
+  const fs::path target = dir.path() / "data" / "step.csv";
+  write_file(target, "old content\n");
+  const fs::path link = dir.path() / "link.csv";
+  fs::create_symlink("data/step.csv", link);
+  const Outcome ref = run_mdrmap(small_run());
+  ASSERT_EQ(ref.code, 0) << ref.err;
+  const Outcome r = run_mdrmap(small_run({"--output", link.string()}), kNoHangSeconds);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(is_link_to(link, "data/step.csv"));
+  EXPECT_EQ(without_wall_time(read_file(target)), without_wall_time(ref.out));
+  EXPECT_EQ(names_in(dir.path()), (std::vector<std::string>{"data", "link.csv"}));
+  EXPECT_EQ(names_in(dir.path() / "data"), std::vector<std::string>{"step.csv"});
+}
+
+// Special files are written, never replaced: a FIFO with its reader, a link
+// to a device (/dev/null) or to standard output (/proc/self/fd/1, what
+// /dev/stdout is). A FIFO without a reader and a link to nothing are refused
+// at once (exit 2, one line) instead of waiting forever or replacing them.
+TEST(cli, SimulateOutputWritesThroughSpecialFiles) {
+  TempDir dir;
+  const Outcome ref = run_mdrmap(small_run());
+  ASSERT_EQ(ref.code, 0) << ref.err;
+  const std::string expected = without_wall_time(ref.out);
+
+  const fs::path fifo = dir.path() / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  {
+    SCOPED_TRACE("a FIFO with a reader");
+    const int rd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(rd, 0) << std::strerror(errno);
+    const Outcome r = run_mdrmap(small_run({"--output", fifo.string()}), kNoHangSeconds);
+    std::string got; // (the output is far below a pipe's capacity)
+    char buf[4096];
+    for (ssize_t n = 0; (n = ::read(rd, buf, sizeof buf)) > 0;)
+      got.append(buf, static_cast<std::size_t>(n));
+    ::close(rd);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(without_wall_time(got), expected);
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  }
+  {
+    SCOPED_TRACE("a FIFO without a reader");
+    expect_output_refused(run_mdrmap(small_run({"--output", fifo.string()}), kNoHangSeconds),
+                          "without a reader");
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  }
+  const fs::path null_link = dir.path() / "null";
+  fs::create_symlink("/dev/null", null_link);
+  {
+    SCOPED_TRACE("a link to /dev/null");
+    const Outcome r = run_mdrmap(small_run({"--output", null_link.string()}), kNoHangSeconds);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_TRUE(is_link_to(null_link, "/dev/null"));
+  }
+  const fs::path out_link = dir.path() / "stdout";
+  fs::create_symlink("/proc/self/fd/1", out_link);
+  {
+    SCOPED_TRACE("a link to /proc/self/fd/1 (standard output: here a file)");
+    const Outcome r = run_mdrmap(small_run({"--output", out_link.string()}), kNoHangSeconds);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(without_wall_time(r.out), expected);
+    EXPECT_TRUE(is_link_to(out_link, "/proc/self/fd/1"));
+  }
+  const fs::path dangling = dir.path() / "dangling";
+  fs::create_symlink("missing.csv", dangling);
+  {
+    SCOPED_TRACE("a link to nothing");
+    expect_output_refused(run_mdrmap(small_run({"--output", dangling.string()}), kNoHangSeconds),
+                          "symbolic link to nothing");
+    EXPECT_TRUE(is_link_to(dangling, "missing.csv"));
+  }
+  EXPECT_EQ(names_in(dir.path()), (std::vector<std::string>{"dangling", "fifo", "null", "stdout"}));
+}
+
+// A device node (as root: mknod n c 1 3, /dev/null's numbers) is written to,
+// not replaced by a regular file.
+TEST(cli, SimulateOutputDeviceNodeIsWrittenNotReplaced) {
+  if (::geteuid() != 0) GTEST_SKIP() << "mknod of a character device needs root";
+  TempDir dir;
+  const fs::path node = dir.path() / "n";
+  if (::mknod(node.c_str(), S_IFCHR | 0666, makedev(1, 3)) != 0)
+    GTEST_SKIP() << "mknod failed (" << std::strerror(errno) << "): no CAP_MKNOD here";
+  const Outcome r = run_mdrmap(small_run({"--output", node.string()}), kNoHangSeconds);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  struct stat st {};
+  ASSERT_EQ(::lstat(node.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "the device node was replaced";
+  EXPECT_EQ(st.st_rdev, makedev(1, 3));
+  EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{"n"});
+}
+
 struct EdgeScene {
   const char* label;
   Step scene;
@@ -574,7 +730,7 @@ TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
   };
   const std::vector<Row> rows = {
       {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "mdr", true},
-      {{"--d", "1e-3", "--R", "1e-300", "--tau", "0", "--v", "1", "--v1", "1e300"}, "mdr", true},
+      {{"--d", "1e-3", "--R", "1", "--tau", "0", "--v", "1", "--v1", "1e300"}, "mdr", true},
       {{"--d", "1e-3", "--R", "1", "--tau", "1e-300", "--v", "1e-300", "--v1", "1e300"},
        "baseline",
        true},
@@ -600,6 +756,49 @@ TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
         for (double x : v)
           EXPECT_TRUE(std::isfinite(x));
     }
+  }
+}
+
+// Holds near the largest double (issue 23, class 7): the sample time j T
+// overflowed, and 200 rows of inf and nan came out with exit 0.
+TEST(cli, SimulateHoldsNearTheLargestDoubleGiveFiniteRows) {
+  const Outcome r = run_mdrmap({"simulate", "--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1",
+                                "--history", "0:1e306,1:1"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Parsed p = parse_output(r.out);
+  ASSERT_EQ(p.rows.size(), 402U);
+  for (const auto& v : p.rows)
+    for (double x : v)
+      EXPECT_TRUE(std::isfinite(x));
+  EXPECT_EQ(p.rows[200][kT], 1e306);
+}
+
+// A case past its work budget, or one the solver cannot resolve to rtol,
+// fails with one line and exit 1 (issue 23, class 3): the fixed-step baseline
+// at a1/dx = 4000 over 160 contact widths needs ~4e11 element updates (it ran
+// for many minutes); mdr's estimate cannot go below its rounding floor (the
+// case was reported done with an estimate above rtol).
+TEST(cli, SimulateCasesPastTheirBudgetOrRtolFailWithOneLine) {
+  const std::vector<std::string> scene = {"simulate", "--d", "1e-3", "--R",       "1", "--tau",
+                                          "1",        "--v", "1",    "--samples", "5", "--history"};
+  struct Row {
+    std::vector<std::string> extra;
+    const char* says;
+  };
+  const std::vector<Row> rows = {
+      {{"1:5", "--solver", "baseline", "--rtol", "1e-4"},
+       "baseline needs more than its work budget"},
+      {{"0.1:0.1,0:0.1,1:0.1", "--solver", "mdr", "--rtol", "1e-15"}, "stays above rtol"},
+  };
+  for (const Row& row : rows) {
+    SCOPED_TRACE(row.says);
+    std::vector<std::string> args = scene;
+    args.insert(args.end(), row.extra.begin(), row.extra.end());
+    const Outcome r = run_mdrmap(args, 240); // (a hang fails instead of blocking)
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(row.says), std::string::npos) << r.err;
   }
 }
 
@@ -688,6 +887,22 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        {"--history", "1:1,2:2"},
        "samples"},
       {"--d without value", {{"d", kDrop}}, {"--d"}, "d"},
+      // derived scales out of range (issue 23, class 7): the option that sets them
+      {"contact radius below 1e-75", {{"R", "1e-300"}}, {}, "d"},
+      {"contact radius above 1e75", {{"R", "1e300"}, {"d", "1e10"}}, {}, "d"},
+      {"w tau / a overflows by a segment's W",
+       {{"v1", kDrop}, {"d", "1e-60"}, {"R", "1e-60"}},
+       {"--history", "1e300:1"},
+       "history"},
+      {"w tau overflows by a segment's W",
+       {{"v1", kDrop}, {"d", "1"}, {"R", "1"}},
+       {"--history", "1e308:1"},
+       "history"},
+      {"slip W T overflows", {{"v1", kDrop}}, {"--history", "1e300:1e300"}, "history"},
+      {"under load a segment's W shrinks the contact below 1e-75",
+       {{"v1", kDrop}, {"d", kDrop}, {"FN", "5.333333333333333"}, {"R", "1"}},
+       {"--history", "5e307:1"},
+       "history"},
       {"output into a missing directory",
        {{"output", (missing_dir / "out.csv").string()}},
        {},
@@ -1260,6 +1475,36 @@ TEST(cli, SimulateUnderLoadElasticIsHertz) {
     EXPECT_NEAR(row[kFN], kF0, 1e-12 * kF0);
     EXPECT_LE(std::abs(row[kMu]), 1e-12);
   }
+}
+
+// --- study -------------------------------------------------------------------
+
+// `study --set` adds a history segment to a config without [history] (README:
+// every override is applied, then the study is checked); half a segment is
+// refused at the command line. Run as an MPI singleton.
+TEST(cli, StudySetAddsTheSegmentOfAConfigWithoutHistory) {
+  TempDir dir;
+  const fs::path ini = dir.path() / "no_history.ini";
+  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1\n[run]\nsamples = 5\n");
+  const fs::path map = dir.path() / "map.h5";
+  const std::vector<std::string> base = {"study",      "--quiet",  "--config",
+                                         ini.string(), "--output", map.string()};
+  auto half = base;
+  half.insert(half.end(), {"--set", "history.w1_over_v=0"});
+  const Outcome refused = run_mdrmap(half, kNoHangSeconds);
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_TRUE(starts_with(refused.err, "mdrmap study: error: history.T1: command line: "))
+      << refused.err;
+  EXPECT_FALSE(fs::exists(map));
+
+  auto whole = half;
+  whole.insert(whole.end(), {"--set", "history.T1_over_tau=10"});
+  const Outcome r = run_mdrmap(whole, kNoHangSeconds);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 cases in " + map.string() + ": 1 done, 0 failed"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::is_regular_file(map));
 }
 
 } // namespace

@@ -16,14 +16,29 @@ Two layouts exist (the root attribute mdrmap_schema says which):
 Not a script: the tools import it from their own directory.
 """
 import argparse
+import importlib.util
 import math
 import os
 import sys
 
-SCHEMA1 = "mdrmap-map/1"
-SCHEMA2 = "mdrmap-map/2"
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def _load_maps():
+    """src/python/mdrmap/maps.py, the Python package's map reader, as a module
+    (loaded from the source tree: the tools need no build)."""
+    path = os.path.join(HERE, os.pardir, "src", "python", "mdrmap", "maps.py")
+    spec = importlib.util.spec_from_file_location("mdrmap_maps", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+maps = _load_maps()
+# the schema names and the readers of text and schema, from the package
+SCHEMA1, SCHEMA2, SCHEMAS = maps.SCHEMA1, maps.SCHEMA2, maps.SCHEMAS
 SCHEMA = SCHEMA2  # what mdrmap writes now
-SCHEMAS = {SCHEMA1: 1, SCHEMA2: 2}
+text, schema_name, schema_version = maps.text, maps.schema_name, maps.schema_version
 # The /cases columns of schema-1 maps written before /schema (the fallback of case_columns)
 CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
 # The 1-D /cases columns of a schema-2 map, in their order (loading first: d or FN)
@@ -43,32 +58,6 @@ class UserError(Exception):
 class Parser(argparse.ArgumentParser):
     def error(self, message):  # one line instead of usage + message
         raise UserError(f"{message} (see --help)")
-
-
-def text(value):
-    """An HDF5 string attribute or a uint8 text dataset as str."""
-    if isinstance(value, bytes):
-        return value.decode("utf-8", "replace")
-    dtype = getattr(value, "dtype", None)
-    if dtype is not None and dtype.kind == "S":
-        return value.tobytes().decode("utf-8", "replace")
-    if dtype is not None and dtype.kind in "ui" and getattr(value, "ndim", 0) == 1:
-        return bytes(value.astype("u1")).decode("utf-8", "replace")  # a text dataset
-    return str(value)  # numbers (e.g. integer attributes) as they print
-
-
-def schema_name(f):
-    """The root attribute mdrmap_schema of an open map, as str."""
-    return text(f.attrs["mdrmap_schema"]).rstrip("\0") if "mdrmap_schema" in f.attrs else ""
-
-
-def schema_version(f):
-    """1 or 2: the layout of an open map. An unknown schema name is judged by its
-    content (/events or a 2-D /cases/w: 2)."""
-    name = schema_name(f)
-    if name in SCHEMAS:
-        return SCHEMAS[name]
-    return 2 if "events" in f or "cases/w" in f else 1
 
 
 def v1_refused(path):

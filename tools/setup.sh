@@ -28,6 +28,8 @@ PACKAGES=(
   libboost-program-options-dev libgtest-dev libbenchmark-dev
   # post-processing (tools/*.py; tools/mapxr.py: xarray)
   python3-numpy python3-h5py python3-matplotlib python3-xarray python3-h5netcdf
+  # the Python module (src/python: pybind11) and its tests and examples
+  pybind11-dev python3-dev python3-pytest python3-scipy
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
 )

@@ -50,25 +50,8 @@ void write_rows(std::FILE* out, const Series& s, bool load) {
 }
 
 void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
-  const std::pair<const char*, double> f[] = {
-      {"t", e.t},
-      {"w_before", e.w_before},
-      {"w_after", e.w_after},
-      {"mu_before", e.mu_before},
-      {"mu_after", e.mu_after},
-      {"mu_peak", e.mu_peak},
-      {"t_peak", e.t_peak},
-      {"slip_peak", e.slip_peak},
-      {"mu_end", e.end.mu},
-      {"mu_ss_before", e.ss_before.mu},
-      {"mu_ss_after", e.ss_after.mu},
-      {"D_c", e.d_c},
-      {"a", e.a},
-      {"a_minus_b", e.a_minus_b},
-      {"b", e.b},
-  };
   std::string line = "# event k=" + std::to_string(k);
-  for (const auto& [name, value] : f)
+  for (const auto& [name, value] : event_fields(e))
     line += std::string(" ") + name + "=" + format_double(value);
   std::fprintf(out, "%s\n", line.c_str());
 }
@@ -108,9 +91,9 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
   for (std::size_t k = 0; k < rec.events.size(); ++k)
     write_event(out, k, rec.events[k]);
 
-  const State& pre = series.pre;
-  std::fprintf(out, "# pre FN=%.17g Fx=%.17g mu=%.17g a2=%.17g", pre.FN, pre.Fx, pre.mu, pre.a2);
-  if (load) std::fprintf(out, " d=%.17g a1=%.17g", pre.d, pre.a1);
+  std::fputs("# pre", out);
+  for (const auto& [name, value] : state_fields(series.pre, load))
+    std::fprintf(out, " %s=%.17g", name, value);
   std::fprintf(out, "\n%s\n", load ? kCsvHeaderLoad : kCsvHeader);
   write_rows(out, series, load);
 }

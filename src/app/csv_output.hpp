@@ -36,13 +36,10 @@
 // Every floating-point number is printed with 17 significant digits, which
 // reads back to the same double.
 #include <cstdio>
-#include <optional>
 #include <string>
-#include <vector>
 
+#include "app/simulation.hpp"
 #include "core/case.hpp"
-#include "core/events.hpp"
-#include "core/solver.hpp"
 
 namespace mdrmap::app {
 
@@ -51,21 +48,6 @@ std::string format_double(double x);
 
 /// A history as "W1:T1,W2:T2,...", each number with 17 significant digits.
 std::string format_history(const History& h);
-
-/// Everything the comment lines report besides the series itself.
-struct SimulateRecord {
-  std::string version;                  ///< program version (kVersion)
-  std::string commit;                   ///< git commit (kGitCommit)
-  std::string solver;                   ///< name of the solver that ran
-  double rtol = 0.0;                    ///< requested tolerance
-  RunInfo info;                         ///< cost and error estimate of the run
-  double wall_seconds = 0.0;            ///< wall time of the run
-  Case c;                               ///< the case as run (durations resolved)
-  std::optional<double> error_vs_exact; ///< case error against the reference below
-  std::string reference = "exact";      ///< solver of the reference run
-  double reference_rtol = 0.0;          ///< its rtol
-  std::vector<EventMetrics> events;     ///< one per segment
-};
 
 /// The CSV column header line (without newline): depth control, load control.
 inline constexpr const char* kCsvHeader = "t,segment,FN,Fx,mu,a2";

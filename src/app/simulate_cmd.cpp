@@ -1,32 +1,19 @@
 #include "app/simulate_cmd.hpp"
 
-#include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <exception>
-#include <fcntl.h>
-#include <iterator>
 #include <new>
-#include <optional>
 #include <stdexcept>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <boost/program_options.hpp>
 
+#include "app/case_input.hpp"
 #include "app/csv_output.hpp"
+#include "app/output_file.hpp"
+#include "app/simulation.hpp"
 #include "core/case.hpp"
-#include "core/error_metric.hpp"
-#include "core/events.hpp"
-#include "core/exact.hpp"
 #include "core/params.hpp"
-#include "core/solver.hpp"
-#include "mdrmap/version.hpp"
 
 namespace po = boost::program_options;
 
@@ -34,27 +21,12 @@ namespace mdrmap::app {
 namespace {
 
 constexpr const char* kPrefix = "mdrmap simulate: error: ";
-constexpr double kDefaultRtol = 1e-4;
-constexpr double kExactReferenceRtol = 1e-12;
-/// Under load the reference is the load solver at rtol * factor, not below the floor.
-constexpr double kLoadReferenceFactor = 1e-3;
-constexpr double kLoadReferenceFloor = 1e-9;
 
-/// Options that are not case parameters of the table (core/params.hpp): the
-/// history's two forms, the sampling's spacing and how to run.
-constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
-constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver", "output"};
-
-/// Every option, in the order of the help text: the table's case parameters,
-/// the history, the table's sampling parameters, then the rest.
+/// Every option, in the order of the help text: those of a case
+/// (app/case_input.hpp), then --output.
 std::vector<std::string> option_names() {
-  std::vector<std::string> names;
-  for (const auto& p : case_parameters())
-    if (p.part != Part::Sampling) names.emplace_back(p.name);
-  names.insert(names.end(), std::begin(kHistoryOptions), std::end(kHistoryOptions));
-  for (const auto& p : case_parameters())
-    if (p.part == Part::Sampling) names.emplace_back(p.name);
-  names.insert(names.end(), std::begin(kRunOptions), std::end(kRunOptions));
+  std::vector<std::string> names = case_option_names();
+  names.emplace_back("output");
   return names;
 }
 
@@ -84,13 +56,6 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
-/// The value as typed, quoted only when it would otherwise be unreadable.
-std::string shown(const std::string& text) {
-  if (text.empty()) return "an empty string";
-  if (text.find_first_of(" \t\n\r\f\v',") != std::string::npos) return "'" + text + "'";
-  return text;
-}
-
 int report_bad_input(const std::string& option, const std::string& what) {
   std::fprintf(stderr, "%s--%s: %s\n", kPrefix, one_line(option).c_str(), one_line(what).c_str());
   return kExitBadInput;
@@ -106,126 +71,10 @@ int report_runtime(const std::string& what) {
   return kExitRuntime;
 }
 
-// --- Numbers -------------------------------------------------------------------
-
-/// Strict decimal (or hex) floating-point number, the whole text. "nan" and
-/// "inf" parse; the range checks then reject them with the allowed range.
-double parse_double(const std::string& option, const std::string& text) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double x = std::strtod(begin, &end);
-  const bool whole = !text.empty() && end != begin && *end == '\0' &&
-                     std::strchr(" \t\n\r\f\v", text.front()) == nullptr;
-  if (!whole) throw InvalidInput(option, "must be a number, got " + shown(text));
-  if (errno == ERANGE && std::isinf(x))
-    throw InvalidInput(option,
-                       "must be a finite number, got " + text + " (too large for a double)");
-  return x;
-}
-
-/// Strict integer for a count parameter: optional sign and decimal digits.
-double parse_integer(const ParamSpec& spec, const std::string& text) {
-  const std::string allowed = "must be " + spec.allowed() + ", got " + shown(text);
-  std::size_t i = (!text.empty() && (text[0] == '+' || text[0] == '-')) ? 1 : 0;
-  if (i >= text.size()) throw InvalidInput(spec.name, allowed);
-  for (; i < text.size(); ++i)
-    if (text[i] < '0' || text[i] > '9') throw InvalidInput(spec.name, allowed);
-  errno = 0;
-  const long long n = std::strtoll(text.c_str(), nullptr, 10);
-  if (errno == ERANGE) throw InvalidInput(spec.name, allowed);
-  return static_cast<double>(n);
-}
-
-/// A table parameter's value from its text: parsed, checked against its range.
-double parse_parameter(const ParamSpec& spec, const std::string& text) {
-  const double x = spec.integer() ? parse_integer(spec, text) : parse_double(spec.name, text);
-  spec.check(x);
-  return x;
-}
-
-/// Checks x against a spec, blaming `option` (e.g. the segment spec "w" is
-/// given as --v1 in the one-step shorthand).
-void check_as(const std::string& option, const ParamSpec& spec, double x) {
-  try {
-    spec.check(x);
-  } catch (const InvalidInput& e) {
-    throw InvalidInput(option, e.what());
-  }
-}
-
-// --- History -------------------------------------------------------------------
-
-std::string trimmed(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
-
-std::vector<std::string> split_commas(const std::string& text) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', start);
-    items.push_back(text.substr(start, comma == std::string::npos ? comma : comma - start));
-    if (comma == std::string::npos) return items;
-    start = comma + 1;
-  }
-}
-
-/// W or T of one segment: a number in its spec's range. `where` names the segment.
-double segment_number(const std::string& where, const ParamSpec& spec, const std::string& text) {
-  try {
-    const double x = parse_double(spec.symbol, trimmed(text));
-    spec.check(x);
-    return x;
-  } catch (const InvalidInput& e) {
-    throw InvalidInput("history", where + ": " + spec.symbol + " " + e.what());
-  }
-}
-
-/// One segment "W:T"; k is 1-based.
-Segment parse_segment(std::size_t k, const std::string& item) {
-  const std::string where = "segment " + std::to_string(k) + " '" + item + "'";
-  const std::string form = "a segment is W:T, its velocity W then its duration T";
-  const std::string tok = trimmed(item);
-  if (tok.empty())
-    throw InvalidInput("history", "segment " + std::to_string(k) +
-                                      " is empty; segments W:T are separated by single commas, "
-                                      "e.g. 0.1:10,0:100,1:10");
-  const std::size_t colon = tok.find(':');
-  if (colon == std::string::npos) throw InvalidInput("history", where + " has no ':'; " + form);
-  if (tok.find(':', colon + 1) != std::string::npos)
-    throw InvalidInput("history", where + " has more than one ':'; " + form);
-  Segment s;
-  s.w = segment_number(where, segment_velocity_spec(), tok.substr(0, colon));
-  s.T = segment_number(where, segment_duration_spec(), tok.substr(colon + 1));
-  return s;
-}
-
-/// "W1:T1,W2:T2,...": every token checked; throws InvalidInput("history").
-std::vector<Segment> parse_history(const std::string& text) {
-  if (trimmed(text).empty())
-    throw InvalidInput("history", "must be one or more segments W:T separated by commas, e.g. "
-                                  "0.1:10,0:100,1:10; got " +
-                                      shown(text));
-  const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
-  if (n > kMaxSegments)
-    throw InvalidInput("history", "has " + std::to_string(n) + " segments; at most " +
-                                      std::to_string(kMaxSegments) + " are allowed");
-  std::vector<Segment> segments;
-  const auto items = split_commas(text);
-  for (std::size_t k = 0; k < items.size(); ++k)
-    segments.push_back(parse_segment(k + 1, items[k]));
-  return segments;
-}
-
 // --- Command line --------------------------------------------------------------
 
 struct SimulateArgs {
-  Case c;
-  SolverKind solver = SolverKind::Auto;
-  double rtol = kDefaultRtol;
+  CaseInput in;
   std::string output; ///< empty or "-": stdout
 };
 
@@ -261,268 +110,26 @@ po::variables_map option_texts(const std::vector<std::string>& args) {
   return vm;
 }
 
-/// What the table says about a parameter, for help and "required" messages.
-std::string describe(const ParamSpec& p) {
-  return std::string(p.meaning) + " (" + dim_name(p.dim) + "), " + p.allowed();
-}
-
-void require_options(const po::variables_map& vm) {
-  for (const auto& p : case_parameters())
-    if (p.required && !vm.count(p.name))
-      throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
-  if (vm.count("v1") && vm.count("history"))
-    throw InvalidInput("history", "cannot be combined with --v1: give either --history "
-                                  "W1:T1,W2:T2,... or its one-segment shorthand --v1 V1 "
-                                  "[--t-end T]");
-  if (!vm.count("v1") && !vm.count("history"))
-    throw InvalidInput("v1", "is required: the sliding velocity after t = 0 (length/time), " +
-                                 segment_velocity_spec().allowed() +
-                                 "; or give a whole history with --history W1:T1,W2:T2,...; "
-                                 "got nothing");
-  if (vm.count("t-end") && vm.count("history"))
-    throw InvalidInput("t-end", "belongs to the shorthand --v1 V1 [--t-end T]; with --history "
-                                "each segment W:T has its own duration");
-}
-
-/// Sets every table parameter from its option, or from the table's default
-/// (0 for the members of a one_of group that are not given). An explicitly
-/// given value is checked against its own range here, before the groups.
-void read_case_parameters(const po::variables_map& vm, Case& c) {
-  for (const auto& p : case_parameters()) {
-    const double x =
-        vm.count(p.name) ? parse_parameter(p, vm[p.name].as<std::string>()) : p.fallback;
-    p.set(c, x);
-  }
-}
-
-/// The members of the table's one_of group `group`, in the table's order.
-std::vector<const ParamSpec*> group_members(const std::string& group) {
-  std::vector<const ParamSpec*> members;
-  for (const auto& q : case_parameters())
-    if (q.one_of && group == q.one_of) members.push_back(&q);
-  return members;
-}
-
-/// "--d D or --FN F0": the members with their symbols, `sep` between all
-/// but the last two, `last_sep` between those.
-std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
-                        const char* last_sep) {
-  std::string s;
-  for (std::size_t i = 0; i < members.size(); ++i) {
-    if (i > 0) s += i + 1 == members.size() ? last_sep : sep;
-    s += std::string("--") + members[i]->name + " " + members[i]->symbol;
-  }
-  return s;
-}
-
-/// Exactly one option of each one_of group (e.g. --d or --FN, the loading)
-/// is given; otherwise one line naming the whole group. Raw message: no single
-/// option is at fault.
-void require_one_of_each_group(const po::variables_map& vm) {
-  for (const auto& p : case_parameters()) {
-    if (!p.one_of || group_members(p.one_of).front() != &p) continue; // each group once
-    const auto members = group_members(p.one_of);
-    std::string given;
-    int n = 0;
-    for (const ParamSpec* q : members) {
-      if (!vm.count(q->name)) continue;
-      given += (n++ ? " and --" : "--") + std::string(q->name);
-    }
-    if (n == 1) continue;
-    std::string what;
-    for (const ParamSpec* q : members)
-      what += std::string(what.empty() ? "" : ", ") + "--" + q->name + " " + q->meaning;
-    throw InvalidInput("", "give exactly one of " + group_usage(members, ", ", " or ") + " (the " +
-                               p.one_of + ": " + what + "); got " +
-                               (n == 0 ? std::string("none") : given));
-  }
-}
-
-/// The history from --history, or the one segment of --v1 V1 [--t-end T];
-/// every value is checked with the segment specs, the shorthand's reported as
-/// --v1 / --t-end. Needs the case parameters set (the default window).
-void read_history(const po::variables_map& vm, Case& c) {
-  auto text = [&](const char* name) { return vm[name].as<std::string>(); };
-  if (vm.count("history")) {
-    c.history.segments = parse_history(text("history"));
-    return;
-  }
-  const double v1 = parse_double("v1", text("v1"));
-  check_as("v1", segment_velocity_spec(), v1);
-  std::optional<double> t_end;
-  if (vm.count("t-end")) {
-    t_end = parse_double("t-end", text("t-end"));
-    check_as("t-end", segment_duration_spec(), *t_end);
-  }
-  // the scales first (as for any case), then the window they give
-  c.history.segments = {Segment{v1, 1.0}};
-  validate(c);
-  // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
-  // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0)
-  const double a = c.edge_scale(), R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
-  const double d = c.loading.by_force() ? a * a / R : c.loading.d;
-  const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
-  if (!t_end) {
-    try {
-      segment_duration_spec().check(T);
-    } catch (const InvalidInput& e) {
-      throw InvalidInput("t-end", std::string("the default window ") + e.what() +
-                                      "; give --t-end or rescale the units");
-    }
-  }
-  c.history.segments = {Segment{v1, T}};
-}
-
-Spacing parse_spacing(const std::string& text) {
-  if (text == "linear") return Spacing::Linear;
-  if (text == "log") return Spacing::Log;
-  throw InvalidInput("spacing", "must be linear or log, got " + shown(text));
-}
-
-/// Refuses outputs beyond kMaxSamples rows in all.
-void check_total_samples(const Case& c) {
-  const double rows =
-      static_cast<double>(c.sampling.samples) * static_cast<double>(c.history.size());
-  if (rows > static_cast<double>(kMaxSamples))
-    throw InvalidInput("samples", std::to_string(c.sampling.samples) + " per segment x " +
-                                      std::to_string(c.history.size()) +
-                                      " segments = " + format_number(rows) + " rows, more than " +
-                                      std::to_string(kMaxSamples) + "; lower --samples");
-}
-
 /// Parses and validates the command line. Throws InvalidInput, or lets
 /// boost::program_options errors through for the caller to translate.
 SimulateArgs parse_args(const std::vector<std::string>& args) {
   const po::variables_map vm = option_texts(args);
-  require_options(vm);
-  auto text = [&](const char* name) { return vm[name].as<std::string>(); };
-
+  OptionTexts texts;
+  for (const auto& name : case_option_names())
+    if (vm.count(name)) texts.emplace(name, vm[name].as<std::string>());
   SimulateArgs a;
-  read_case_parameters(vm, a.c);
-  require_one_of_each_group(vm);
-  if (vm.count("spacing")) a.c.sampling.spacing = parse_spacing(text("spacing"));
-  if (vm.count("log-decades") && a.c.sampling.spacing != Spacing::Log)
-    throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
-                                      "drop --log-decades");
-  read_history(vm, a.c);
-  validate(a.c);
-  check_total_samples(a.c);
-  if (vm.count("rtol")) a.rtol = parse_double("rtol", text("rtol"));
-  if (vm.count("solver")) a.solver = parse_solver(text("solver"));
-  if (vm.count("output")) a.output = text("output");
-  validate_rtol(a.rtol);
+  a.in = read_case_input(texts);
+  if (vm.count("output")) a.output = vm["output"].as<std::string>();
   if (vm.count("output") && a.output.empty())
     throw InvalidInput("output", "must be a file path (or - for stdout), got an empty string");
   return a;
 }
 
-/// Output into FILE.tmp.<pid> next to FILE, renamed over FILE on commit();
-/// the temporary is removed if commit() is never reached.
-class AtomicFile {
-public:
-  /// Throws InvalidInput("output") if the file cannot be created.
-  explicit AtomicFile(const std::string& path)
-      : path_(path), tmp_(path + ".tmp." + std::to_string(static_cast<long>(::getpid()))) {
-    const std::string fail = "must be a writable file in an existing directory";
-    if (path.back() == '/')
-      throw InvalidInput("output", fail + " (the path names a directory), got " + path);
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-      throw InvalidInput("output", fail + " (the path is a directory), got " + path);
-    const int fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0) {
-      const int err = errno;
-      throw InvalidInput("output", fail + " (" + std::strerror(err) + "), got " + path);
-    }
-    file_ = ::fdopen(fd, "w");
-    if (!file_) {
-      const int err = errno;
-      ::close(fd);
-      ::unlink(tmp_.c_str());
-      throw std::runtime_error("cannot open " + tmp_ + ": " + std::strerror(err));
-    }
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() {
-    if (file_) std::fclose(file_);
-    if (!committed_) ::unlink(tmp_.c_str());
-  }
-
-  std::FILE* get() const { return file_; }
-
-  /// Flushes, closes and renames over the target. Throws std::runtime_error.
-  void commit() {
-    const bool write_error = std::fflush(file_) != 0 || std::ferror(file_) != 0;
-    const int err_write = errno;
-    const int rc = std::fclose(file_);
-    const int err_close = errno;
-    file_ = nullptr;
-    if (write_error || rc != 0)
-      throw std::runtime_error("--output: writing " + tmp_ +
-                               " failed: " + std::strerror(write_error ? err_write : err_close));
-    if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
-      const int err = errno;
-      throw std::runtime_error("--output: renaming " + tmp_ + " to " + path_ +
-                               " failed: " + std::strerror(err));
-    }
-    committed_ = true;
-  }
-
-private:
-  std::string path_, tmp_;
-  std::FILE* file_ = nullptr;
-  bool committed_ = false;
-};
-
-/// For a solver other than the default: the case error against a reference.
-/// At fixed depth the continuum solver at 1e-12; under load the default (load)
-/// solver at a much tighter rtol (docs/design.md, "Error metric").
-void add_reference_error(const SimulateArgs& a, const RunResult& res, SimulateRecord& rec) {
-  if (!a.c.loading.by_force()) {
-    if (rec.solver == "exact") return;
-    const RunResult ref = run_exact(a.c, kExactReferenceRtol);
-    rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
-    return;
-  }
-  if (a.solver == SolverKind::Auto) return;
-  rec.reference_rtol = std::max(a.rtol * kLoadReferenceFactor, kLoadReferenceFloor);
-  const RunResult ref = run_case(a.c, SolverKind::Auto, rec.reference_rtol);
-  rec.reference = ref.info.solver.empty() ? "auto" : ref.info.solver;
-  rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
-}
-
 int run(const SimulateArgs& a) {
-  std::optional<AtomicFile> file; // created before the solver runs: a bad path fails fast
-  const bool to_stdout = a.output.empty() || a.output == "-";
-  if (!to_stdout) file.emplace(a.output);
-
-  const auto start = std::chrono::steady_clock::now();
-  const RunResult res = run_case(a.c, a.solver, a.rtol);
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  SimulateRecord rec;
-  rec.version = kVersion;
-  rec.commit = kGitCommit;
-  rec.solver = res.info.solver.empty() ? solver_name(a.solver) : res.info.solver;
-  rec.rtol = a.rtol;
-  rec.info = res.info;
-  rec.wall_seconds = wall;
-  rec.c = a.c;
-  rec.events = event_metrics(a.c, res.series);
-  add_reference_error(a, res, rec);
-
-  if (file) {
-    write_simulate_csv(file->get(), rec, res.series);
-    file->commit();
-  } else {
-    write_simulate_csv(stdout, rec, res.series);
-    if (std::fflush(stdout) != 0 || std::ferror(stdout) != 0) {
-      const int err = errno;
-      return report_runtime(std::string("writing to stdout failed: ") + std::strerror(err));
-    }
-  }
+  OutputFile out(a.output); // opened before the solver runs: a bad path fails fast
+  const Simulation sim = simulate(a.in);
+  write_simulate_csv(out.get(), sim.record, sim.series);
+  out.commit();
   return kExitOk;
 }
 
@@ -562,15 +169,7 @@ std::string parameter_help(bool sampling) {
   std::string s;
   for (const auto& p : case_parameters()) {
     if ((p.part == Part::Sampling) != sampling) continue;
-    std::string allowed = p.allowed();
-    allowed[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(allowed[0])));
-    std::string text = "(" + std::string(dim_name(p.dim)) + ") " + p.meaning + ". " + allowed;
-    if (p.one_of)
-      text += ". The " + std::string(p.one_of) + ": give exactly one of " +
-              group_usage(group_members(p.one_of), ", ", " or ");
-    else
-      text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
-    s += help_entry(std::string("--") + p.name + " " + p.symbol, text);
+    s += help_entry(std::string("--") + p.name + " " + p.symbol, parameter_help_text(p));
   }
   return s;
 }
@@ -705,9 +304,11 @@ Other options:
                    baseline  the paper's brute-force method, for reference
                    auto      the cheapest solver that meets rtol (exact at
                              fixed depth, the load solver under --FN)
-  --output FILE  write to FILE instead of stdout. FILE is replaced at once
-                 when the run succeeds and left untouched when it fails;
-                 "-" means stdout
+  --output FILE  write to FILE instead of stdout. A regular file (or the
+                 file a symbolic link points to) is replaced at once when
+                 the run succeeds and left untouched when it fails; a
+                 device or a FIFO is written to, never replaced (a FIFO
+                 needs its reader running); "-" means stdout
   --help         print this text and exit
 
 )" + output_help() +

@@ -245,7 +245,8 @@ Options:
                     docs/map-schema.md)
   --output MAP.h5   the map file. Default: the config's name with .h5, in the
                     current directory. An existing file is never touched
-                    without --resume or --overwrite.
+                    without --resume or --overwrite; one that is not a
+                    regular file (a FIFO, a device) is refused.
   --resume          continue MAP.h5: run only the cases not yet done. Refused
                     when the study (config and overrides) differs from the one
                     stored in the file.
@@ -257,7 +258,8 @@ Options:
                     work lost to a kill and a shorter tail
   --help            this text
 
-Overrides (win over the config file; values as in the INI):
+Overrides (win over the config file; values as in the INI; all are applied,
+then the study is checked: a new history segment takes its two keys):
   --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
                             --set grid.FN=1e-3 --set run.spacing=log (repeatable)
   --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
@@ -301,8 +303,7 @@ int refuse_options(const InvalidInput& e, const char* env_rank, bool first, int 
 
 study::StudyRequest make_request(const StudyArgs& a, int argc, char** argv) {
   study::StudyRequest req;
-  req.config = study::load_config(a.config);
-  study::apply_overrides(req.config, a.overrides);
+  req.config = study::load_config(a.config, a.overrides); // overrides applied, then checked
   req.output = a.output;
   req.resume = a.resume;
   req.overwrite = a.overwrite;
@@ -324,11 +325,14 @@ void print_outcome(const study::StudySummary& sum, const StudyArgs& a, int size,
                                   shell_quote(a.config) + " --output " + shell_quote(a.output) +
                                   " --resume";
   if (!sum.write_failure.empty()) {
+    // a failed case is not done: --resume runs it again unless /failures
+    // holds its message
+    const std::size_t done = sum.already_done - sum.already_failed + sum.done;
     std::fprintf(stderr,
-                 "mdrmap study: error: %s; %zu of %zu cases are marked done in the map, %zu "
-                 "pending; fix the cause, then resume with: %s\n",
-                 sum.write_failure.c_str(), sum.already_done + ran, sum.total, sum.pending,
-                 resume_hint.c_str());
+                 "mdrmap study: error: %s; %zu of %zu cases are done in the map, %zu failed and "
+                 "recorded, %zu left for --resume; fix the cause, then resume with: %s\n",
+                 sum.write_failure.c_str(), done, sum.total, sum.recorded,
+                 sum.total - done - sum.recorded, resume_hint.c_str());
     return;
   }
   if (sum.interrupted) {

@@ -1,0 +1,324 @@
+#include "app/case_input.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <iterator>
+#include <optional>
+
+namespace mdrmap::app {
+namespace {
+
+/// Options that are not case parameters of the table (core/params.hpp): the
+/// history's two forms, the sampling's spacing and how to run.
+constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
+constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
+
+/// The option texts with the questions the checks ask of them.
+class Texts {
+public:
+  explicit Texts(const OptionTexts& t) : t_(t) {}
+  bool has(const std::string& name) const { return t_.count(name) != 0; }
+  const std::string& operator[](const std::string& name) const { return t_.at(name); }
+
+private:
+  const OptionTexts& t_;
+};
+
+// --- Numbers -------------------------------------------------------------------
+
+/// Strict decimal (or hex) floating-point number, the whole text. "nan" and
+/// "inf" parse; the range checks then reject them with the allowed range.
+double parse_double(const std::string& option, const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(begin, &end);
+  const bool whole = !text.empty() && end != begin && *end == '\0' &&
+                     std::strchr(" \t\n\r\f\v", text.front()) == nullptr;
+  if (!whole) throw InvalidInput(option, "must be a number, got " + shown(text));
+  if (errno == ERANGE && std::isinf(x))
+    throw InvalidInput(option,
+                       "must be a finite number, got " + text + " (too large for a double)");
+  return x;
+}
+
+/// Strict integer for a count parameter: optional sign and decimal digits.
+double parse_integer(const ParamSpec& spec, const std::string& text) {
+  const std::string allowed = "must be " + spec.allowed() + ", got " + shown(text);
+  std::size_t i = (!text.empty() && (text[0] == '+' || text[0] == '-')) ? 1 : 0;
+  if (i >= text.size()) throw InvalidInput(spec.name, allowed);
+  for (; i < text.size(); ++i)
+    if (text[i] < '0' || text[i] > '9') throw InvalidInput(spec.name, allowed);
+  errno = 0;
+  const long long n = std::strtoll(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) throw InvalidInput(spec.name, allowed);
+  return static_cast<double>(n);
+}
+
+/// A table parameter's value from its text: parsed, checked against its range.
+double parse_parameter(const ParamSpec& spec, const std::string& text) {
+  const double x = spec.integer() ? parse_integer(spec, text) : parse_double(spec.name, text);
+  spec.check(x);
+  return x;
+}
+
+/// Checks x against a spec, blaming `option` (e.g. the segment spec "w" is
+/// given as --v1 in the one-step shorthand).
+void check_as(const std::string& option, const ParamSpec& spec, double x) {
+  try {
+    spec.check(x);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(option, e.what());
+  }
+}
+
+// --- History -------------------------------------------------------------------
+
+std::string trimmed(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? comma : comma - start));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+/// W or T of one segment: a number in its spec's range. `where` names the segment.
+double segment_number(const std::string& where, const ParamSpec& spec, const std::string& text) {
+  try {
+    const double x = parse_double(spec.symbol, trimmed(text));
+    spec.check(x);
+    return x;
+  } catch (const InvalidInput& e) {
+    throw InvalidInput("history", where + ": " + spec.symbol + " " + e.what());
+  }
+}
+
+/// One segment "W:T"; k is 1-based.
+Segment parse_segment(std::size_t k, const std::string& item) {
+  const std::string where = "segment " + std::to_string(k) + " '" + item + "'";
+  const std::string form = "a segment is W:T, its velocity W then its duration T";
+  const std::string tok = trimmed(item);
+  if (tok.empty())
+    throw InvalidInput("history", "segment " + std::to_string(k) +
+                                      " is empty; segments W:T are separated by single commas, "
+                                      "e.g. 0.1:10,0:100,1:10");
+  const std::size_t colon = tok.find(':');
+  if (colon == std::string::npos) throw InvalidInput("history", where + " has no ':'; " + form);
+  if (tok.find(':', colon + 1) != std::string::npos)
+    throw InvalidInput("history", where + " has more than one ':'; " + form);
+  Segment s;
+  s.w = segment_number(where, segment_velocity_spec(), tok.substr(0, colon));
+  s.T = segment_number(where, segment_duration_spec(), tok.substr(colon + 1));
+  return s;
+}
+
+/// "W1:T1,W2:T2,...": every token checked; throws InvalidInput("history").
+std::vector<Segment> parse_history(const std::string& text) {
+  if (trimmed(text).empty())
+    throw InvalidInput("history", "must be one or more segments W:T separated by commas, e.g. "
+                                  "0.1:10,0:100,1:10; got " +
+                                      shown(text));
+  const std::size_t n = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
+  if (n > kMaxSegments)
+    throw InvalidInput("history", "has " + std::to_string(n) + " segments; at most " +
+                                      std::to_string(kMaxSegments) + " are allowed");
+  std::vector<Segment> segments;
+  const auto items = split_commas(text);
+  for (std::size_t k = 0; k < items.size(); ++k)
+    segments.push_back(parse_segment(k + 1, items[k]));
+  return segments;
+}
+
+// --- The case --------------------------------------------------------------------
+
+void require_options(const Texts& o) {
+  for (const auto& p : case_parameters())
+    if (p.required && !o.has(p.name))
+      throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
+  if (o.has("v1") && o.has("history"))
+    throw InvalidInput("history", "cannot be combined with --v1: give either --history "
+                                  "W1:T1,W2:T2,... or its one-segment shorthand --v1 V1 "
+                                  "[--t-end T]");
+  if (!o.has("v1") && !o.has("history"))
+    throw InvalidInput("v1", "is required: the sliding velocity after t = 0 (length/time), " +
+                                 segment_velocity_spec().allowed() +
+                                 "; or give a whole history with --history W1:T1,W2:T2,...; "
+                                 "got nothing");
+  if (o.has("t-end") && o.has("history"))
+    throw InvalidInput("t-end", "belongs to the shorthand --v1 V1 [--t-end T]; with --history "
+                                "each segment W:T has its own duration");
+}
+
+/// Sets every table parameter from its option, or from the table's default
+/// (0 for the members of a one_of group that are not given). An explicitly
+/// given value is checked against its own range here, before the groups.
+void read_case_parameters(const Texts& o, Case& c) {
+  for (const auto& p : case_parameters()) {
+    const double x = o.has(p.name) ? parse_parameter(p, o[p.name]) : p.fallback;
+    p.set(c, x);
+  }
+}
+
+/// Exactly one option of each one_of group (e.g. --d or --FN, the loading)
+/// is given; otherwise one line naming the whole group. Raw message: no single
+/// option is at fault.
+void require_one_of_each_group(const Texts& o) {
+  for (const auto& p : case_parameters()) {
+    if (!p.one_of || group_members(p.one_of).front() != &p) continue; // each group once
+    const auto members = group_members(p.one_of);
+    std::string given;
+    int n = 0;
+    for (const ParamSpec* q : members) {
+      if (!o.has(q->name)) continue;
+      given += (n++ ? " and --" : "--") + std::string(q->name);
+    }
+    if (n == 1) continue;
+    std::string what;
+    for (const ParamSpec* q : members)
+      what += std::string(what.empty() ? "" : ", ") + "--" + q->name + " " + q->meaning;
+    throw InvalidInput("", "give exactly one of " + group_usage(members, ", ", " or ") + " (the " +
+                               p.one_of + ": " + what + "); got " +
+                               (n == 0 ? std::string("none") : given));
+  }
+}
+
+/// The one segment of --v1 V1 [--t-end T], the shorthand's values reported as
+/// --v1 / --t-end. Needs the case parameters set (the default window).
+Segment one_step(const Texts& o, Case& c) {
+  const double v1 = parse_double("v1", o["v1"]);
+  check_as("v1", segment_velocity_spec(), v1);
+  std::optional<double> t_end;
+  if (o.has("t-end")) {
+    t_end = parse_double("t-end", o["t-end"]);
+    check_as("t-end", segment_duration_spec(), *t_end);
+  }
+  // the scales first (as for any case), then the window they give
+  c.history.segments = {Segment{v1, 1.0}};
+  validate(c);
+  // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
+  // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0)
+  const double a = c.edge_scale(), R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
+  const double d = c.loading.by_force() ? a * a / R : c.loading.d;
+  const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
+  if (!t_end) {
+    try {
+      segment_duration_spec().check(T);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("t-end", std::string("the default window ") + e.what() +
+                                      "; give --t-end or rescale the units");
+    }
+  }
+  return Segment{v1, T};
+}
+
+/// The history from --history, or the one segment of --v1 V1 [--t-end T];
+/// every value is checked with the segment specs.
+void read_history(const Texts& o, Case& c) {
+  if (o.has("history"))
+    c.history.segments = parse_history(o["history"]);
+  else
+    c.history.segments = {one_step(o, c)};
+}
+
+Spacing parse_spacing(const std::string& text) {
+  if (text == "linear") return Spacing::Linear;
+  if (text == "log") return Spacing::Log;
+  throw InvalidInput("spacing", "must be linear or log, got " + shown(text));
+}
+
+/// Refuses outputs beyond kMaxSamples rows in all.
+void check_total_samples(const Case& c) {
+  const double rows =
+      static_cast<double>(c.sampling.samples) * static_cast<double>(c.history.size());
+  if (rows > static_cast<double>(kMaxSamples))
+    throw InvalidInput("samples", std::to_string(c.sampling.samples) + " per segment x " +
+                                      std::to_string(c.history.size()) +
+                                      " segments = " + format_number(rows) + " rows, more than " +
+                                      std::to_string(kMaxSamples) + "; lower --samples");
+}
+
+} // namespace
+
+std::vector<std::string> case_option_names() {
+  std::vector<std::string> names;
+  for (const auto& p : case_parameters())
+    if (p.part != Part::Sampling) names.emplace_back(p.name);
+  names.insert(names.end(), std::begin(kHistoryOptions), std::end(kHistoryOptions));
+  for (const auto& p : case_parameters())
+    if (p.part == Part::Sampling) names.emplace_back(p.name);
+  names.insert(names.end(), std::begin(kRunOptions), std::end(kRunOptions));
+  return names;
+}
+
+CaseInput read_case_input(const OptionTexts& texts) {
+  const Texts o(texts);
+  require_options(o);
+  CaseInput in;
+  read_case_parameters(o, in.c);
+  require_one_of_each_group(o);
+  if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o["spacing"]);
+  if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
+    throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
+                                      "drop --log-decades");
+  read_history(o, in.c);
+  validate(in.c);
+  check_total_samples(in.c);
+  if (o.has("rtol")) in.rtol = parse_double("rtol", o["rtol"]);
+  if (o.has("solver")) in.solver = parse_solver(o["solver"]);
+  validate_rtol(in.rtol);
+  return in;
+}
+
+std::vector<const ParamSpec*> group_members(const std::string& group) {
+  std::vector<const ParamSpec*> members;
+  for (const auto& q : case_parameters())
+    if (q.one_of && group == q.one_of) members.push_back(&q);
+  return members;
+}
+
+std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
+                        const char* last_sep) {
+  std::string s;
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (i > 0) s += i + 1 == members.size() ? last_sep : sep;
+    s += std::string("--") + members[i]->name + " " + members[i]->symbol;
+  }
+  return s;
+}
+
+std::string shown(const std::string& text) {
+  if (text.empty()) return "an empty string";
+  if (text.find_first_of(" \t\n\r\f\v',") != std::string::npos) return "'" + text + "'";
+  return text;
+}
+
+std::string parameter_help_text(const ParamSpec& p) {
+  std::string allowed = p.allowed();
+  allowed[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(allowed[0])));
+  std::string text = "(" + std::string(dim_name(p.dim)) + ") " + p.meaning + ". " + allowed;
+  if (p.one_of)
+    text += ". The " + std::string(p.one_of) + ": give exactly one of " +
+            group_usage(group_members(p.one_of), ", ", " or ");
+  else
+    text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
+  return text;
+}
+
+std::string describe(const ParamSpec& p) {
+  return std::string(p.meaning) + " (" + dim_name(p.dim) + "), " + p.allowed();
+}
+
+} // namespace mdrmap::app

@@ -1,0 +1,59 @@
+#pragma once
+// A case of `mdrmap simulate` from named option texts: the table's parameters
+// (core/params.hpp), the history (--history or --v1 [--t-end]), the sampling
+// (--spacing and the table's sampling parameters) and how to run it (--rtol,
+// --solver). Shared by the command line and the Python module (src/python),
+// so that both accept, refuse and build the same cases with the same
+// messages: a value that is not allowed throws InvalidInput naming the option
+// as the CLI spells it (without dashes), or an empty option where no single
+// option is at fault (e.g. neither or both of --d and --FN).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/case.hpp"
+#include "core/params.hpp"
+#include "core/solver.hpp"
+
+namespace mdrmap::app {
+
+inline constexpr double kDefaultRtol = 1e-4;
+
+/// Option name (as the CLI spells it, without dashes) -> its text as typed.
+using OptionTexts = std::map<std::string, std::string>;
+
+/// A checked case and how to run it.
+struct CaseInput {
+  Case c;
+  SolverKind solver = SolverKind::Auto;
+  double rtol = kDefaultRtol;
+};
+
+/// Every option read_case_input knows, in the order of simulate's help: the
+/// table's case parameters, v1, t-end, history, the table's sampling
+/// parameters, spacing, rtol, solver.
+std::vector<std::string> case_option_names();
+
+/// Builds and checks a case from the texts of its options, in the CLI's
+/// order of checks. Throws InvalidInput.
+CaseInput read_case_input(const OptionTexts& texts);
+
+/// The members of the table's one_of group `group`, in the table's order.
+std::vector<const ParamSpec*> group_members(const std::string& group);
+
+/// "--d D or --FN F0": the members with their symbols, `sep` between all
+/// but the last two, `last_sep` between those.
+std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
+                        const char* last_sep);
+
+/// The value as typed, quoted only when it would otherwise be unreadable.
+std::string shown(const std::string& text);
+
+/// A parameter's entry in simulate's help: "(unit) meaning. Allowed range",
+/// then ", required", ". Default: X" or its one_of group's usage.
+std::string parameter_help_text(const ParamSpec& p);
+
+/// What the table says about a parameter: "meaning (unit), allowed range".
+std::string describe(const ParamSpec& p);
+
+} // namespace mdrmap::app

@@ -1,0 +1,62 @@
+#pragma once
+// One run of `mdrmap simulate`: the solver on a checked case, the event
+// metrics of its velocity changes and, for a solver other than the default,
+// its error against a reference; and the named records of the result (the
+// names of the CSV's `# event` and `# pre` lines). Shared by the command
+// line (csv_output.hpp prints it) and the Python module (src/python hands it
+// over as numpy arrays and dicts), so both give the same numbers bit for bit.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/case_input.hpp"
+#include "core/case.hpp"
+#include "core/events.hpp"
+#include "core/run_control.hpp"
+#include "core/solver.hpp"
+#include "core/state.hpp"
+
+namespace mdrmap::app {
+
+/// Everything the comment lines report besides the series itself.
+struct SimulateRecord {
+  std::string version;                  ///< program version (kVersion)
+  std::string commit;                   ///< git commit (kGitCommit)
+  std::string solver;                   ///< name of the solver that ran
+  double rtol = 0.0;                    ///< requested tolerance
+  RunInfo info;                         ///< cost and error estimate of the run
+  double wall_seconds = 0.0;            ///< wall time of the run
+  Case c;                               ///< the case as run (durations resolved)
+  std::optional<double> error_vs_exact; ///< case error against the reference below
+  std::string reference = "exact";      ///< solver of the reference run
+  double reference_rtol = 0.0;          ///< its rtol
+  std::vector<EventMetrics> events;     ///< one per segment
+};
+
+struct Simulation {
+  SimulateRecord record;
+  Series series;
+};
+
+/// Runs the case as `mdrmap simulate` does. Throws what run_case throws
+/// (InvalidInput for a solver that does not handle the loading, CaseAbandoned,
+/// Interrupted) and std::bad_alloc.
+Simulation simulate(const CaseInput& in, const RunControl& control = RunControl{});
+
+/// A named number of a record.
+using Field = std::pair<const char*, double>;
+
+/// The fields of the `# event` line after k, in its order: t, w_before,
+/// w_after, mu_before, mu_after, mu_peak, t_peak, slip_peak, mu_end,
+/// mu_ss_before, mu_ss_after, D_c, a, a_minus_b, b.
+std::vector<Field> event_fields(const EventMetrics& e);
+
+/// The fields of the `# pre` line: FN, Fx, mu, a2; under load also d, a1.
+std::vector<Field> state_fields(const State& s, bool load);
+
+/// The stationary state at velocity w of the case's loading (at its depth, or
+/// under its load F0): the events' mu_ss_before / mu_ss_after.
+State stationary_state(const Case& c, double w);
+
+} // namespace mdrmap::app

@@ -1,0 +1,173 @@
+"""mdrmap from Python: the solvers, the events and the maps.
+
+    import mdrmap
+    r = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5)          # one step
+    r = mdrmap.simulate(FN=0.1, R=10, tau=1, v=1,                  # load control
+                        history=[(0.1, 20), (1, 20)], samples=101)
+    r.t, r.mu, r.FN, r.Fx, r.a2        # numpy arrays (r.d, r.a1 under load)
+    r.events[0]["a_minus_b"], r.pre["mu"], r.info["error_estimate"]
+
+The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
+lists the table's: d or FN, R, tau, G, v, samples, log_decades), with '_' for
+'-' (t_end, log_decades), and the same checks and messages: bad input raises
+InvalidInput (a ValueError) naming the option. Numbers are given as Python
+numbers (or as the text the command line takes); the history as a list of
+(w, T) pairs (or "W1:T1,W2:T2"). The results equal the command line's bit
+for bit; the solver runs without the GIL, so a thread pool over cases uses
+every core.
+"""
+
+import numbers
+
+from . import _core
+from ._core import InvalidInput
+from .maps import MapError, open_map, to_grid
+
+__version__ = _core.__version__
+__all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
+           "InvalidInput", "MapError"]
+
+# the options as the command line spells them -> the keyword of each
+_OPTIONS = _core.option_names()
+_TABLE = _core.parameter_table()
+_INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
+_STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]]
+
+
+def _keywords(options):
+    """keyword -> option: each option under its Python name (and as spelled)."""
+    out = {o.replace("-", "_"): o for o in options}
+    out.update({o: o for o in options})
+    return out
+
+
+_SIMULATE_KEYWORDS = _keywords(_OPTIONS)
+_STATIONARY_KEYWORDS = _keywords(_STATIONARY)
+
+
+def _number_text(option, value):
+    """The text the command line would get for a number: the shortest that
+    reads back to the same double (repr), an integer's digits."""
+    kind = type(value)
+    if kind is float and option not in _INTEGER:  # the common cases first
+        return repr(value)
+    if kind is int or kind is str:
+        return str(value)
+    if value is None:
+        keyword = option.replace("-", "_")
+        raise InvalidInput(f"needs a value, e.g. {keyword}=1.5", option)
+    if isinstance(value, bool):
+        return str(value)  # refused: "must be a number, got True"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        return str(value)  # refused as the command line refuses a word
+    if option in _INTEGER and x.is_integer() and abs(x) < 2.0 ** 63:
+        return str(int(x))
+    return repr(x)
+
+
+def _history_text(value):
+    """[(w1, T1), (w2, T2), ...] as "W1:T1,W2:T2,..." (a str as it is)."""
+    if isinstance(value, str) or value is None:
+        return _number_text("history", value)
+    try:
+        segments = list(value)
+    except TypeError:
+        raise InvalidInput(f"must be a list of segments (W, T), got {value!r}", "history") \
+            from None
+    parts = []
+    for k, seg in enumerate(segments, 1):
+        try:
+            w, T = seg
+        except (TypeError, ValueError):
+            raise InvalidInput(f"segment {k} must be a pair (W, T): its velocity W then its "
+                               f"duration T, got {seg!r}", "history") from None
+        parts.append(f"{_number_text('history', w)}:{_number_text('history', T)}")
+    return ",".join(parts)
+
+
+def _texts(kwargs, keywords, function):
+    texts = {}
+    for key, value in kwargs.items():
+        option = keywords.get(key)
+        if option is None:
+            names = ", ".join(k for k in keywords if "-" not in k)
+            raise InvalidInput(f"not a keyword of mdrmap.{function} (keywords are "
+                               f"case-sensitive: {names}), got {key}", key)
+        if option in texts:
+            raise InvalidInput("may be given only once", option)
+        texts[option] = _history_text(value) if option == "history" else \
+            _number_text(option, value)
+    return texts
+
+
+class Result:
+    """One case's result (mdrmap.simulate).
+
+    t, segment, FN, Fx, mu, a2   numpy arrays, one value per sample (segment
+                                 after segment; t since the first change);
+                                 under load (FN=) also d and a1
+    events   one dict per velocity change k (the CSV's `# event` line): k, t,
+             w_before, w_after, mu_before, mu_after, mu_peak, t_peak,
+             slip_peak, mu_end, mu_ss_before, mu_ss_after, D_c, a,
+             a_minus_b, b (nan where undefined)
+    pre      the stationary state before t = 0: FN, Fx, mu, a2 (d, a1 under load)
+    info     solver, rtol, error_estimate, cells_per_a1, elements, steps,
+             element_updates, root_solves, wall_seconds, version, commit
+             (error_vs_exact, or error_vs_reference/reference/reference_rtol,
+             as the CSV gives them)
+    case     the case as run (the CSV's `# case` line): its parameters, the
+             history as (w, T) pairs (the default window resolved), spacing,
+             a0 under load, zeta0
+    """
+
+    def __init__(self, fields):
+        self.__dict__.update(fields)
+
+    @property
+    def load(self):
+        """Whether the case is load-controlled (FN given)."""
+        return "FN" in self.case
+
+    def __repr__(self):
+        return (f"<mdrmap.Result {self.t.size} samples, {len(self.events)} events, "
+                f"solver={self.info['solver']}, mu_pre={self.pre['mu']:.6g}>")
+
+
+def simulate(**options):
+    """Runs one case as `mdrmap simulate` does and returns a Result.
+
+    Keywords: d (depth control) or FN (load control), R, tau, v, and G,
+    the history: v1 (one step, with t_end) or history=[(w1, T1), ...],
+    the sampling: samples, spacing ("linear", "log"), log_decades,
+    the run: rtol, solver ("auto", "exact", "mdr", "baseline").
+    Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError
+    (the case cannot be computed within its budget or rtol, exit code 1).
+    """
+    return Result(_core.simulate(_texts(options, _SIMULATE_KEYWORDS, "simulate")))
+
+
+def stationary(**options):
+    """The stationary state at velocity v (FN, Fx, mu, a2, and d, a1 under
+    load) of the case's parameters without a history: d or FN, R, tau, v, G.
+    It is the state that events[0]["mu_ss_before"] of simulate describes."""
+    texts = _texts(options, _STATIONARY_KEYWORDS, "stationary")
+    if "v" in texts:
+        texts["history"] = texts["v"] + ":1"
+    return _core.stationary(texts)
+
+
+def parameters():
+    """The parameter table, one dict per parameter in the order of
+    `mdrmap simulate --help`: name (option), keyword, symbol, unit, range,
+    meaning, required, one_of (group or None), default (None if required or
+    in a group), sampling (a sampling parameter) and help (the CLI's text)."""
+    out = []
+    for p in _TABLE:
+        q = dict(p)
+        q["keyword"] = p["name"].replace("-", "_")
+        out.append(q)
+    return out

@@ -1,0 +1,334 @@
+"""Maps of `mdrmap study` as xarray Datasets: open_map(path) and to_grid(ds).
+
+open_map(path) merges the map's groups into one Dataset with dimension
+`case` (and `event` for per-event values, `sample` for the time series). It
+reads both layouts (the root attribute mdrmap_schema):
+
+  - /cases columns as coordinates along `case` (mdrmap-map/2: d or FN, R, tau,
+    G, v, and w and T over (case, event); mdrmap-map/1: d, R, tau, v, v1, G);
+  - /results under their bare names (FN_pre, error_estimate, wall_seconds,
+    status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a
+    case failed ('' otherwise; mdrmap-map/2: from /failures/{case,message});
+  - /events (mdrmap-map/2) under their bare names over (case, event): t,
+    mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
+    fill value) are NaN;
+  - /analytic as analytic_<name>, /residuals as residual_<name>, /timeseries
+    as ts_<name> over (case, sample) (mdrmap-map/2: also ts_segment over
+    sample, the segment of each sample);
+  - each variable with the attributes units and long_name from the map's
+    /schema (maps written before /schema have none) and map_path (its
+    dataset in the map);
+  - the Dataset's attributes: the map's root attributes (provenance) and, for
+    a grid study, grid_axes (comma list), grid_shape, grid_log and
+    grid_<axis> (the axis values).
+
+Maps with dimension scales are opened lazily (xarray engine h5netcdf, the
+file stays open until ds.close()); older maps too, their phony dimensions
+renamed to case and sample.
+
+to_grid(ds) reshapes every variable along `case` to the grid's axes (C order,
+last axis fastest: the case order of a [grid] study), with the axis values as
+index coordinates, the other /cases columns (e.g. v1, G; w and T) as N-d
+coordinates, and a coordinate `case` holding each point's row number in the
+map. It checks that the /cases columns equal the grid (to 1e-12).
+
+Both raise MapError (a ValueError, one line) for a file that is not a
+readable map or a Dataset that is not a grid study's. Needs h5py, xarray and
+h5netcdf (imported when called). tools/mapxr.py is the command line of this
+module.
+"""
+
+import math
+import os
+import re
+import warnings
+
+SCHEMA1 = "mdrmap-map/1"
+SCHEMA2 = "mdrmap-map/2"
+SCHEMAS = {SCHEMA1: 1, SCHEMA2: 2}
+# /cases columns a schema-1 map must have
+_CASE_COLS1 = ["d", "R", "tau", "v", "v1"]
+
+
+class MapError(ValueError):
+    """A file that is not a readable mdrmap map, or a map a function cannot use."""
+
+
+class MapWarning(UserWarning):
+    """A map of a schema this version does not know (read as the nearest one)."""
+
+
+def text(value):
+    """An HDF5 string attribute or a uint8 text dataset as str."""
+    if isinstance(value, bytes):
+        return value.decode("utf-8", "replace")
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None and dtype.kind == "S":
+        return value.tobytes().decode("utf-8", "replace")
+    if dtype is not None and dtype.kind in "ui" and getattr(value, "ndim", 0) == 1:
+        return bytes(value.astype("u1")).decode("utf-8", "replace")  # a text dataset
+    return str(value)  # numbers (e.g. integer attributes) as they print
+
+
+def schema_name(f):
+    """The root attribute mdrmap_schema of an open map, as str."""
+    return text(f.attrs["mdrmap_schema"]).rstrip("\0") if "mdrmap_schema" in f.attrs else ""
+
+
+def schema_version(f):
+    """1 or 2: the layout of an open map (an unknown name is judged by content)."""
+    name = schema_name(f)
+    if name in SCHEMAS:
+        return SCHEMAS[name]
+    return 2 if "events" in f or "cases/w" in f else 1
+
+
+def _open_h5(path, h5py):
+    """PATH opened read-only with h5py; MapError unless it is a readable map."""
+    if not os.path.exists(path):
+        raise MapError(f"no such file: {path}")
+    if os.path.isdir(path):
+        raise MapError(f"{path} is a directory, not an mdrmap map")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as e:
+        raise MapError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
+    if "mdrmap_schema" not in f.attrs:
+        f.close()
+        raise MapError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
+    name = schema_name(f)
+    version = schema_version(f)
+    if name not in SCHEMAS:
+        warnings.warn(f"{path} has schema {name}; mdrmap reads {SCHEMA1} and {SCHEMA2} "
+                      f"(reading it as {SCHEMA1 if version == 1 else SCHEMA2})", MapWarning)
+    if version == 1:
+        need = ["results/status"] + [f"cases/{c}" for c in _CASE_COLS1]
+    else:
+        need = ["results/status", "cases/R", "cases/tau", "cases/v", "cases/w", "cases/T"]
+        if "cases/d" not in f and "cases/FN" not in f:
+            need.append("cases/d")  # reported as missing below
+    for item in need:
+        if item not in f:
+            f.close()
+            raise MapError(f"{path} is an incomplete mdrmap map (no /{item})")
+    return f
+
+
+def _failure_messages(f, n):
+    """Per case, why it failed ('' where no message)."""
+    msgs = [""] * n
+    if "failures/case" in f and "failures/message" in f:
+        for i, m in zip(f["failures/case"][()], f["failures/message"][()]):
+            if 0 <= int(i) < n:
+                msgs[int(i)] = text(m).rstrip("\0").strip()
+    elif "results/message" in f:
+        msgs = [text(x).rstrip("\0").strip() for x in f["results/message"][()]]
+    return msgs
+
+
+def _segment_axis(name):
+    """A grid axis of the history: ("w" or "T", segment k from 1, scaled) for
+    wk, wk_over_v, Tk, Tk_over_tau (and the seed's v1, v1_over_v as w1 and
+    t_end_over_tau as T1_over_tau), else None."""
+    if name == "t_end_over_tau":  # the seed's window: T1_over_tau
+        return "T", 1, True
+    m = re.fullmatch(r"(w|T|v)([1-9][0-9]*)(_over_(v|tau))?", name)
+    if not m:
+        return None
+    kind = "w" if m.group(1) in ("w", "v") else "T"
+    over = m.group(4)
+    if (kind == "w" and over not in (None, "v")) or (kind == "T" and over not in (None, "tau")):
+        return None
+    return kind, int(m.group(2)), over is not None
+
+
+# map group -> variable name prefix
+GROUPS = [("cases", ""), ("results", ""), ("events", ""), ("analytic", "analytic_"),
+          ("residuals", "residual_"), ("timeseries", "ts_")]
+
+
+def _attr(value):
+    """An HDF5 attribute as a plain Python/numpy value (strings as str)."""
+    import numpy as np
+
+    if isinstance(value, (bytes, np.bytes_)) or getattr(value, "dtype", None) is not None and \
+            value.dtype.kind == "S":
+        return text(value).rstrip("\0")
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        return value.item()
+    return value
+
+
+def _read_h5(path):
+    """Root attributes, /grid description and which groups the map has (h5py)."""
+    import h5py
+    import numpy as np
+
+    with _open_h5(path, h5py) as f:
+        attrs = {k: _attr(f.attrs[k]) for k in f.attrs}
+        n = int(f["results/status"].shape[0])
+        groups = [g for g, _ in GROUPS if g in f and hasattr(f[g], "keys") and len(f[g])]
+        grid = None
+        if "grid" in f:
+            g = f["grid"]
+            try:
+                axes = [a.strip() for a in text(g.attrs["axes"]).split(",") if a.strip()]
+                values = [np.asarray(g[a][()], dtype=float) for a in axes]
+                log = [int(k) for k in np.ravel(g.attrs["log"])] if "log" in g.attrs \
+                    else [0] * len(axes)
+                described = {a: (text(g[a].attrs.get("units", "")), text(g[a].attrs.get(
+                    "long_name", ""))) for a in axes}
+            except (KeyError, ValueError) as e:
+                raise MapError(f"{path}: /grid is malformed ({e})") from None
+            if math.prod(len(v) for v in values) != n:
+                raise MapError(f"{path}: /grid axes {axes} of shape "
+                                f"{[len(v) for v in values]} do not fit {n} cases")
+            grid = {"axes": axes, "values": values, "log": log, "described": described}
+        scaled = "case" in f and f["case"].attrs.get("CLASS") == b"DIMENSION_SCALE"
+        version = schema_version(f)
+        messages = _failure_messages(f, n) if version == 2 else None
+    return attrs, n, groups, grid, scaled, version, messages
+
+
+def open_map(path):
+    """The map at `path` as one xarray Dataset (see the module's help). Raises
+    MapError (one line) when `path` is not a readable mdrmap map."""
+    import xarray as xr
+
+    import numpy as np
+
+    attrs, n, groups, grid, scaled, version, messages = _read_h5(path)
+    parts = []
+    for group, prefix in GROUPS:
+        if group not in groups:
+            continue
+        try:
+            # mdrmap-map/2: the fill value of undefined values becomes NaN
+            ds = xr.open_dataset(path, engine="h5netcdf", group=group, decode_times=False,
+                                 decode_timedelta=False, mask_and_scale=version == 2,
+                                 phony_dims=None if scaled else "sort")
+        except (OSError, ValueError) as e:
+            raise MapError(f"{path}: cannot open /{group} with xarray "
+                            f"({str(e).splitlines()[0]})") from None
+        if not scaled:  # a map without dimension scales: name the phony dimensions
+            second = "sample" if group == "timeseries" else "event"
+            names = {}
+            for var in ds.data_vars.values():
+                want = ["case", second] if len(var.dims) == 2 or var.shape[0] == n else [second]
+                for dim, name in zip(var.dims, want):
+                    if names.setdefault(dim, name) != name:
+                        raise MapError(f"{path}: /{group} has no dimension scales and its "
+                                        f"dimensions are ambiguous")
+            ds = ds.rename_dims(names)
+        if ds.sizes.get("case") != n:
+            raise MapError(f"{path}: /{group} is not along the {n} cases")
+        for name in ds.data_vars:
+            ds[name].attrs["map_path"] = f"{group}/{name}"
+        ds = ds.rename({k: prefix + k for k in ds.data_vars}) if prefix else ds
+        if group == "cases":
+            ds = ds.set_coords(list(ds.data_vars))
+        ds.attrs = {}
+        parts.append(ds)
+    out = xr.merge(parts, compat="identical", join="exact", combine_attrs="override")
+    if messages is not None:
+        out["message"] = xr.Variable(("case",), np.array(messages, dtype=object),
+                                     {"long_name": "why a case failed (empty otherwise)",
+                                      "map_path": "failures/message"})
+    out.attrs = dict(attrs)
+    if grid:
+        out.attrs["grid_axes"] = ",".join(grid["axes"])
+        out.attrs["grid_shape"] = [len(v) for v in grid["values"]]
+        out.attrs["grid_log"] = grid["log"]
+        for a, v in zip(grid["axes"], grid["values"]):
+            out.attrs[f"grid_{a}"] = v
+            unit, meaning = grid["described"][a]
+            if unit:
+                out.attrs[f"grid_{a}_units"] = unit
+            if meaning:
+                out.attrs[f"grid_{a}_long_name"] = meaning
+    return out
+
+
+def to_grid(ds):
+    """The Dataset of a grid study (open_map) with the grid's axes as dimensions
+    (see the module's help). Raises MapError for a map without /grid."""
+    import numpy as np
+    import xarray as xr
+
+    if "grid_axes" not in ds.attrs:
+        raise MapError("not a grid study (the map has no /grid): to_grid needs the grid's axes")
+    axes = [a for a in str(ds.attrs["grid_axes"]).split(",") if a]
+    values = [np.asarray(ds.attrs[f"grid_{a}"], dtype=float) for a in axes]
+    shape = tuple(len(v) for v in values)
+    n = ds.sizes["case"]
+    if math.prod(shape) != n:
+        raise MapError(f"grid axes {axes} of shape {list(shape)} do not fit {n} cases")
+    clash = [a for a in axes if a in ds.dims]
+    if clash:
+        raise MapError(f"grid axis {clash[0]!r} is also a dimension of the Dataset")
+    # numpy's arrays have at most 32 dimensions (64 from numpy 2); a history of
+    # K segments gives 2 K axes (most of length 1): such a grid stays 1-D
+    max_dims = 64 if int(np.__version__.split(".")[0]) >= 2 else 32
+    if len(axes) + 1 > max_dims:
+        raise MapError(f"the grid has {len(axes)} axes; numpy arrays have at most {max_dims} "
+                        f"dimensions: use open_map's rows along `case` (grid_* attributes name "
+                        f"each case's axis values)")
+
+    # the /cases columns must be the grid, in C order (last axis fastest)
+    mesh = dict(zip(axes, np.meshgrid(*values, indexing="ij")))
+    if "v1_over_v" in mesh and "v" in mesh:
+        mesh.setdefault("v1", mesh["v1_over_v"] * mesh["v"])
+    for a, want in mesh.items():
+        seg = _segment_axis(a) if a not in ds.variables else None
+        if seg is not None and seg[0] in ds.variables and ds[seg[0]].ndim == 2:
+            # an mdrmap-map/2 history axis: from /cases/w or /cases/T [N, K]
+            kind, k, over = seg
+            col = np.asarray(ds[kind].values, dtype=float)
+            if k > col.shape[1]:
+                raise MapError(f"grid axis {a!r} names segment {k}, the map has {col.shape[1]}")
+            have = col[:, k - 1]
+            if over:
+                ref = np.asarray(ds["v" if kind == "w" else "tau"].values, dtype=float)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    have = np.where(ref != 0, have / ref, np.nan)
+            have = have.reshape(shape)
+            ok = np.isfinite(have)  # Tk_over_tau at tau = 0: not a multiple of tau
+            same = np.allclose(have[ok], want[ok], rtol=1e-12, atol=0)
+        elif a not in ds.variables:
+            continue
+        else:
+            have = np.asarray(ds[a].values, dtype=float).reshape(shape)
+            exact = a in axes
+            same = np.array_equal(have, want) if exact else \
+                np.allclose(have, want, rtol=1e-12, atol=0)
+        if not same:
+            raise MapError(f"/cases/{a} does not follow the grid's axes {axes} in C order: "
+                            f"not a grid study's case order")
+
+    coords = {}
+    for a, v in zip(axes, values):
+        attrs = {}
+        for key in ("units", "long_name"):
+            if f"grid_{a}_{key}" in ds.attrs:
+                attrs[key] = ds.attrs[f"grid_{a}_{key}"]
+        coords[a] = xr.Variable((a,), v, attrs)
+    coords["case"] = xr.Variable(tuple(axes), np.arange(n).reshape(shape),
+                                 {"long_name": "row of the case in the map"})
+    data = {}
+    for name, var in ds.variables.items():
+        if name in axes:
+            continue  # now an index coordinate
+        if "case" not in var.dims:  # e.g. ts_segment: kept as it is
+            (coords if name in ds.coords else data)[name] = var
+            continue
+        if var.dims[0] != "case" or "case" in var.dims[1:]:
+            raise MapError(f"variable {name!r} is not along `case` first: cannot reshape it")
+        rest = var.dims[1:]
+        arr = np.asarray(var.values)
+        new = xr.Variable(tuple(axes) + rest, arr.reshape(shape + arr.shape[1:]), var.attrs)
+        if name in ds.coords:
+            coords[name] = new
+        else:
+            data[name] = new
+    attrs = {k: v for k, v in ds.attrs.items()}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

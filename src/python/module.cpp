@@ -1,0 +1,264 @@
+// The extension module mdrmap._core: the C++ half of the Python package
+// `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes option
+// texts as the command line does (app/case_input.hpp builds and checks the
+// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), with the
+// GIL released; the time series are handed over as numpy arrays that own the
+// result's vectors (no copy). InvalidInput becomes mdrmap.InvalidInput.
+#include <algorithm>
+#include <exception>
+#include <memory>
+#include <string>
+#include <utility>
+
+#include <pybind11/eval.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "app/case_input.hpp"
+#include "app/simulation.hpp"
+#include "core/case_set.hpp"
+#include "core/load_case_set.hpp"
+#include "core/params.hpp"
+#include "mdrmap/version.hpp"
+
+namespace py = pybind11;
+
+namespace mdrmap::python {
+namespace {
+
+/// The Python class of bad input; created once at import, kept for the
+/// process's lifetime (a module's globals are never torn down before it).
+py::handle invalid_input_class;
+
+constexpr const char* kInvalidInputSource = R"(
+class InvalidInput(ValueError):
+    """Bad input to mdrmap.simulate / mdrmap.stationary: the same refusal, with
+    the same message, as `mdrmap simulate` gives on the command line.
+
+    option   the option as the CLI spells it ("d", "t-end", "log-decades"),
+             "" where no single option is at fault (e.g. neither d nor FN)
+    keyword  the keyword argument ("d", "t_end", "log_decades")
+    message  the CLI's message after "--OPTION: "
+    """
+
+    def __init__(self, message, option=""):
+        self.option = option
+        self.keyword = option.replace("-", "_")
+        self.message = message
+        super().__init__(f"{self.keyword}: {message}" if option else message)
+)";
+
+void make_invalid_input_class(py::module_& m) {
+  py::dict ns;
+  ns["__builtins__"] = py::module_::import("builtins");
+  ns["__name__"] = "mdrmap";
+  py::exec(kInvalidInputSource, ns);
+  py::object cls = ns["InvalidInput"];
+  m.attr("InvalidInput") = cls;
+  invalid_input_class = cls.release();
+}
+
+app::OptionTexts to_texts(const py::dict& options) {
+  app::OptionTexts texts;
+  for (const auto& [key, value] : options)
+    texts.emplace(py::cast<std::string>(key), py::cast<std::string>(value));
+  return texts;
+}
+
+/// A numpy array over `v`, kept alive by `owner` (no copy).
+template <class T> py::array_t<T> view(const std::vector<T>& v, const py::capsule& owner) {
+  return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data(), owner);
+}
+
+py::dict fields(const std::vector<app::Field>& f) {
+  py::dict d;
+  for (const auto& [name, value] : f)
+    d[name] = value;
+  return d;
+}
+
+py::list events(const app::SimulateRecord& rec) {
+  py::list out;
+  for (std::size_t k = 0; k < rec.events.size(); ++k) {
+    py::dict e;
+    e["k"] = k;
+    for (const auto& [name, value] : app::event_fields(rec.events[k]))
+      e[name] = value;
+    out.append(std::move(e));
+  }
+  return out;
+}
+
+/// The `# mdrmap ...` line and the reference line of the CSV, as a dict.
+py::dict info(const app::SimulateRecord& rec) {
+  const RunInfo& in = rec.info;
+  py::dict d;
+  d["version"] = rec.version;
+  d["commit"] = rec.commit;
+  d["solver"] = rec.solver;
+  d["rtol"] = rec.rtol;
+  d["error_estimate"] = in.error_estimate;
+  d["cells_per_a1"] = in.cells_per_a1;
+  d["elements"] = in.elements;
+  d["steps"] = in.steps;
+  d["element_updates"] = in.element_updates;
+  d["root_solves"] = in.root_solves;
+  d["wall_seconds"] = rec.wall_seconds;
+  if (rec.error_vs_exact && rec.reference == "exact") d["error_vs_exact"] = *rec.error_vs_exact;
+  if (rec.error_vs_exact && rec.reference != "exact") {
+    d["error_vs_reference"] = *rec.error_vs_exact;
+    d["reference"] = rec.reference;
+    d["reference_rtol"] = rec.reference_rtol;
+  }
+  return d;
+}
+
+/// The `# case` line as a dict: the table's parameters (of a one_of group
+/// the member given), the history as (w, T) pairs, the spacing; a0 under
+/// load; zeta0.
+py::dict case_dict(const Case& c) {
+  py::dict d;
+  for (const auto& p : case_parameters())
+    if (!p.one_of || p.get(c) != 0.0) {
+      if (p.integer())
+        d[p.name] = static_cast<long long>(p.get(c));
+      else
+        d[p.name] = p.get(c);
+    }
+  py::list history;
+  for (const Segment& s : c.history.segments)
+    history.append(py::make_tuple(s.w, s.T));
+  d["history"] = history;
+  d["spacing"] = c.sampling.spacing == Spacing::Log ? "log" : "linear";
+  if (c.loading.by_force()) d["a0"] = c.a0();
+  d["zeta0"] = c.history.v0 * c.material.tau / c.edge_scale();
+  return d;
+}
+
+/// Runs one case from its option texts; the result as a dict of numpy arrays
+/// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
+py::dict simulate(const py::dict& options) {
+  const app::CaseInput in = app::read_case_input(to_texts(options));
+  auto sim = std::make_unique<app::Simulation>();
+  {
+    py::gil_scoped_release release;
+    *sim = app::simulate(in);
+  }
+  py::dict out;
+  out["events"] = events(sim->record);
+  const bool load = sim->record.c.loading.by_force();
+  out["pre"] = fields(app::state_fields(sim->series.pre, load));
+  out["info"] = info(sim->record);
+  out["case"] = case_dict(sim->record.c);
+  const Series& s = sim->series;
+  // the capsule owns the result: the arrays below are views of its vectors
+  py::capsule owner(sim.get(), [](void* p) { delete static_cast<app::Simulation*>(p); });
+  sim.release();
+  out["t"] = view(s.t, owner);
+  out["segment"] = view(s.segment, owner);
+  out["FN"] = view(s.FN, owner);
+  out["Fx"] = view(s.Fx, owner);
+  out["mu"] = view(s.mu, owner);
+  out["a2"] = view(s.a2, owner);
+  if (load) {
+    out["d"] = view(s.d, owner);
+    out["a1"] = view(s.a1, owner);
+  }
+  return out;
+}
+
+/// The stationary state at v of the case's loading; `options` as for
+/// simulate, with a history of one segment (the case must be complete).
+py::dict stationary(const py::dict& options) {
+  const app::CaseInput in = app::read_case_input(to_texts(options));
+  const State st = app::stationary_state(in.c, in.c.history.v0);
+  return fields(app::state_fields(st, in.c.loading.by_force()));
+}
+
+py::list parameter_table() {
+  py::list out;
+  for (const auto& p : case_parameters()) {
+    py::dict d;
+    d["name"] = p.name;
+    d["symbol"] = p.symbol;
+    d["unit"] = dim_name(p.dim);
+    d["range"] = p.allowed();
+    d["meaning"] = p.meaning;
+    d["required"] = p.required;
+    d["one_of"] = p.one_of ? py::object(py::str(p.one_of)) : py::object(py::none());
+    d["default"] =
+        p.required || p.one_of ? py::object(py::none()) : py::object(py::float_(p.fallback));
+    d["sampling"] = p.part == Part::Sampling;
+    d["help"] = app::parameter_help_text(p);
+    out.append(std::move(d));
+  }
+  return out;
+}
+
+/// The tests' case sets (core/case_set.hpp, core/load_case_set.hpp) as
+/// (name, keyword arguments of mdrmap.simulate): the table's parameters that
+/// are set (of a one_of group the member given; not those at their default), history as (w, T)
+/// pairs, and spacing when logarithmic.
+py::list case_set(const std::string& which, long samples) {
+  std::vector<NamedCase> set;
+  if (which == "history")
+    set = history_case_set(samples);
+  else if (which == "load")
+    set = load_case_set(samples);
+  else
+    throw py::value_error("case set: history or load, got " + which);
+  py::list out;
+  for (const auto& nc : set) {
+    py::dict kw;
+    for (const auto& p : case_parameters()) {
+      if (p.one_of && p.get(nc.c) == 0.0) continue;
+      if (!p.required && !p.one_of && p.get(nc.c) == p.fallback) continue; // the default
+      std::string key = p.name;
+      std::replace(key.begin(), key.end(), '-', '_');
+      if (p.integer())
+        kw[key.c_str()] = static_cast<long long>(p.get(nc.c));
+      else
+        kw[key.c_str()] = p.get(nc.c);
+    }
+    py::list history;
+    for (const Segment& seg : nc.c.history.segments)
+      history.append(py::make_tuple(seg.w, seg.T));
+    kw["history"] = history;
+    if (nc.c.sampling.spacing == Spacing::Log) kw["spacing"] = "log";
+    out.append(py::make_tuple(nc.name, kw));
+  }
+  return out;
+}
+
+void translate(std::exception_ptr p) {
+  try {
+    if (p) std::rethrow_exception(p);
+  } catch (const InvalidInput& e) {
+    const py::object exc = invalid_input_class(e.what(), e.option());
+    PyErr_SetObject(invalid_input_class.ptr(), exc.ptr());
+  } catch (const CaseAbandoned& e) {
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+  }
+}
+
+} // namespace
+} // namespace mdrmap::python
+
+PYBIND11_MODULE(_core, m) {
+  using namespace mdrmap::python;
+  m.doc() = "mdrmap's solvers (the C++ half of the package mdrmap; use mdrmap, not _core)";
+  make_invalid_input_class(m);
+  py::register_exception_translator(&translate);
+  m.attr("__version__") = mdrmap::kVersion;
+  m.attr("commit") = mdrmap::kGitCommit;
+  m.def("option_names", &mdrmap::app::case_option_names,
+        "The options of a case, as the CLI spells them, in the order of its help.");
+  m.def("simulate", &simulate, py::arg("options"),
+        "Runs one case from {option: text}; a dict of numpy arrays and records.");
+  m.def("stationary", &stationary, py::arg("options"),
+        "The stationary state at v of a case given as {option: text}.");
+  m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
+  m.def("_case_set", &case_set, py::arg("which"), py::arg("samples"),
+        "The tests' case sets: 'history' or 'load', as (name, keyword arguments).");
+}

@@ -1,0 +1,169 @@
+"""mdrmap.simulate against `mdrmap simulate`: the same numbers bit for bit on
+the history and load case sets (core/case_set.hpp, core/load_case_set.hpp),
+the same records (events, pre, info, case); arrays without a copy;
+stationary; the parameter table as the CLI's help gives it."""
+import math
+
+import numpy as np
+import pytest
+
+import mdrmap
+from conftest import run_cli
+
+SAMPLES = 21
+
+
+def cli_args(kw):
+    """The command line of keyword arguments: numbers as repr (the shortest
+    text that reads back to the same double), the history as W:T,..."""
+    args = []
+    for key, value in kw.items():
+        if key == "history":
+            value = ",".join(f"{w!r}:{T!r}" for w, T in value)
+        elif not isinstance(value, str):
+            value = repr(value)
+        args += ["--" + key.replace("_", "-"), value]
+    return args
+
+
+def parse_csv(text):
+    """The CLI's output: {comment key: {field: text}}, events list, header, rows."""
+    comments, events, lines = {}, [], text.splitlines()
+    body = [ln for ln in lines if not ln.startswith("#")]
+    for ln in lines:
+        if not ln.startswith("# "):
+            continue
+        words = ln[2:].split()
+        fields = dict(w.split("=", 1) for w in words if "=" in w)
+        if words[0] == "event":
+            events.append(fields)
+        elif words[0] == "mdrmap":
+            comments["info"] = fields
+        else:
+            comments[words[0]] = fields
+    header = body[0].split(",")
+    rows = np.array([[float(x) for x in ln.split(",")] for ln in body[1:]])
+    return comments, events, header, rows
+
+
+def same(a, b):
+    return a == b or (math.isnan(a) and math.isnan(b))
+
+
+def check_equal(exe, kw):
+    r = mdrmap.simulate(**kw)
+    code, out, err = run_cli(exe, cli_args(kw))
+    assert code == 0, err
+    comments, events, header, rows = parse_csv(out)
+    assert header == ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if r.load else [])
+    for j, name in enumerate(header):
+        assert np.array_equal(getattr(r, name), rows[:, j], equal_nan=True), name
+    assert r.segment.dtype == np.int32
+    assert len(events) == len(r.events)
+    for mine, theirs in zip(r.events, events):
+        assert mine.keys() == theirs.keys()
+        for key, text in theirs.items():
+            assert same(float(mine[key]), float(text)), key
+    assert list(r.pre) == list(comments["pre"])
+    for key, text in comments["pre"].items():
+        assert same(r.pre[key], float(text)), key
+    info = comments["info"]
+    assert r.info["solver"] == info["solver"]
+    for key in ("rtol", "error_estimate", "cells_per_a1"):
+        assert r.info[key] == float(info[key]), key
+    for key in ("elements", "steps", "element_updates", "root_solves"):
+        assert r.info[key] == int(info[key]), key
+    for key in ("error_vs_exact", "error_vs_reference", "reference_rtol"):
+        if key in r.info or any(key in c for c in comments.values()):
+            theirs = next(c[key] for c in comments.values() if key in c)
+            assert r.info[key] == float(theirs), key
+    case = comments["case"]
+    hist = ",".join(f"{w!r}:{T!r}" for w, T in r.case["history"])
+    assert [tuple(map(float, s.split(":"))) for s in case["history"].split(",")] == \
+        [tuple(map(float, s.split(":"))) for s in hist.split(",")]
+    for key, value in r.case.items():
+        if key not in ("history", "spacing"):
+            assert value == float(case[key]), key
+    assert r.case["spacing"] == case["spacing"]
+
+
+@pytest.mark.parametrize("which", ["history", "load"])
+def test_case_sets_equal_the_cli_bit_for_bit(exe, which):
+    cases = mdrmap._core._case_set(which, SAMPLES)
+    assert len(cases) >= 20
+    for name, kw in cases:
+        try:
+            check_equal(exe, kw)
+        except AssertionError as e:
+            raise AssertionError(f"{which} case {name!r}: {e}") from None
+
+
+@pytest.mark.parametrize("kw", [
+    dict(d=0.1, R=10, tau=1, v=2, v1=0.5),  # the default window, 201 samples
+    dict(d=0.1, R=10, tau=0, v=2, v1=0, samples=7),
+    dict(d=0.1, R=10, tau=1, v=2, v1=0.5, t_end=3, samples=9, solver="mdr", rtol=1e-3),
+    dict(d=0.1, R=10, tau=1, v=1, history=[(1, 2), (0, 1000), (1, 5)], samples=31,
+         spacing="log", log_decades=6, G=2.5),
+    dict(FN=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="mdr"),
+])
+def test_examples_of_the_help_equal_the_cli(exe, kw):
+    check_equal(exe, kw)
+
+
+def test_texts_are_taken_as_the_cli_takes_them():
+    a = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5, samples=5)
+    b = mdrmap.simulate(d="0.1", R="1e1", tau="1", v="2", v1="0.5", samples="5")
+    c = mdrmap.simulate(d=np.float64(0.1), R=np.int64(10), tau=1.0, v=2, history="0.5:6",
+                        samples=5.0)
+    for r in (b, c):
+        assert np.array_equal(a.mu, r.mu) and np.array_equal(a.t, r.t)
+
+
+def test_arrays_are_views_of_the_result_without_a_copy():
+    r = mdrmap.simulate(FN=0.1, R=10, tau=1, v=1, v1=2, samples=11)
+    for name in ("t", "segment", "FN", "Fx", "mu", "a2", "d", "a1"):
+        arr = getattr(r, name)
+        assert not arr.flags.owndata and arr.base is not None, name
+        assert arr.shape == (11,)
+    mu = r.mu
+    del r  # the arrays keep the result alive
+    assert np.isfinite(mu).all()
+    assert not hasattr(mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=1, samples=3), "d")
+
+
+@pytest.mark.parametrize("load", [False, True])
+def test_stationary_is_the_events_stationary_state(load):
+    base = dict(FN=0.05, R=3, tau=2, v=0.7, G=1.5) if load else dict(d=0.02, R=3, tau=2, v=0.7)
+    st = mdrmap.stationary(**base)
+    r = mdrmap.simulate(**base, v1=0.07, samples=5)
+    assert st["mu"] == r.events[0]["mu_ss_before"]
+    assert list(st) == list(r.pre)
+    assert st["mu"] == pytest.approx(r.pre["mu"], rel=1e-6)
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**base, v1=1)
+    assert e.value.option == "v1"
+
+
+def test_parameters_are_the_table_of_the_help(exe):
+    table = mdrmap.parameters()
+    code, out, _ = run_cli(exe, ["--help"])
+    assert code == 0
+    flat = " ".join(out.split())
+    names = [p["name"] for p in table]
+    assert names[:2] == ["d", "FN"] and "tau" in names and "log-decades" in names
+    for p in table:
+        assert " ".join(p["help"].split()) in flat, p["name"]
+        assert f"--{p['name']} {p['symbol']}" in out
+        assert p["keyword"] == p["name"].replace("-", "_")
+        assert p["range"][1:] in p["help"] and p["meaning"] in p["help"] and p["unit"] in p["help"]
+        if p["default"] is not None:
+            assert not p["required"] and p["one_of"] is None
+    assert {p["name"]: p["default"] for p in table}["samples"] == 201
+    assert {p["name"]: p["required"] for p in table}["tau"]
+
+
+def test_info_names_the_build():
+    r = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5, samples=3)
+    assert r.info["version"] == mdrmap.__version__
+    assert r.info["commit"] == mdrmap._core.commit
+    assert r.info["solver"] == "exact" and r.info["wall_seconds"] >= 0
