@@ -1507,4 +1507,26 @@ TEST(cli, StudySetAddsTheSegmentOfAConfigWithoutHistory) {
   EXPECT_TRUE(fs::is_regular_file(map));
 }
 
+// Every case parameter of the table is an override of mdrmap study, as of
+// simulate: --FN gives a config without a loading its load (issue 22).
+TEST(cli, StudyTakesEveryCaseParameterOfTheTable) {
+  TempDir dir;
+  const fs::path ini = dir.path() / "no_loading.ini";
+  write_file(ini, "[grid]\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n[run]\nsamples = 5\n");
+  const fs::path map = dir.path() / "map.h5";
+  const Outcome r = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
+                                map.string(), "--FN", "5.333333333333333,1"},
+                               kNoHangSeconds);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 cases in " + map.string() + ": 2 done, 0 failed"), std::string::npos)
+      << r.err;
+  const fs::path other = dir.path() / "other.h5";
+  const Outcome both = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
+                                   other.string(), "--FN", "1", "--d", "1e-3"},
+                                  kNoHangSeconds);
+  EXPECT_EQ(both.code, 2) << both.err;
+  EXPECT_EQ(std::count(both.err.begin(), both.err.end(), '\n'), 1) << both.err;
+  EXPECT_FALSE(fs::exists(other));
+}
+
 } // namespace

@@ -13,9 +13,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/simulate_cmd.hpp"
+#include "core/params.hpp"
 #include "mdrmap/version.hpp"
 #include "study/runner.hpp"
 
@@ -125,18 +127,42 @@ struct StudyArgs {
   std::vector<std::pair<std::string, std::string>> overrides;
 };
 
-const char* const kOverrides[][2] = {{"samples", "run.samples"},
-                                     {"rtol", "run.rtol"},
-                                     {"solver", "run.solver"},
-                                     {"t-end-over-tau", "run.t_end_over_tau"},
-                                     {"timeseries", "run.timeseries"},
-                                     {"G", "run.G"},
-                                     {"d", "grid.d"},
-                                     {"R", "grid.R"},
-                                     {"tau", "grid.tau"},
-                                     {"v", "grid.v"},
-                                     {"v1", "grid.v1"},
-                                     {"v1-over-v", "grid.v1_over_v"}};
+const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
+                                        {"rtol", "run.rtol"},
+                                        {"solver", "run.solver"},
+                                        {"t-end-over-tau", "run.t_end_over_tau"},
+                                        {"timeseries", "run.timeseries"},
+                                        {"G", "run.G"},
+                                        {"v1", "grid.v1"},
+                                        {"v1-over-v", "grid.v1_over_v"}};
+
+/// The override options and the keys they set: the run's, the seed's step,
+/// and every case parameter of the core's table as a grid column (--d, --FN,
+/// --R, --tau, --v, ...; G stays the seed's [run] G).
+const std::vector<std::pair<std::string, std::string>>& overrides() {
+  static const auto all = [] {
+    std::vector<std::pair<std::string, std::string>> o;
+    for (const auto& ov : kRunOverrides)
+      o.emplace_back(ov[0], ov[1]);
+    for (const ParamSpec& p : case_parameters())
+      if (p.part != Part::Sampling && std::string(p.name) != "G")
+        o.emplace_back(p.name, std::string("grid.") + p.name);
+    return o;
+  }();
+  return all;
+}
+
+/// Two options of one group of the table (--d and --FN: the loading) set
+/// the same thing: refused, as simulate refuses them.
+void refuse_two_of_a_group(const po::variables_map& vm) {
+  for (const ParamSpec& p : case_parameters()) {
+    if (p.one_of == nullptr || !vm.count(p.name)) continue;
+    for (const ParamSpec& q : case_parameters())
+      if (&q != &p && q.one_of != nullptr && std::string(q.one_of) == p.one_of && vm.count(q.name))
+        throw InvalidInput(p.name, "--" + std::string(p.name) + " and --" + q.name +
+                                       " set the same thing (the " + p.one_of + "); give only one");
+  }
+}
 
 po::options_description options() {
   po::options_description o;
@@ -145,8 +171,8 @@ po::options_description options() {
       "quiet", po::bool_switch(), "")("help", po::bool_switch(), "")("chunk-seconds",
                                                                      po::value<std::string>(), "")(
       "set", po::value<std::vector<std::string>>()->composing(), "");
-  for (const auto& ov : kOverrides)
-    o.add_options()(ov[0], po::value<std::string>(), "");
+  for (const auto& ov : overrides())
+    o.add_options()(ov.first.c_str(), po::value<std::string>(), "");
   return o;
 }
 
@@ -202,8 +228,9 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
                          "must be a number of seconds in (0, 3600], got '" + txt + "'");
     a.chunk_seconds = x;
   }
-  for (const auto& ov : kOverrides)
-    if (vm.count(ov[0])) a.overrides.emplace_back(ov[1], vm[ov[0]].as<std::string>());
+  refuse_two_of_a_group(vm);
+  for (const auto& ov : overrides())
+    if (vm.count(ov.first)) a.overrides.emplace_back(ov.second, vm[ov.first].as<std::string>());
   if (vm.count("set"))
     for (const std::string& kv : vm["set"].as<std::vector<std::string>>()) {
       const std::size_t eq = kv.find('=');
@@ -263,7 +290,8 @@ then the study is checked: a new history segment takes its two keys):
   --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
                             --set grid.FN=1e-3 --set run.spacing=log (repeatable)
   --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
-  --G G  --d SPEC  --R SPEC  --tau SPEC  --v SPEC  --v1 SPEC  --v1-over-v SPEC
+  --G G  --d SPEC  --FN SPEC  --R SPEC  --tau SPEC  --v SPEC  --v1 SPEC
+  --v1-over-v SPEC
   (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
 
 Progress goes to stderr on rank 0: a live bar on a terminal, a line every 10 s
