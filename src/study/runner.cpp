@@ -105,23 +105,23 @@ std::string holder_text(long holder) {
   return holder > 0 ? " (process " + std::to_string(holder) + ")" : "";
 }
 
-// Rank 0, --overwrite: locks the map to be replaced (held until the new one
-// is in its place), refused while another job holds it. Nothing to lock when
-// there is no file (any more): the new map is then created as without
-// --overwrite.
-void lock_replaced(const std::string& out, io::MapLock& replaced) {
+// Rank 0: locks the existing map `out` for `option` (--overwrite: "replace",
+// --resume: "touch"), refused while another job holds it; retried while other
+// jobs replace the file under it. With `may_vanish` (--overwrite) a file that
+// is gone needs no lock: the new map is then created as without --overwrite.
+void lock_existing(const std::string& out, io::MapLock& lock, const char* option, const char* verb,
+                   bool may_vanish) {
   for (int attempt = 0; attempt < 100; ++attempt) {
     struct stat st {};
-    if (::stat(out.c_str(), &st) != 0 && errno == ENOENT) return;
+    if (may_vanish && ::stat(out.c_str(), &st) != 0 && errno == ENOENT) return;
     long holder = 0;
-    if (!replaced.acquire(out, &holder))
-      throw InvalidInput("output", "'" + out + "' is being written by another mdrmap job" +
-                                       holder_text(holder) + "; refusing to replace it");
-    if (replaced.names(out)) return; // not replaced while we locked it
+    if (!lock.acquire(out, &holder))
+      throw InvalidInput(option, "'" + out + "' is being written by another mdrmap job" +
+                                     holder_text(holder) + "; refusing to " + verb + " it");
+    if (lock.names(out)) return; // not replaced while we locked it
   }
-  throw InvalidInput("output", "'" + out +
-                                   "' keeps being replaced by other jobs; refusing to "
-                                   "replace it");
+  throw InvalidInput(option, "'" + out + "' keeps being replaced by other jobs; refusing to " +
+                                 verb + " it");
 }
 
 // Rank 0: puts the complete map `tmp` (locked by `lock`) in its place: over
@@ -181,7 +181,7 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
       bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));
   io::MapLock replaced;
   collectively(comm, [&] {
-    if (rank == 0 && req.overwrite) lock_replaced(req.output, replaced);
+    if (rank == 0 && req.overwrite) lock_existing(req.output, replaced, "output", "replace", true);
   });
   try {
     collectively(comm, [&] {
@@ -254,20 +254,6 @@ private:
   std::size_t cursor_ = 0, left_ = 0, total_ = 0, failed_ = 0;
 };
 
-// Rank 0, --resume: locks the map, refused while another job holds it.
-void lock_resumed(const std::string& out, io::MapLock& lock) {
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    long holder = 0;
-    if (!lock.acquire(out, &holder))
-      throw InvalidInput("resume", "'" + out + "' is being written by another mdrmap job" +
-                                       holder_text(holder) + "; refusing to touch it");
-    if (lock.names(out)) return; // not replaced while we locked it
-  }
-  throw InvalidInput("resume", "'" + out +
-                                   "' keeps being replaced by other jobs; refusing to "
-                                   "touch it");
-}
-
 // Collective. Where the rows go, and what is left to do: every rank gets rank
 // 0's read of the map's layout and opens the map for its rows; rank 0 keeps
 // the status column and the recorded failures, and holds the map's lock (one job
@@ -282,7 +268,7 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
   collectively(comm, [&] {
     if (rank != 0) return;
     // one job at a time: a created map is locked since its creation
-    if (!lock.held()) lock_resumed(req.output, lock);
+    if (!lock.held()) lock_existing(req.output, lock, "resume", "touch", false);
     try {
       packed = io::MapFile::read_layout(req.output, &status).pack();
     } catch (const io::H5Error& e) {
