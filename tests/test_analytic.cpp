@@ -15,8 +15,8 @@
 #include <limits>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/case.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/model/case.hpp"
 #include "test_case.hpp"
 
 namespace {
@@ -108,8 +108,8 @@ QuadForces quad_forces(const Case& c, double a2, double w) {
   // The limits are the contact set that contact_forces is given: the code's a1
   // (a rounded double) and the double a2, both exact in long double.
   const ld a1 = static_cast<ld>(analytic::a1(c));
-  const ld d = c.loading.d, R = c.indenter.R, G = c.material.G;
-  const ld L = static_cast<ld>(w) * static_cast<ld>(c.material.tau);
+  const ld d = c.loading.d, R = c.indenter.R, G = c.rheology.G;
+  const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
   auto p = [&](ld x) { return d - x * x / R - 2.0L * L * x / R; };
   auto px = [&](ld x) { return p(x) * (-2.0L * x / R); };
   const Quad qn = integrate(p, -a1, static_cast<ld>(a2));
@@ -163,12 +163,12 @@ using mdrmap::testing::v1_of;
 
 // Velocity giving v tau / a1 = zeta.
 double vel(const Case& c, double zeta) {
-  return zeta * analytic::a1(c) / c.material.tau;
+  return zeta * analytic::a1(c) / c.rheology.tau;
 }
 
 // Hertz force of the MDR parabola: (16/3) G sqrt(R) d^{3/2}, in long double.
 ld hertz(const Case& c) {
-  return 16.0L / 3.0L * static_cast<ld>(c.material.G) * std::sqrt(static_cast<ld>(c.indenter.R)) *
+  return 16.0L / 3.0L * static_cast<ld>(c.rheology.G) * std::sqrt(static_cast<ld>(c.indenter.R)) *
          std::pow(static_cast<ld>(c.loading.d), 1.5L);
 }
 
@@ -248,14 +248,14 @@ TEST(AnalyticForces, MatchQuadratureOfPaperIntegrands) {
 namespace {
 ld paper_eq9(const Case& c, ld a2, ld w) {
   const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.R,
-           G = c.material.G, tau = c.material.tau;
+           G = c.rheology.G, tau = c.rheology.tau;
   return 4.0L * G *
          (d * (a1 + a2) - (a1 * a1 * a1 - a2 * a2 * a2) / (3.0L * R) +
           tau * w / R * (a1 * a1 - a2 * a2));
 }
 ld paper_eq10(const Case& c, ld a2, ld w) {
   const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.R,
-           G = c.material.G, tau = c.material.tau;
+           G = c.rheology.G, tau = c.rheology.tau;
   return 8.0L * G / (R * R) *
          (R * d / 2.0L * (a1 * a1 - a2 * a2) - (std::pow(a1, 4.0L) - std::pow(a2, 4.0L)) / 2.0L +
           2.0L * tau * w / 3.0L * (a1 * a1 * a1 + a2 * a2 * a2));
@@ -320,7 +320,7 @@ TEST(AnalyticStationary, A2SatisfiesForceZeroCondition) {
       const double w = vel(c, std::pow(10.0, lz));
       const ld a2 = analytic::a2_stationary(c, w);
       const ld d = c.loading.d, R = c.indenter.R,
-               L = static_cast<ld>(w) * static_cast<ld>(c.material.tau);
+               L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
       const ld residual = d - a2 * a2 / R - 2.0L * L * a2 / R;
       EXPECT_LE(std::fabs(residual / d), 1e-14L) << "d/R=" << dr << " zeta=1e" << lz;
       EXPECT_GT(a2, 0.0L);
@@ -335,8 +335,8 @@ TEST(AnalyticStationary, EqualsNaiveEq7WhereWellConditioned) {
     Case c = make_case(3e-5, 0.1, 2.0, 1.0);
     const double w = vel(c, zeta);
     const double naive =
-        std::sqrt(w * w * c.material.tau * c.material.tau + c.indenter.R * c.loading.d) -
-        w * c.material.tau;
+        std::sqrt(w * w * c.rheology.tau * c.rheology.tau + c.indenter.R * c.loading.d) -
+        w * c.rheology.tau;
     EXPECT_NEAR(analytic::a2_stationary(c, w), naive, 1e-14 * naive) << zeta;
   }
 }
@@ -349,7 +349,7 @@ TEST(AnalyticStationary, AccurateAtHighSpeedWhereNaiveEq7Fails) {
     Case c = make_case(1e-6, 1e-3, 1e-3, 1.0);
     const double w = vel(c, zeta);
     const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
-    const ld L = static_cast<ld>(w) * static_cast<ld>(c.material.tau);
+    const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a2_stationary(c, w), ref), 1e-14) << zeta;
     // Sanity of the reference: the leading term a1^2/(2L) of the expansion
@@ -357,8 +357,8 @@ TEST(AnalyticStationary, AccurateAtHighSpeedWhereNaiveEq7Fails) {
     EXPECT_NEAR(static_cast<double>(ref / (a1 * a1 / (2.0L * L))), 1.0, 0.3 / (zeta * zeta));
     if (zeta == 1e8) {
       const double naive =
-          std::sqrt(w * w * c.material.tau * c.material.tau + c.indenter.R * c.loading.d) -
-          w * c.material.tau;
+          std::sqrt(w * w * c.rheology.tau * c.rheology.tau + c.indenter.R * c.loading.d) -
+          w * c.rheology.tau;
       EXPECT_GT(rel(naive, ref), 0.5) << "naive eq. (7) unexpectedly accurate: " << naive;
     }
   }
@@ -371,7 +371,7 @@ TEST(AnalyticStationary, A1MinusA2AccurateEverywhere) {
     Case c = make_case(2e-4, 5e-2, 3.0, 1.0);
     const double w = vel(c, std::pow(10.0, lz));
     const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
-    const ld L = static_cast<ld>(w) * static_cast<ld>(c.material.tau);
+    const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a1_minus_a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a1_minus_a2_stationary(c, w), ref), 1e-14) << "zeta=1e" << lz;
     // Cross-check of the two references where a1 - a2 does not cancel.
@@ -411,11 +411,11 @@ TEST(AnalyticLimits, ConvergesToHertzAsTauToZero) {
   Case c = make_case(1e-3, 0.4, 1.0, 1.0, 0.0, 2.0);
   const double sdr = std::sqrt(c.loading.d / c.indenter.R);
   auto eN = [&](double zeta) {
-    c.material.tau = zeta; // v = a1 below, so zeta = tau * a1 / a1
+    c.rheology.tau = zeta; // v = a1 below, so zeta = tau * a1 / a1
     return rel(analytic::stationary(c, analytic::a1(c)).FN, hertz(c));
   };
   auto mu = [&](double zeta) {
-    c.material.tau = zeta;
+    c.rheology.tau = zeta;
     return analytic::stationary(c, analytic::a1(c)).mu / sdr;
   };
   for (double zeta : {1e-1, 1e-2, 1e-3}) {
@@ -510,7 +510,7 @@ TEST(AnalyticJump, IncreaseEqualsStationaryAtNewVelocity) {
       // Physical reason: force density at velocity v1 is negative beyond a2(v1).
       if (ratio > 1.0) {
         const ld x = 0.5L * (static_cast<ld>(a2v1) + analytic::a2_stationary(c, v));
-        const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.material.tau);
+        const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.rheology.tau);
         EXPECT_LT(static_cast<ld>(c.loading.d) - x * x / c.indenter.R -
                       2.0L * L1 * x / c.indenter.R,
                   0.0L);
@@ -535,7 +535,7 @@ TEST(AnalyticJump, DecreaseUsesOldContactSetWithNewVelocity) {
       EXPECT_LT(rel(j.Fx, q.Fx), 1e-13 + static_cast<double>(64.0L * q.kappaX * kEpsLd))
           << zeta << " " << ratio;
       // Every element of [-a1, a2(v)] keeps a non-negative force at v1.
-      const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.material.tau);
+      const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.rheology.tau);
       const ld x = a2v;
       EXPECT_GE(static_cast<ld>(c.loading.d) - x * x / c.indenter.R - 2.0L * L1 * x / c.indenter.R,
                 -1e-15L * c.loading.d);
@@ -558,17 +558,17 @@ TEST(AnalyticStartStop, A2Formula) {
   Case c = make_case(3e-6, 1e-3, 1e-3, 1.0);
   const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
   for (double t_over_tau : {1e-20, 1e-8, 1e-3, 0.1, 1.0, 3.0, 10.0, 50.0}) {
-    const double t = t_over_tau * c.material.tau;
-    const ld want = a1 * std::sqrt(-std::expm1(-static_cast<ld>(t) / c.material.tau));
+    const double t = t_over_tau * c.rheology.tau;
+    const ld want = a1 * std::sqrt(-std::expm1(-static_cast<ld>(t) / c.rheology.tau));
     const double got = analytic::a2_start_stop(c, t);
     EXPECT_LT(rel(got, want), 2e-15) << t_over_tau;
     const ld x = got;
     const ld resid = (c.loading.d - x * x / c.indenter.R) -
-                     c.loading.d * std::exp(-static_cast<ld>(t) / c.material.tau);
+                     c.loading.d * std::exp(-static_cast<ld>(t) / c.rheology.tau);
     EXPECT_LT(std::fabs(resid / c.loading.d), 1e-15L) << t_over_tau;
   }
   EXPECT_EQ(analytic::a2_start_stop(c, 0.0), 0.0);
-  c.material.tau = 0.0;
+  c.rheology.tau = 0.0;
   EXPECT_EQ(analytic::a2_start_stop(c, 1e-9), analytic::a1(c));
 }
 
@@ -592,9 +592,9 @@ TEST(AnalyticHardRanges, FiniteAndPhysical) {
     EXPECT_LE(st.a2, A) << what;
     // Bounds from p >= 0 on the contact: F_N between the Hertz-like integrals.
     // p <= d + 2 L a1 / R on a contact of length <= 2 a1.
-    EXPECT_LE(st.FN, 4.0 * c.material.G *
+    EXPECT_LE(st.FN, 4.0 * c.rheology.G *
                          (2 * A * c.loading.d + 4 * A * A * std::max(c.history.v0, v1_of(c)) *
-                                                    c.material.tau / c.indenter.R) *
+                                                    c.rheology.tau / c.indenter.R) *
                          (1 + 1e-12))
         << what;
   };

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/case.hpp"
-#include "core/mdr.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/mdr.hpp"
 
 namespace mdrmap::testing {
 
@@ -41,7 +41,7 @@ inline void set_velocities(Case& c, double v, double v1) {
 inline Case history_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
                          long samples, double d_over_R = 1e-3) {
   Case c = step_case(2.0 * d_over_R, 2.0, 1.0, 1.0, 0.0);
-  c.history.v0 = zeta0 * c.a1() / c.material.tau;
+  c.history.v0 = zeta0 * c.a1() / c.rheology.tau;
   c.history.segments.clear();
   for (const auto& [w, T] : segs)
     c.history.segments.push_back({w * c.history.v0, T});

@@ -27,12 +27,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/case.hpp"
-#include "core/events.hpp"
-#include "core/exact.hpp"
-#include "core/params.hpp"
-#include "core/solver.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/events.hpp"
+#include "core/model/case.hpp"
+#include "core/model/params.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/exact.hpp"
 
 extern char** environ;
 
@@ -213,7 +213,9 @@ std::regex case_line_regex(bool load) {
   };
   std::string re = "^# case";
   for (const auto& p : mdrmap::case_parameters())
-    if (p.part != mdrmap::Part::Sampling && given(p)) re += std::string(" ") + p.name + R"(=\S+)";
+    if (p.part != mdrmap::Part::Sampling && given(p))
+      re += std::string(p.name) == "aT" ? std::string(R"(( aT=\S+)?)") // only where it shifts
+                                        : std::string(" ") + p.name + R"(=\S+)";
   re += R"( history=\S+ spacing=(linear|log))";
   for (const auto& p : mdrmap::case_parameters())
     if (p.part == mdrmap::Part::Sampling) re += std::string(" ") + p.name + R"(=\S+)";

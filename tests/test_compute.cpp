@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/case.hpp"
-#include "core/load_stationary.hpp"
-#include "core/solver.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/load_stationary.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "io/case_row.hpp"
 #include "study/compute.hpp"
 #include "study/config.hpp"

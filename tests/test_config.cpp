@@ -19,7 +19,7 @@
 #include <typeinfo>
 #include <vector>
 
-#include "core/case.hpp"
+#include "core/model/case.hpp"
 #include "study/config.hpp"
 
 namespace fs = std::filesystem;
@@ -409,7 +409,7 @@ TEST(StudyConfigGood, V1OverVMultipliesV) {
   EXPECT_EQ(cases[2].history.segments[0].w, 2.0);
   EXPECT_EQ(cases[3].history.segments[0].w, 12.0);
   for (const mdrmap::Case& k : cases)
-    EXPECT_EQ(k.material.G, 2.5);
+    EXPECT_EQ(k.rheology.G, 2.5);
   EXPECT_EQ(c.axes[col(c, "G")].section, "run"); // the seed's [run] G
   EXPECT_EQ(c.axes[col(c, "G")].option(), "run.G");
 }
@@ -466,8 +466,8 @@ TEST(StudyConfigGood, CaseForIsTheSeedStep) {
     EXPECT_EQ(k.loading.d, val(c, r, "d"));
     EXPECT_EQ(k.loading.F0, 0.0);
     EXPECT_EQ(k.indenter.R, val(c, r, "R"));
-    EXPECT_EQ(k.material.tau, val(c, r, "tau"));
-    EXPECT_EQ(k.material.G, val(c, r, "G"));
+    EXPECT_EQ(k.rheology.tau, val(c, r, "tau"));
+    EXPECT_EQ(k.rheology.G, val(c, r, "G"));
     EXPECT_EQ(k.history.v0, val(c, r, "v"));
     ASSERT_EQ(k.history.size(), 1u);
     EXPECT_EQ(k.history.segments[0].w, val(c, r, "v1_over_v") * val(c, r, "v"));
@@ -542,16 +542,16 @@ TEST(StudyCases, GoodCsvAnyColumnOrder) {
   const auto cases = cases_of(c);
   EXPECT_EQ(cases[0].loading.d, 1e-3);
   EXPECT_EQ(cases[0].indenter.R, 1.0);
-  EXPECT_EQ(cases[0].material.tau, 1.0);
+  EXPECT_EQ(cases[0].rheology.tau, 1.0);
   EXPECT_EQ(cases[0].history.v0, 2.0);
   EXPECT_EQ(cases[0].history.segments.at(0).w, 0.5);
   EXPECT_EQ(cases[0].history.segments.at(0).T, 6.0); // the seed's window: 6 tau
-  EXPECT_EQ(cases[0].material.G, 2.0);
+  EXPECT_EQ(cases[0].rheology.G, 2.0);
   EXPECT_EQ(cases[1].loading.d, 2e-3);
-  EXPECT_EQ(cases[1].material.tau, 0.0);
+  EXPECT_EQ(cases[1].rheology.tau, 0.0);
   EXPECT_EQ(cases[1].history.segments.at(0).w, 0.0);
   EXPECT_EQ(cases[2].history.segments.at(0).w, 7.0);
-  EXPECT_EQ(cases[2].material.tau, 2.0);
+  EXPECT_EQ(cases[2].rheology.tau, 2.0);
   EXPECT_EQ(cases[2].history.segments.at(0).T, 12.0);
 }
 
@@ -617,7 +617,7 @@ TEST(StudyCases, BadCsvNamesLineAndColumn) {
   EXPECT_EQ(dir.first, "cases.file");
   const std::string good = tmp().write("g.csv", "d,R,tau,v,v1\n1,1,1,1,1\n");
   EXPECT_EQ(error_of([&] { list_config(good, "[run]\nG = 0\n"); }).first, "run.G");
-  EXPECT_EQ(cases_of(list_config(good)).at(0).material.G, 1.0); // G defaults to 1
+  EXPECT_EQ(cases_of(list_config(good)).at(0).rheology.G, 1.0); // G defaults to 1
 }
 
 TEST(StudyCases, CasesSectionResolvesRelativeToTheIni) {
@@ -733,7 +733,7 @@ TEST(StudyOverride, RunKeys) {
   EXPECT_EQ(c.run.decades, 3.0);
   EXPECT_EQ(c.axes[col(c, "G")].values, std::vector<double>({3.0}));
   const mdrmap::Case k = cases_of(c).front();
-  EXPECT_EQ(k.material.G, 3.0);
+  EXPECT_EQ(k.rheology.G, 3.0);
   EXPECT_EQ(k.history.segments.at(0).T, 2.5); // tau = 1
   EXPECT_EQ(k.sampling.spacing, mdrmap::Spacing::Log);
   EXPECT_EQ(k.sampling.decades, 3.0);
@@ -1092,11 +1092,11 @@ TEST(StudyLoading, GAsAGridColumnAndTheSeedsRunG) {
   EXPECT_EQ(g.axes[3].option(), "grid.G");
   const auto cases = cases_of(g);
   ASSERT_EQ(cases.size(), 2u);
-  EXPECT_EQ(cases[0].material.G, 0.5);
-  EXPECT_EQ(cases[1].material.G, 2.0);
+  EXPECT_EQ(cases[0].rheology.G, 0.5);
+  EXPECT_EQ(cases[1].rheology.G, 2.0);
   const StudyConfig r = parse(base({}, "G = 0.5\n"));
   EXPECT_EQ(r.axes[3].option(), "run.G");
-  EXPECT_EQ(cases_of(r).at(0).material.G, 0.5);
+  EXPECT_EQ(cases_of(r).at(0).rheology.G, 0.5);
   // the same G either way: the same study
   EXPECT_EQ(canonical(r), canonical(parse(base({{3, "R = 1\nG = 0.5"}}))));
   const auto both = error_of([] { parse(base({{3, "R = 1\nG = 2"}}, "G = 2\n")); });
@@ -1152,8 +1152,8 @@ TEST(StudyCases, HistoryColumnsInTheCsv) {
   EXPECT_EQ(cases[0].history.segments[0].T, 2.0);
   EXPECT_EQ(cases[0].history.segments[1].w, 0.1);
   EXPECT_EQ(cases[0].history.segments[1].T, 5.0);
-  EXPECT_EQ(cases[1].material.G, 3.0);
-  EXPECT_EQ(cases[1].material.tau, 0.0);
+  EXPECT_EQ(cases[1].rheology.G, 3.0);
+  EXPECT_EQ(cases[1].rheology.tau, 0.0);
   EXPECT_EQ(cases[1].history.segments[1].T, 6.0);
   // a history column missing from the header
   const std::string q = tmp().write("hist_missing.csv", "d,R,tau,v,w1,T1,w2\n1e-3,1,1,1,0,1,1\n");

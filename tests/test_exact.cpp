@@ -22,10 +22,10 @@
 #include <random>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/case.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/exact.hpp"
 #include "test_case.hpp"
 
 namespace {
@@ -59,7 +59,7 @@ struct Ref {
   ld d, R, G, tau, v, v1, a1, L, L1, a2v, a2v1, ha2v;
 
   explicit Ref(const Case& c)
-      : d(c.loading.d), R(c.indenter.R), G(c.material.G), tau(c.material.tau), v(c.history.v0),
+      : d(c.loading.d), R(c.indenter.R), G(c.rheology.G), tau(c.rheology.tau), v(c.history.v0),
         v1(v1_of(c)), a1(std::sqrt(R * d)), L(v * tau), L1(v1 * tau), a2v(a2_of(L)),
         a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
 
@@ -175,7 +175,7 @@ TEST(ExactBasics, JumpPreAndLateTime) {
       // After 60 tau the free tail is down by e^{-60} ~ 1e-26: stationary at v1
       // (for v1 = 0 the edge approaches a1 only asymptotically; the remaining
       // F_x ~ (a1^2 - a2^2)^2 is compared on the scale of the jump).
-      const State late = ex.at(60.0 * c.material.tau), post = analytic::stationary(c, v1_of(c));
+      const State late = ex.at(60.0 * c.rheology.tau), post = analytic::stationary(c, v1_of(c));
       EXPECT_NEAR(late.FN, post.FN, 1e-14 * post.FN) << zeta << " " << ratio;
       EXPECT_NEAR(late.Fx, post.Fx, 1e-14 * std::max(j.Fx, post.Fx)) << zeta << " " << ratio;
       EXPECT_NEAR(late.mu, post.mu, 1e-14 * std::max(j.mu, post.mu)) << zeta << " " << ratio;
@@ -193,7 +193,7 @@ TEST(ExactBasics, ContinuousAtZeroPlus) {
       const ExactSolution ex(c, 52);
       const double a1 = analytic::a1(c), a2v = analytic::a2_stationary(c, c.history.v0);
       for (double tt : {1e-14, 1e-10, 1e-6, 1e-3}) {
-        const State st = ex.at(tt * c.material.tau);
+        const State st = ex.at(tt * c.rheology.tau);
         const double bound = std::sqrt(tt) * std::min(1.0, std::sqrt(2.0) * zeta);
         EXPECT_LE(std::fabs(st.a2 - a2v) / a1, bound * (1 + 1e-9) + 4 * kEps) << zeta << " " << tt;
         EXPECT_GE(st.a2, a2v);
@@ -215,9 +215,9 @@ TEST(ExactStartStop, MatchesA1SqrtOneMinusExp) {
   const Case cs = scene_z(zeta, 0.0);
   const ExactSolution ex(cs);
   const double a1 = analytic::a1(cs);
-  const double Fx_scale = 2.0 * cs.material.G * std::pow(a1, 4) / (cs.indenter.R * cs.indenter.R);
+  const double Fx_scale = 2.0 * cs.rheology.G * std::pow(a1, 4) / (cs.indenter.R * cs.indenter.R);
   for (double tt : {0.01, 0.1, 0.5, 1.0, 2.0, 4.0, 6.0, 12.0}) {
-    const double t = tt * cs.material.tau;
+    const double t = tt * cs.rheology.tau;
     const State st = ex.at(t);
     const double a2ss = analytic::a2_start_stop(cs, t);
     EXPECT_LE(std::fabs(st.a2 - a2ss) / a1, 1.0 / zeta + 4 * kEps) << tt;
@@ -231,7 +231,7 @@ TEST(ExactStartStop, MatchesA1SqrtOneMinusExp) {
     const Case cz = scene_z(z, 0.0);
     const ExactSolution exz(cz, 52);
     for (double tt : {0.1, 1.0, 3.0}) {
-      const double t = tt * cz.material.tau;
+      const double t = tt * cz.rheology.tau;
       const double dev = (exz.at(t).a2 - analytic::a2_start_stop(cz, t)) / analytic::a1(cz);
       const double c = std::exp(-tt);
       EXPECT_NEAR(dev * z / (c / 2), 1.0, 1.0 / z + 8 * kEps / dev) << z << " " << tt;
@@ -255,7 +255,7 @@ TEST(ExactTransient, EdgeSatisfiesTheDefinition) {
       const Ref ref(c);
       const ld a1 = ref.a1, delta = 1e-13L * a1;
       for (double tt : tts) {
-        const double t = tt * c.material.tau;
+        const double t = tt * c.rheology.tau;
         const ld tl = t;
         const ld x = ex.at(t).a2;
         // (b) never beyond the stationary edge at v1
@@ -301,14 +301,14 @@ TEST(ExactTransient, MonotoneAndReachesStationary) {
       State prev = ex.at(0.0);
       const State j = prev;
       for (int k = 1; k <= 400; ++k) {
-        const State st = ex.at(8.0 * c.material.tau * k / 400.0);
+        const State st = ex.at(8.0 * c.rheology.tau * k / 400.0);
         EXPECT_GE(st.a2, prev.a2 - 4 * kEps * prev.a2) << zeta << " " << ratio << " " << k;
         EXPECT_GE(st.FN, prev.FN * (1 - 8 * kEps)) << zeta << " " << ratio << " " << k;
         EXPECT_LE(st.Fx, prev.Fx + 8 * kEps * j.Fx) << zeta << " " << ratio << " " << k;
         EXPECT_LE(st.mu, prev.mu + 8 * kEps * j.mu) << zeta << " " << ratio << " " << k;
         prev = st;
       }
-      const State post = analytic::stationary(c, v1_of(c)), late = ex.at(60.0 * c.material.tau);
+      const State post = analytic::stationary(c, v1_of(c)), late = ex.at(60.0 * c.rheology.tau);
       EXPECT_NEAR(late.mu, post.mu, 1e-14 * j.mu) << zeta << " " << ratio;
       EXPECT_LT(post.mu, j.mu);
     }
@@ -325,13 +325,13 @@ TEST(ExactTransient, ForcesEqualQuadratureOverContactSet) {
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
       const Case c = scene_z(zeta, ratio);
       const ExactSolution ex(c);
-      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.R, G = c.material.G;
-      const ld L1 = static_cast<ld>(v1_of(c)) * static_cast<ld>(c.material.tau);
+      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.R, G = c.rheology.G;
+      const ld L1 = static_cast<ld>(v1_of(c)) * static_cast<ld>(c.rheology.tau);
       auto p = [&](ld x) { return d - x * x / R - 2.0L * L1 * x / R; };
       auto px = [&](ld x) { return p(x) * (-2.0L * x / R); };
       const double Fx_scale = ex.at(0.0).Fx;
       for (double tt : {0.0, 0.01, 0.3, 1.0, 3.0, 8.0}) {
-        const State st = ex.at(tt * c.material.tau);
+        const State st = ex.at(tt * c.rheology.tau);
         const Quad qn = integrate(p, -a1, static_cast<ld>(st.a2));
         const Quad qx = integrate(px, -a1, static_cast<ld>(st.a2));
         EXPECT_LT(rel(st.FN, 4 * G * qn.value), 1e-13) << zeta << " " << ratio << " " << tt;
@@ -365,13 +365,13 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
       std::vector<std::vector<double>> out(4);
       for (std::size_t k = 0; k < r.series.size(); ++k) {
         out[0].push_back(r.series.mu[k] / sdr);
-        out[1].push_back(r.series.FN[k] / (c.material.G * a1 * c.loading.d));
-        out[2].push_back(r.series.Fx[k] / (c.material.G * c.loading.d * c.loading.d));
+        out[1].push_back(r.series.FN[k] / (c.rheology.G * a1 * c.loading.d));
+        out[2].push_back(r.series.Fx[k] / (c.rheology.G * c.loading.d * c.loading.d));
         out[3].push_back(r.series.a2[k] / a1);
       }
       out[0].push_back(r.series.pre.mu / sdr);
-      out[1].push_back(r.series.pre.FN / (c.material.G * a1 * c.loading.d));
-      out[2].push_back(r.series.pre.Fx / (c.material.G * c.loading.d * c.loading.d));
+      out[1].push_back(r.series.pre.FN / (c.rheology.G * a1 * c.loading.d));
+      out[2].push_back(r.series.pre.Fx / (c.rheology.G * c.loading.d * c.loading.d));
       out[3].push_back(r.series.pre.a2 / a1);
       return out;
     };
@@ -416,10 +416,10 @@ TEST(ExactConstant, RiseElasticAndNoChange) {
   for (const Case& c : scenes) {
     const ExactSolution ex(c);
     const State post = analytic::stationary(c, v1_of(c));
-    const double T = c.material.tau > 0 ? c.material.tau : analytic::a1(c) / c.history.v0;
+    const double T = c.rheology.tau > 0 ? c.rheology.tau : analytic::a1(c) / c.history.v0;
     for (double tt : {0.0, 1e-9, 1e-3, 0.5, 1.0, 10.0, 100.0}) {
       const State st = ex.at(tt * T);
-      EXPECT_EQ(st.FN, post.FN) << c.material.tau << " " << v1_of(c) / c.history.v0 << " " << tt;
+      EXPECT_EQ(st.FN, post.FN) << c.rheology.tau << " " << v1_of(c) / c.history.v0 << " " << tt;
       EXPECT_EQ(st.Fx, post.Fx);
       EXPECT_EQ(st.mu, post.mu);
       EXPECT_EQ(st.a2, post.a2);
@@ -445,7 +445,7 @@ TEST(ExactPrecision, AgreesWithLongDoubleBisection) {
         const Ref ref(c);
         const auto r0 = ref.forces(ref.a2v);
         for (double tt : tts) {
-          const double t = tt * c.material.tau;
+          const double t = tt * c.rheology.tau;
           const State st = ex.at(t);
           const auto r = ref.at(t);
           const double e[4] = {rel(st.FN, r.FN),
@@ -503,7 +503,7 @@ TEST(ExactRunExact, ErrorEstimateAndLooseTolerance) {
       EXPECT_EQ(tight.series.t[k], c.sampling.offset(static_cast<long>(k), t_end_of(c)));
       EXPECT_EQ(tight.series.segment[k], 0);
     }
-    EXPECT_EQ(tight.series.t.back(), 6.0 * c.material.tau);
+    EXPECT_EQ(tight.series.t.back(), 6.0 * c.rheology.tau);
     const double a1 = analytic::a1(c);
     const auto ref = reference_series(c);
     EXPECT_LT(mdrmap::case_error(tight.series, ref, a1).max(), 1e-12) << g.zeta << " " << g.ratio;

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/case.hpp"
-#include "core/mdr.hpp"
-#include "core/solver.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/mdr.hpp"
 
 namespace mdrmap {
 namespace {
@@ -24,7 +24,7 @@ Case depth_case(std::vector<Segment> segments, double d = 1e-3, double R = 1.0, 
   Case c;
   c.loading.d = d;
   c.indenter.R = R;
-  c.material.tau = tau;
+  c.rheology.tau = tau;
   c.history.v0 = v;
   c.history.segments = std::move(segments);
   c.sampling.samples = samples;

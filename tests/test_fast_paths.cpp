@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/case.hpp"
-#include "core/exact.hpp"
-#include "core/solver.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/exact.hpp"
 #include "io/case_row.hpp"
 
 namespace {
@@ -38,7 +38,7 @@ Case history_case(double v, const std::vector<Segment>& segments, long samples) 
   Case c;
   c.loading.d = 1e-3;
   c.indenter.R = 1.0;
-  c.material.tau = 1.0;
+  c.rheology.tau = 1.0;
   c.history.v0 = v;
   c.history.segments = segments;
   c.sampling.samples = samples;

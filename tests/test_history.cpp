@@ -8,12 +8,13 @@
 #include <limits>
 #include <vector>
 
-#include "core/baseline.hpp"
-#include "core/case_set.hpp"
-#include "core/error_metric.hpp"
-#include "core/events.hpp"
-#include "core/exact.hpp"
-#include "core/mdr.hpp"
+#include "cases/case_set.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/metrics/events.hpp"
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {
@@ -137,9 +138,9 @@ TEST(HistoryClaims, SuccessiveDropsLeaveOneExponentialPiecePerEpoch) {
   EXPECT_EQ(kinds(3), (std::vector<K>{K::Quad, K::Exp, K::Exp})); // the rise lets go
   // decay lengths are those of the epochs: v0 tau, 0.3 v0 tau, 0.1 v0 tau
   const auto& t2 = ex.segment_start(2).tail;
-  EXPECT_DOUBLE_EQ(t2[0].lam, c.history.segments[1].w * c.material.tau);
-  EXPECT_DOUBLE_EQ(t2[1].lam, c.history.segments[0].w * c.material.tau);
-  EXPECT_DOUBLE_EQ(t2[2].lam, c.history.v0 * c.material.tau);
+  EXPECT_DOUBLE_EQ(t2[0].lam, c.history.segments[1].w * c.rheology.tau);
+  EXPECT_DOUBLE_EQ(t2[1].lam, c.history.segments[0].w * c.rheology.tau);
+  EXPECT_DOUBLE_EQ(t2[2].lam, c.history.v0 * c.rheology.tau);
   // the brute-force fixed-step method converges to it at first order
   const RunResult ref = run_exact(c);
   double err[2];
@@ -198,8 +199,8 @@ TEST(HistoryReduction, OneSegmentHistoryIsTheStep) {
     const State j = ex.at(0, 0.0), jump = analytic::jump(c, v, w);
     EXPECT_NEAR(j.FN, jump.FN, 1e-13 * jump.FN) << nc.name;
     EXPECT_NEAR(j.Fx, jump.Fx, 1e-12 * std::max(jump.Fx, 1e-300)) << nc.name;
-    if (c.material.tau > 0.0) {
-      const State late = ex.at(0, 200.0 * c.material.tau), ss = analytic::stationary(c, w);
+    if (c.rheology.tau > 0.0) {
+      const State late = ex.at(0, 200.0 * c.rheology.tau), ss = analytic::stationary(c, w);
       EXPECT_NEAR(late.FN, ss.FN, 1e-12 * ss.FN) << nc.name;
     }
   }
@@ -243,8 +244,8 @@ TEST(HistorySimilarity, ScaledVariablesCollapse) {
   const double L = 37.0, T = 1e-3, S = 4e6;
   s.loading.d *= L;
   s.indenter.R *= L;
-  s.material.tau *= T;
-  s.material.G *= S;
+  s.rheology.tau *= T;
+  s.rheology.G *= S;
   s.history.v0 *= L / T;
   for (auto& seg : s.history.segments) {
     seg.w *= L / T;

@@ -12,14 +12,14 @@
 #include <utility>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/error_metric.hpp"
-#include "core/events.hpp"
-#include "core/load.hpp"
-#include "core/load_baseline.hpp"
-#include "core/load_case_set.hpp"
-#include "core/load_stationary.hpp"
-#include "core/solver.hpp"
+#include "cases/load_case_set.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/metrics/events.hpp"
+#include "core/metrics/load_stationary.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/load.hpp"
+#include "core/solvers/load_baseline.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {
@@ -30,7 +30,7 @@ Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
                double F0 = 4e-3, double tau = 1.0) {
   Case c;
   c.indenter.R = 2.0;
-  c.material.tau = tau;
+  c.rheology.tau = tau;
   c.loading.F0 = F0;
   c.history.v0 = zeta0 * c.a0() / tau;
   for (const auto& [w, T] : segs)
@@ -73,13 +73,13 @@ TEST(StationaryUnderLoad, HertzAsTauGoesToZero) {
   Case c = load_case(1.0, {{1.0, 1.0}}, 3);
   const double d0 = d0_of(c);
   for (double tau : {1e-3, 1e-6, 1e-9, 1e-12}) {
-    c.material.tau = tau; // zeta0 = v0 tau / a0 falls with tau at fixed v0
+    c.rheology.tau = tau; // zeta0 = v0 tau / a0 falls with tau at fixed v0
     const double z = c.history.v0 * tau / c.a0();
     const double d = stationary_depth(c, c.history.v0);
     EXPECT_LT(std::abs(d / d0 - 1.0), 4.0 * z) << tau;
     EXPECT_LT(stationary_under_load(c, c.history.v0).mu / (c.a0() / c.indenter.R), 4.0 * z);
   }
-  c.material.tau = 0.0;
+  c.rheology.tau = 0.0;
   EXPECT_NEAR(stationary_depth(c, c.history.v0) / d0, 1.0, 1e-15);
 }
 
@@ -174,7 +174,7 @@ TEST(RunLoad, IndentationCreepUnderAStepLoad) {
     double worst = 0.0;
     for (std::size_t k = 0; k < r.series.size(); ++k) {
       const double t = r.series.t[k];
-      const double exact = d0 * std::pow(-std::expm1(-t / c.material.tau), 2.0 / 3.0);
+      const double exact = d0 * std::pow(-std::expm1(-t / c.rheology.tau), 2.0 / 3.0);
       worst = std::max(worst, std::abs(r.series.d[k] - exact) / d0);
       EXPECT_NEAR(r.series.a1[k], std::sqrt(c.indenter.R * r.series.d[k]), 1e-15 * c.a0());
       EXPECT_NEAR(r.series.a2[k], r.series.a1[k], 1e-12 * c.a0()) << t; // full contact
@@ -188,7 +188,7 @@ TEST(RunLoad, IndentationCreepUnderAStepLoad) {
 
 TEST(RunLoad, TauZeroIsHertzAtOnce) {
   Case c = load_case(1.0, {{0.1, 2.0}, {0.0, 1.0}, {10.0, 2.0}}, 11);
-  c.material.tau = 0.0;
+  c.rheology.tau = 0.0;
   c.history.v0 = 1.0;
   const RunResult r = run_load(c, LoadOptions{});
   const double d0 = d0_of(c), a0 = c.a0();
@@ -201,7 +201,7 @@ TEST(RunLoad, TauZeroIsHertzAtOnce) {
   // tiny tau at the same velocities (zeta0 = 1e-9): no stiff trap; Hertz to
   // O(zeta0) from the first sample after each change on
   Case s = load_case(1.0, {{0.1, 3.0}, {0.0, 2.0}, {1.0, 3.0}}, 11);
-  s.material.tau = 1e-9;
+  s.rheology.tau = 1e-9;
   const RunResult q = run_load(s, LoadOptions{});
   EXPECT_LT(q.info.steps, 20000);
   for (std::size_t k = 0; k < q.series.size(); ++k) {

@@ -16,9 +16,9 @@
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 
-#include "core/analytic.hpp"
-#include "core/error_metric.hpp"
-#include "core/load_baseline.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/load_baseline.hpp"
 
 namespace mdrmap {
 namespace {
@@ -35,7 +35,7 @@ Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
                double a0 = kA0) {
   Case c;
   c.indenter.R = kR;
-  c.material.tau = 1.0;
+  c.rheology.tau = 1.0;
   c.loading.F0 = force_of(a0);
   c.history.v0 = zeta0 * a0;
   for (const auto& [w, T] : segs)
@@ -82,7 +82,7 @@ TEST(LoadStationary, DepthRootBalancesTheLoad) {
     for (double zeta0 : logspace(1e-4, 1e6, 41)) {
       Case c = load_case(1.0, {{1.0, 1.0}});
       c.loading.F0 = F0;
-      c.history.v0 = zeta0 * c.a0() / c.material.tau;
+      c.history.v0 = zeta0 * c.a0() / c.rheology.tau;
       const double d = load_check::stationary_depth(c, c.history.v0);
       const double r = std::abs(load_check::stationary_force(c, d, c.history.v0) - F0) / F0;
       worst = std::max(worst, r);
@@ -93,10 +93,10 @@ TEST(LoadStationary, DepthRootBalancesTheLoad) {
     Case c = load_case(1.0, {{1.0, 1.0}});
     c.loading.F0 = F0;
     const double d0 = c.a0() * c.a0() / c.indenter.R;
-    c.material.tau = 0.0;
+    c.rheology.tau = 0.0;
     // d0 = a0^2 / R with a0 from a cube root carries a few ulp of its own
     EXPECT_NEAR(load_check::stationary_depth(c, c.history.v0) / d0, 1.0, 2e-15);
-    c.material.tau = 1.0;
+    c.rheology.tau = 1.0;
     EXPECT_NEAR(load_check::stationary_depth(c, 0.0) / d0, 1.0, 2e-15);
     EXPECT_EQ(load_check::stationary_state(c, 0.0).mu, 0.0);
   }
@@ -218,8 +218,8 @@ TEST(LoadStationary, LimitsAndTheirApproach) {
 /// d(t) = d0 (1 - exp(-t/tau))^(2/3).
 double creep_depth(const Case& c, double t) {
   const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
-  if (c.material.tau == 0.0) return d0;
-  const double y = -std::expm1(-t / c.material.tau);
+  if (c.rheology.tau == 0.0) return d0;
+  const double y = -std::expm1(-t / c.rheology.tau);
   return d0 * std::cbrt(y * y);
 }
 
@@ -229,7 +229,7 @@ double creep_depth(const Case& c, double t) {
 /// [0, 1]; its pole just beyond x = 1 (d near d0) is met by panels graded
 /// geometrically towards 1.
 double creep_time_by_quadrature(const Case& c, double d) {
-  const double F0 = c.loading.F0, G = c.material.G, tau = c.material.tau;
+  const double F0 = c.loading.F0, G = c.rheology.G, tau = c.rheology.tau;
   const double A = F0 / (8.0 * G * std::sqrt(c.indenter.R * d));
   auto f = [&](double x) { return 2.0 * tau * d * x * x / (A - (2.0 / 3.0) * d * x * x * x); };
   double t = 0.0, lo = 0.0, width = 0.5;
@@ -251,7 +251,7 @@ TEST(LoadCreep, ClosedFormAgainstQuadrature) {
   for (double t : {1e-3, 0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0}) {
     const double d = creep_depth(c, t), tq = creep_time_by_quadrature(c, d);
     // d'/d = (2/3) exp(-t/tau) / (1 - exp(-t/tau)) / tau
-    const double rate = (2.0 / 3.0) / std::expm1(t / c.material.tau) / c.material.tau;
+    const double rate = (2.0 / 3.0) / std::expm1(t / c.rheology.tau) / c.rheology.tau;
     const double err = std::abs(tq - t) * rate;
     worst = std::max(worst, err);
     EXPECT_LE(err, 1e-12) << "t " << t << " time error " << (tq - t) / t;
@@ -415,7 +415,7 @@ TEST(LoadBaseline, TauToZeroIsHertzAtOnce) {
   for (double tau : {0.0, 1e-9})
     for (LoadBaselineStart start : {LoadBaselineStart::Stationary, LoadBaselineStart::Undeformed}) {
       Case c = load_case(1.0, {{0.1, 2.0}, {0.0, 1.0}, {3.0, 2.0}}, 11);
-      c.material.tau = tau;
+      c.rheology.tau = tau;
       const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
       const std::vector<double> cells = {50, 100, 200, 400};
       std::vector<double> err;

@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "core/error_metric.hpp"
-#include "core/load.hpp"
-#include "core/load_baseline.hpp"
-#include "core/load_stationary.hpp"
-#include "core/run_control.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/metrics/load_stationary.hpp"
+#include "core/solvers/load.hpp"
+#include "core/solvers/load_baseline.hpp"
+#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 namespace {
@@ -29,7 +29,7 @@ Case unit_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
                long samples = 11) {
   Case c;
   c.indenter.R = 1.0;
-  c.material.tau = 1.0;
+  c.rheology.tau = 1.0;
   c.loading.F0 = 16.0 / 3.0;
   c.history.v0 = zeta0;
   for (const auto& [w, T] : segs)

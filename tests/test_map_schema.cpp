@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 #include "io/case_row.hpp"
 #include "io/h5.hpp"
 #include "io/map_file.hpp"

@@ -6,11 +6,13 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/baseline.hpp"
-#include "core/case_set.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
-#include "core/mdr.hpp"
+#include "cases/case_set.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {
@@ -58,7 +60,7 @@ TEST(MdrCaseSet, SetSpansTheHardRanges) {
     ASSERT_EQ(c.history.size(), 1u) << nc.name;
     ASSERT_EQ(c.sampling.samples, 201) << nc.name; // the default protocol
     const double dr = c.loading.d / c.indenter.R;
-    if (c.material.tau == 0)
+    if (c.rheology.tau == 0)
       tau0 = true;
     else
       zmin = std::min(zmin, zeta0(c)), zmax = std::max(zmax, zeta0(c));
@@ -215,8 +217,8 @@ TEST(MdrSimilarity, DimensionlessResultsDependOnZetaOnly) {
   o.cells_per_a1 = 60;
   o.estimate_error = false;
   const auto r0 = run_mdr(base, o);
-  const double d0 = base.loading.d, R0 = base.indenter.R, G0 = base.material.G;
-  const double tau0 = base.material.tau, a10 = analytic::a1(base);
+  const double d0 = base.loading.d, R0 = base.indenter.R, G0 = base.rheology.G;
+  const double tau0 = base.rheology.tau, a10 = analytic::a1(base);
   const double scales[][4] = {{1e-4, 3.0, 7.0, 1e3}, {1e3, 1e-2, 1e6, 1e-3}, {0.3, 20.0, 2.0, 5.0}};
   for (const auto& k : scales) {
     // d scaled by k0, R by k1, G by k2, tau by k3 (the window stays 6 tau),
@@ -260,11 +262,11 @@ TEST(MdrHardCases, NoNaNNoBlowUp) {
   for (double v1 : {0.0, 0.01, 10.0}) {
     // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
     const Case c = step_case(base.loading.d, base.indenter.R, 0.0, base.history.v0, v1,
-                             base.material.G, 0.0, 11);
+                             base.rheology.G, 0.0, 11);
     const auto r = run_mdr(c, MdrOptions{});
     ASSERT_TRUE(all_finite(r.series));
     const double hertz =
-        16.0 / 3.0 * c.material.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+        16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
     for (std::size_t k = 0; k < r.series.size(); ++k) {
       EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
       EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);

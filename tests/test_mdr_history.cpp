@@ -14,12 +14,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/analytic.hpp"
-#include "core/baseline.hpp"
-#include "core/case_set.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
-#include "core/mdr.hpp"
+#include "cases/case_set.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {
@@ -152,8 +152,8 @@ TEST(MdrHistoryTangency, ContactGrowsFromTheTangencyAfterAHoldStarts) {
   Case c = history(1.0, {{0.0, 1.0}}, 41);
   c.sampling.spacing = Spacing::Log;
   c.sampling.decades = 8.0;
-  const long double R = c.indenter.R, a1 = c.a1(), tau = c.material.tau;
-  const long double L = c.history.v0 * c.material.tau;
+  const long double R = c.indenter.R, a1 = c.a1(), tau = c.rheology.tau;
+  const long double L = c.history.v0 * c.rheology.tau;
   const long double a2 = analytic::a2_stationary(c, c.history.v0), ha2 = (a1 - a2) * (a1 + a2) / R;
   const Series s = mdr_at(c, 32.0);
   const Series lin = mdr_at(c, 32.0, MdrSubgrid::Linear);
@@ -243,11 +243,11 @@ TEST(MdrHistoryHardCases, NoNaNNoBlowUp) {
         EXPECT_LE(case_error(r.series, ref.series, c).max(), 1e-3);
       }
   Case c = history(1.0, {{0.1, 2.0}, {0.0, 1.0}, {10.0, 2.0}, {0.0, 1e6}}, 11);
-  c.material.tau = 0.0; // elastic: valid, Hertz whatever the history
+  c.rheology.tau = 0.0; // elastic: valid, Hertz whatever the history
   const RunResult r = run_mdr(c, MdrOptions{});
   ASSERT_TRUE(all_finite(r.series));
   const double hertz =
-      16.0 / 3.0 * c.material.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
     EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);

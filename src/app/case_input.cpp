@@ -12,7 +12,7 @@
 namespace mdrmap::app {
 namespace {
 
-/// Options that are not case parameters of the table (core/params.hpp): the
+/// Options that are not case parameters of the table (core/model/params.hpp): the
 /// history's two forms, the sampling's spacing and how to run.
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
@@ -210,7 +210,7 @@ Segment one_step(const Texts& o, Case& c) {
   validate(c);
   // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
   // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0)
-  const double a = c.edge_scale(), R = c.indenter.R, tau = c.material.tau, v = c.history.v0;
+  const double a = c.edge_scale(), R = c.indenter.R, tau = c.rheology.tau, v = c.history.v0;
   const double d = c.loading.by_force() ? a * a / R : c.loading.d;
   const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
   if (!t_end) {

@@ -1,6 +1,6 @@
 #pragma once
 // A case of `mdrmap simulate` from named option texts: the table's parameters
-// (core/params.hpp), the history (--history or --v1 [--t-end]), the sampling
+// (core/model/params.hpp), the history (--history or --v1 [--t-end]), the sampling
 // (--spacing and the table's sampling parameters) and how to run it (--rtol,
 // --solver). Shared by the command line and the Python module (src/python),
 // so that both accept, refuse and build the same cases with the same
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/case.hpp"
-#include "core/params.hpp"
-#include "core/solver.hpp"
+#include "core/model/case.hpp"
+#include "core/model/params.hpp"
+#include "core/solvers/dispatch.hpp"
 
 namespace mdrmap::app {
 

@@ -2,8 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 
 namespace mdrmap::app {
 namespace {
@@ -12,12 +13,20 @@ const char* spacing_name(Spacing s) {
   return s == Spacing::Log ? "log" : "linear";
 }
 
+/// Whether the `# case` line shows parameter p of c: of a one_of group only
+/// the member given (non-zero); the shift aT (which the seed's model has not)
+/// only where it shifts.
+bool shown(const ParamSpec& p, const Case& c) {
+  if (p.one_of) return p.get(c) != 0.0;
+  return std::strcmp(p.name, "aT") != 0 || p.get(c) != 1.0;
+}
+
 /// " name=value" for every table parameter of the sampling part (`sampling`)
-/// or of the other parts; of a one_of group only the member given (non-zero).
+/// or of the other parts that is shown.
 std::string parameters(const Case& c, bool sampling) {
   std::string s;
   for (const auto& p : case_parameters())
-    if ((p.part == Part::Sampling) == sampling && (!p.one_of || p.get(c) != 0.0))
+    if ((p.part == Part::Sampling) == sampling && shown(p, c))
       s += std::string(" ") + p.name + "=" + format_double(p.get(c));
   return s;
 }
@@ -28,7 +37,7 @@ std::string case_line(const Case& c) {
   std::string s = "# case" + parameters(c, false) + " history=" + format_history(c.history) +
                   " spacing=" + spacing_name(c.sampling.spacing) + parameters(c, true);
   if (load) s += " a0=" + format_double(c.a0());
-  return s + " zeta0=" + format_double(c.history.v0 * c.material.tau / c.edge_scale());
+  return s + " zeta0=" + format_double(c.history.v0 * c.rheology.tau / c.edge_scale());
 }
 
 void write_reference(std::FILE* out, const SimulateRecord& rec) {

@@ -18,12 +18,12 @@
 //   t,segment,FN,Fx,mu,a2                 (under load t,segment,FN,Fx,mu,a2,d,a1)
 //   <samples rows per segment, segment after segment>
 //
-// The `# case` line gives every parameter of the table (core/params.hpp) as
+// The `# case` line gives every parameter of the table (core/model/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the
 // history; of a one_of group (the loading: d or FN) only the member given.
 // `v` is the velocity v0 before t = 0 and zeta0 = v tau / a1 at fixed depth;
 // under load zeta0 = v tau / a0, a0 the Hertz radius of F0 (Case::a0). The
-// event fields are core/events.hpp's EventMetrics of the change at the start
+// event fields are core/metrics/events.hpp's EventMetrics of the change at the start
 // of segment k: its time t (since the first change), the velocities before
 // and after it, mu just before and just after it, the extremum of mu in the
 // segment (mu_peak, at t_peak after the change, after a slip slip_peak), mu at
@@ -39,7 +39,7 @@
 #include <string>
 
 #include "app/simulation.hpp"
-#include "core/case.hpp"
+#include "core/model/case.hpp"
 
 namespace mdrmap::app {
 

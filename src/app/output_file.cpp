@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/case.hpp"
+#include "core/model/case.hpp"
 
 namespace mdrmap::app {
 namespace {

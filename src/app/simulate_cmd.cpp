@@ -12,8 +12,8 @@
 #include "app/csv_output.hpp"
 #include "app/output_file.hpp"
 #include "app/simulation.hpp"
-#include "core/case.hpp"
-#include "core/params.hpp"
+#include "core/model/case.hpp"
+#include "core/model/params.hpp"
 
 namespace po = boost::program_options;
 

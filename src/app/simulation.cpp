@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <chrono>
 
-#include "core/analytic.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
-#include "core/load_stationary.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/metrics/load_stationary.hpp"
+#include "core/solvers/exact.hpp"
 #include "mdrmap/version.hpp"
 
 namespace mdrmap::app {

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "app/case_input.hpp"
-#include "core/case.hpp"
-#include "core/events.hpp"
-#include "core/run_control.hpp"
-#include "core/solver.hpp"
-#include "core/state.hpp"
+#include "core/metrics/events.hpp"
+#include "core/model/case.hpp"
+#include "core/model/state.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/run_control.hpp"
 
 namespace mdrmap::app {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "app/simulate_cmd.hpp"
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 #include "mdrmap/version.hpp"
 #include "study/runner.hpp"
 

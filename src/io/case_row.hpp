@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/state.hpp"
+#include "core/model/state.hpp"
 
 namespace mdrmap::io {
 
@@ -21,8 +21,9 @@ inline constexpr double kFillValue = 9.969209968386869e36;
 /// What a dataset of the map holds, for the map's /schema group and the
 /// datasets' `units` and `long_name` attributes.
 struct FieldInfo {
-  std::string path;    ///< "group/name" in the map, e.g. "events/mu_peak"
-  std::string unit;    ///< a dimension name as core/params.hpp's dim_name: "force", "number", ...
+  std::string path; ///< "group/name" in the map, e.g. "events/mu_peak"
+  std::string
+      unit; ///< a dimension name as core/model/params.hpp's dim_name: "force", "number", ...
   std::string meaning; ///< one line, lower case, no final period
 };
 

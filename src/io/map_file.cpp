@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 
 namespace mdrmap::io {
 namespace {

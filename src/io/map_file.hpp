@@ -34,7 +34,7 @@
 #include <string>
 #include <vector>
 
-#include "core/case.hpp"
+#include "core/model/case.hpp"
 #include "io/case_row.hpp"
 #include "io/h5.hpp"
 

@@ -17,9 +17,7 @@
 
 #include "app/case_input.hpp"
 #include "app/simulation.hpp"
-#include "core/case_set.hpp"
-#include "core/load_case_set.hpp"
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 #include "mdrmap/version.hpp"
 
 namespace py = pybind11;
@@ -132,7 +130,7 @@ py::dict case_dict(const Case& c) {
   d["history"] = history;
   d["spacing"] = c.sampling.spacing == Spacing::Log ? "log" : "linear";
   if (c.loading.by_force()) d["a0"] = c.a0();
-  d["zeta0"] = c.history.v0 * c.material.tau / c.edge_scale();
+  d["zeta0"] = c.history.v0 * c.rheology.tau / c.edge_scale();
   return d;
 }
 
@@ -196,41 +194,6 @@ py::list parameter_table() {
   return out;
 }
 
-/// The tests' case sets (core/case_set.hpp, core/load_case_set.hpp) as
-/// (name, keyword arguments of mdrmap.simulate): the table's parameters that
-/// are set (of a one_of group the member given; not those at their default), history as (w, T)
-/// pairs, and spacing when logarithmic.
-py::list case_set(const std::string& which, long samples) {
-  std::vector<NamedCase> set;
-  if (which == "history")
-    set = history_case_set(samples);
-  else if (which == "load")
-    set = load_case_set(samples);
-  else
-    throw py::value_error("case set: history or load, got " + which);
-  py::list out;
-  for (const auto& nc : set) {
-    py::dict kw;
-    for (const auto& p : case_parameters()) {
-      if (p.one_of && p.get(nc.c) == 0.0) continue;
-      if (!p.required && !p.one_of && p.get(nc.c) == p.fallback) continue; // the default
-      std::string key = p.name;
-      std::replace(key.begin(), key.end(), '-', '_');
-      if (p.integer())
-        kw[key.c_str()] = static_cast<long long>(p.get(nc.c));
-      else
-        kw[key.c_str()] = p.get(nc.c);
-    }
-    py::list history;
-    for (const Segment& seg : nc.c.history.segments)
-      history.append(py::make_tuple(seg.w, seg.T));
-    kw["history"] = history;
-    if (nc.c.sampling.spacing == Spacing::Log) kw["spacing"] = "log";
-    out.append(py::make_tuple(nc.name, kw));
-  }
-  return out;
-}
-
 void translate(std::exception_ptr p) {
   try {
     if (p) std::rethrow_exception(p);
@@ -259,6 +222,4 @@ PYBIND11_MODULE(_core, m) {
   m.def("stationary", &stationary, py::arg("options"),
         "The stationary state at v of a case given as {option: text}.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
-  m.def("_case_set", &case_set, py::arg("which"), py::arg("samples"),
-        "The tests' case sets: 'history' or 'load', as (name, keyword arguments).");
 }

@@ -99,7 +99,7 @@ const std::vector<const ParamSpec*>& study_parameters() {
   static const std::vector<const ParamSpec*> p = [] {
     std::vector<const ParamSpec*> out;
     for (const ParamSpec& s : case_parameters())
-      if (s.part != Part::Sampling) out.push_back(&s);
+      if (s.part != Part::Sampling && std::string(s.name) != "aT") out.push_back(&s);
     return out;
   }();
   return p;

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/params.hpp"
+#include "core/model/params.hpp"
 #include "study/config.hpp"
 
 namespace mdrmap::study::detail {

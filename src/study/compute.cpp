@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/analytic.hpp"
-#include "core/events.hpp"
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/events.hpp"
 
 namespace mdrmap::study {
 namespace {

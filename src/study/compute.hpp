@@ -6,7 +6,7 @@
 // no file access: the runner hands out the cases and writes the rows.
 #include <csignal>
 
-#include "core/solver.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "io/case_row.hpp"
 #include "study/config.hpp"
 

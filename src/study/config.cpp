@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "core/params.hpp"
-#include "core/solver.hpp"
+#include "core/model/params.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "study/axes.hpp"
 #include "study/case_source.hpp"
 #include "study/columns.hpp"
@@ -69,8 +69,8 @@ void set_duration(Case& c, const Axis& a, double x) {
   const auto T_name = [&] { return "T" + std::to_string(a.column.segment); };
   if (a.column.kind == Column::Kind::Duration) {
     s.T = x;
-  } else if (c.material.tau > 0.0) {
-    s.T = x * c.material.tau;
+  } else if (c.rheology.tau > 0.0) {
+    s.T = x * c.rheology.tau;
     check_resolved(a, segment_duration_spec(), s.T,
                    [&] { return T_name() + " = " + a.name + " * tau"; });
   } else {

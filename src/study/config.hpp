@@ -37,8 +37,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/case.hpp"
-#include "core/params.hpp"
+#include "core/model/case.hpp"
+#include "core/model/params.hpp"
 
 namespace mdrmap::study {
 

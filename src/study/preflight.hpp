@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/solver.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "io/map_file.hpp"
 #include "study/case_source.hpp"
 #include "study/config.hpp"

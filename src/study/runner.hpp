@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/solver.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "io/map_file.hpp"
 #include "study/compute.hpp"
 #include "study/config.hpp"

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <map>
 
-#include "core/params.hpp"
-#include "core/solver.hpp"
+#include "core/model/params.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "study/axes.hpp"
 #include "study/case_list.hpp"
 #include "study/columns.hpp"

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "core/case.hpp"
+#include "core/model/case.hpp"
 #include "study/config.hpp"
 
 namespace {

@@ -7,15 +7,16 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 import mdrmap
+from conftest import case_set
 
 
 def load_cases():
-    return [kw for _, kw in mdrmap._core._case_set("load", 11)]
+    return [kw for _, kw in case_set("load", 11)]
 
 
 def test_a_thread_pool_gives_the_serial_results():
     cases = [kw for kw in load_cases() if "zeta0=1e6" not in str(kw)][:24]
-    cases += [kw for _, kw in mdrmap._core._case_set("history", 11)]
+    cases += [kw for _, kw in case_set("history", 11)]
     serial = [mdrmap.simulate(**kw) for kw in cases]
     with ThreadPoolExecutor(max_workers=4) as pool:
         parallel = list(pool.map(lambda kw: mdrmap.simulate(**kw), cases))

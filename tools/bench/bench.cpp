@@ -1,7 +1,7 @@
 // mdrmap_bench: work-precision benchmark of the solvers (issue 3).
 //
 // Runs each solver at a ladder of accuracy settings over the fixed hard case
-// set (core/case_set.hpp, 42 one-step scenes, each as step_case builds it:
+// set (cases/case_set.hpp, 42 one-step scenes, each as step_case builds it:
 // the default window 6 tau, 201 samples), measures for every (setting, scene) the wall time of one
 // call (median of repeats) and the case error against the continuum solution at rtol 1e-12, and
 // writes
@@ -40,12 +40,12 @@
 #include <thread>
 #include <vector>
 
-#include "core/baseline.hpp"
-#include "core/case_set.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
-#include "core/mdr.hpp"
-#include "core/solver.hpp"
+#include "cases/case_set.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
 #include "mdrmap/version.hpp"
 #include "stats.hpp"
 

@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
-#include "core/baseline.hpp"
-#include "core/case_set.hpp"
-#include "core/error_metric.hpp"
-#include "core/exact.hpp"
-#include "core/mdr.hpp"
+#include "cases/case_set.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
 #include "stats.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // mdrmap_bench_load: work-precision benchmark of the load-control solver
-// (run_load, src/core/load.hpp) on the load-controlled histories of
+// (run_load, src/core/solvers/load.hpp) on the load-controlled histories of
 // load_case_set() (src/core/load_case_set.cpp); issue 11's cost criterion.
 //
 //   mdrmap_bench_load [--quick] [--out DIR] [--command TEXT] [--max-call-seconds S]
@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
-#include "core/error_metric.hpp"
-#include "core/load.hpp"
-#include "core/load_baseline.hpp"
-#include "core/load_case_set.hpp"
+#include "cases/load_case_set.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/solvers/load.hpp"
+#include "core/solvers/load_baseline.hpp"
 #include "stats.hpp"
 
 namespace {

@@ -1,0 +1,75 @@
+#include "core/metrics/error_metric.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace mdrmap {
+namespace {
+
+double rel_max(const std::vector<double>& q, const std::vector<double>& ref, double floor = 0.0) {
+  double num = 0.0, den = floor;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    num = std::max(num, std::abs(q[k] - ref[k]));
+    den = std::max(den, std::abs(ref[k]));
+  }
+  if (den == 0.0) return num; // reference identically zero (e.g. F_x for tau = 0)
+  return num / den;
+}
+
+} // namespace
+
+double CaseError::max() const {
+  return std::max({FN, Fx, mu, a2, d});
+}
+
+CaseError case_error(const Series& run, const Series& ref, double a1) {
+  if (run.size() != ref.size()) throw std::invalid_argument("case_error: series sizes differ");
+  CaseError e;
+  e.FN = rel_max(run.FN, ref.FN);
+  e.Fx = rel_max(run.Fx, ref.Fx);
+  e.mu = rel_max(run.mu, ref.mu);
+  double a2 = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k)
+    a2 = std::max(a2, std::abs(run.a2[k] - ref.a2[k]));
+  e.a2 = a2 / a1;
+  return e;
+}
+
+namespace {
+
+/// The load-control parts of the contract (docs/design.md, "Error metric").
+void load_errors(const Series& run, const Series& ref, const Case& c, CaseError& e) {
+  const double F0 = c.loading.F0, a0 = c.a0();
+  double fn = 0.0, edges = 0.0;
+  for (std::size_t k = 0; k < run.size(); ++k) {
+    fn = std::max(fn, std::abs(run.FN[k] - F0));
+    edges = std::max({edges, std::abs(run.a2[k] - ref.a2[k]), std::abs(run.a1[k] - ref.a1[k])});
+  }
+  e.FN = fn / F0;
+  e.a2 = edges / a0;
+  e.d = rel_max(run.d, ref.d);
+}
+
+} // namespace
+
+CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel) {
+  CaseError e = case_error(run, ref, c.edge_scale());
+  if (c.loading.by_force()) load_errors(run, ref, c, e);
+  const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
+  const double mu_scale = std::sqrt(d_scale / c.indenter.R);
+  double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
+  for (std::size_t k = 0; k < ref.size(); ++k) {
+    fn_max = std::max(fn_max, std::abs(ref.FN[k]));
+    fx_max = std::max(fx_max, std::abs(ref.Fx[k]));
+    mu_max = std::max(mu_max, std::abs(ref.mu[k]));
+  }
+  const double fx_scale = fn_max * mu_scale;
+  if (fx_max == 0.0 || floor_rel > 0.0)
+    e.Fx = rel_max(run.Fx, ref.Fx, fx_max == 0.0 ? fx_scale : floor_rel * fx_scale);
+  if (mu_max == 0.0 || floor_rel > 0.0)
+    e.mu = rel_max(run.mu, ref.mu, mu_max == 0.0 ? mu_scale : floor_rel * mu_scale);
+  return e;
+}
+
+} // namespace mdrmap

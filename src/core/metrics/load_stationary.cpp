@@ -1,0 +1,63 @@
+#include "core/metrics/load_stationary.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+#include "core/metrics/analytic.hpp"
+
+namespace mdrmap {
+namespace {
+
+// Left side minus 4/3 of the equation for alpha (see the header), written as
+// sums of non-negative terms: alpha - beta = 2 alpha z / (alpha + z + hypot).
+double residual(double alpha, double z) {
+  const double hyp = std::hypot(z, alpha);
+  const double beta = alpha * (alpha / (hyp + z));
+  const double diff = 2.0 * alpha * (z / (alpha + z + hyp));
+  const double sum = alpha + beta;
+  return sum * sum * (2.0 * alpha - beta) / 3.0 + z * diff * sum - 4.0 / 3.0;
+}
+
+} // namespace
+
+double stationary_alpha(double zeta0) {
+  if (!(zeta0 >= 0.0) || !std::isfinite(zeta0))
+    throw std::invalid_argument("stationary_alpha: zeta0 must be finite and >= 0");
+  if (zeta0 == 0.0) return 1.0;
+  // bracket around the better of the two limits
+  double lo = std::min(1.0, std::sqrt(4.0 / (3.0 * zeta0)));
+  double hi = lo;
+  while (residual(lo, zeta0) > 0.0)
+    lo *= 0.5;
+  while (residual(hi, zeta0) < 0.0)
+    hi *= 2.0;
+  if (lo == hi) return lo;
+  std::uintmax_t iters = 200;
+  const auto r =
+      boost::math::tools::toms748_solve([&](double a) { return residual(a, zeta0); }, lo, hi,
+                                        boost::math::tools::eps_tolerance<double>(52), iters);
+  return 0.5 * (r.first + r.second);
+}
+
+double stationary_depth(const Case& c, double w) {
+  const double a0 = c.a0();
+  const double alpha = stationary_alpha(w * c.rheology.tau / a0);
+  const double a1 = alpha * a0;
+  return a1 * (a1 / c.indenter.R);
+}
+
+Case at_depth(const Case& c, double d) {
+  Case cc = c;
+  cc.loading.d = d;
+  cc.loading.F0 = 0.0;
+  return cc;
+}
+
+State stationary_under_load(const Case& c, double w) {
+  return analytic::stationary(at_depth(c, stationary_depth(c, w)), w);
+}
+
+} // namespace mdrmap

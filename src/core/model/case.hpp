@@ -1,0 +1,174 @@
+#pragma once
+// The case model: one computation of mdrmap, made of parts that are each
+// validated once (docs/design.md, "The case model").
+//
+//   indenter  the rigid profile and its MDR image g(x); today the parabola
+//   rheology  the foundation element: the Kelvin element G, tau of the seed, or a
+//             relaxation spectrum (Maxwell branches), shifted by aT (rheology.hpp)
+//   loading   what holds the indenter in the foundation: today a fixed depth d
+//   history   stationary sliding at v0 > 0 before t = 0, then segments of
+//             constant velocity w_k >= 0 (0 is a hold) lasting T_k > 0
+//   sampling  output instants per segment, linear or logarithmic in the time
+//             since the segment's start
+//
+// Units are the user's (any consistent set); forces come out in units of
+// G * length^2. Time t is measured from the first velocity change.
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/model/rheology.hpp"
+
+namespace mdrmap {
+
+/// Bad input: names the option (as the CLI spells it, without dashes) and
+/// says what is allowed. The app layer turns it into a one-line error.
+class InvalidInput : public std::invalid_argument {
+public:
+  InvalidInput(std::string option, const std::string& message)
+      : std::invalid_argument(message), option_(std::move(option)) {}
+  const std::string& option() const noexcept { return option_; }
+
+private:
+  std::string option_;
+};
+
+/// A number with 17 significant digits, as error messages quote it.
+std::string format_number(double x);
+
+/// Rigid indenter. Today the parabola f(r) = r^2/2R, MDR image g(x) = x^2/R.
+/// A cone or power law would be one more profile here; the solvers ask the
+/// indenter for g, g' and the contact radius, their callers never do.
+struct Indenter {
+  double R = 0.0; ///< radius of curvature, > 0
+  double g(double x) const { return x * x / R; }
+  double slope(double x) const { return 2.0 * x / R; }
+  /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
+  /// solvers ask for it at every sample.)
+  double contact_radius(double d) const { return std::sqrt(R) * std::sqrt(d); }
+};
+
+/// How the indenter is held: at a fixed depth d (depth control), or under a
+/// prescribed normal force F0 with the depth free (load control). Exactly one
+/// of the two is given (> 0); the other is 0.
+struct Loading {
+  double d = 0.0;  ///< indentation depth, > 0 under depth control
+  double F0 = 0.0; ///< normal force, > 0 under load control
+  bool by_force() const { return F0 > 0.0; }
+};
+
+/// One segment of the velocity history: constant velocity w for a time T.
+struct Segment {
+  double w = 0.0; ///< sliding velocity, >= 0 (0 is a hold)
+  double T = 0.0; ///< duration, > 0
+};
+
+/// Stationary sliding at v0 for t < 0, then the segments one after another;
+/// segment k starts at start(k) = T_0 + ... + T_(k-1).
+struct History {
+  double v0 = 0.0; ///< velocity of the stationary sliding before t = 0, > 0
+  std::vector<Segment> segments;
+  std::size_t size() const { return segments.size(); }
+  double start(std::size_t k) const;
+  double end() const { return start(segments.size()); }
+  /// Velocity before segment k (v0 for k = 0).
+  double before(std::size_t k) const { return k == 0 ? v0 : segments[k - 1].w; }
+};
+
+enum class Spacing { Linear, Log };
+
+/// Output instants of a segment of duration T: `samples` instants, j = 0 the
+/// state just after the change at its start, j = samples - 1 the state at its
+/// end. Linear: offset j T / (samples - 1). Log: offset 0, then
+/// T 10^(-decades (samples - 1 - j) / (samples - 2)) for j >= 1.
+struct Sampling {
+  long samples = 201;
+  Spacing spacing = Spacing::Linear;
+  double decades = 4.0; ///< log spacing: the first offset after 0 is T 10^-decades
+  /// Time since the segment's start of sample j. (Inline: it is asked at
+  /// every sample.)
+  double offset(long j, double T) const {
+    if (j <= 0) return 0.0;
+    if (j >= samples - 1) return T;
+    if (spacing == Spacing::Linear) {
+      const double t = T * static_cast<double>(j) / static_cast<double>(samples - 1);
+      if (std::isfinite(t)) return t;
+    }
+    return inner_offset(j, T);
+  }
+
+private:
+  /// offset() of 0 < j < samples - 1: log spacing, or linear where T j overflows.
+  double inner_offset(long j, double T) const;
+};
+
+inline constexpr long kMaxSamples = 100'000'000;
+inline constexpr std::size_t kMaxSegments = 10'000;
+
+struct Case {
+  Indenter indenter;
+  Rheology rheology;
+  Loading loading;
+  History history;
+  Sampling sampling;
+
+  /// Leading edge a1 = contact radius at depth d (depth control).
+  double a1() const { return indenter.contact_radius(loading.d); }
+  /// Hertz contact radius of F0 (load control): F0 = 16/3 G a0^3 / R.
+  double a0() const;
+  /// The length the error metric measures edges by: a1 at fixed depth, a0
+  /// under load.
+  double edge_scale() const { return loading.by_force() ? a0() : a1(); }
+  /// Output samples of the whole history: samples per segment times segments.
+  std::size_t total_samples() const;
+};
+
+/// Throws InvalidInput naming the first offending parameter (as the CLI
+/// spells it). Checks every part and that the derived scales are representable.
+void validate(const Case& c);
+
+/// A case that passed validate(): made once where a case is built (a study's
+/// row: study::checked_case_for), then taken by the solvers (run_case,
+/// run_exact), which need not check it again.
+class CheckedCase {
+public:
+  /// Validates `c`; throws InvalidInput as validate() does.
+  explicit CheckedCase(Case c) : c_(std::move(c)) { validate(c_); }
+  const Case& get() const { return c_; }
+  /// The case itself, no longer marked as checked.
+  Case take() && { return std::move(c_); }
+  /// This case with the durations T of `segments` (one per segment; their
+  /// velocities must be this case's): only the history is checked again, as
+  /// nothing else validate() checks depends on the durations. Throws
+  /// InvalidInput("history") as validate() does.
+  CheckedCase with_durations(const std::vector<Segment>& segments) &&;
+  /// This case with aT folded into its relaxation times (Rheology::shifted;
+  /// validate() checked the shifted times): what the solvers solve.
+  CheckedCase shifted() const;
+
+private:
+  struct Trusted {};
+  CheckedCase(Case c, Trusted) : c_(std::move(c)) {}
+  Case c_;
+};
+
+/// The seed's experiment: one step v -> v1 at t = 0, observed over t_end
+/// (0: default_step_duration), `samples` linear samples.
+Case step_case(double d, double R, double tau, double v, double v1, double G = 1.0,
+               double t_end = 0.0, long samples = 201);
+
+/// Default observation window of the one-step history: 6 tau; for tau = 0
+/// (nothing relaxes) the time the indenter needs to travel six contact
+/// half-widths at the slower speed.
+double default_step_duration(double d, double R, double tau, double v, double v1);
+
+/// Throws InvalidInput("FN") unless the case is depth-controlled: the fixed-
+/// depth solvers' guard (`solver` names the caller in the message).
+void require_depth_control(const Case& c, const char* solver);
+
+/// Similarity variable zeta = w tau / a1 at velocity w.
+double zeta(const Case& c, double w);
+
+} // namespace mdrmap

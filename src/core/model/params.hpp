@@ -1,0 +1,73 @@
+#pragma once
+// The parameter table: every scalar parameter of a case, declared once with
+// its name (as the command line and config files spell it), dimension,
+// allowed range and meaning. Validation, `simulate`'s options and its help
+// text are generated from it; a new parameter is one entry here plus the
+// physics that uses it.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/model/case.hpp"
+
+namespace mdrmap {
+
+/// Physical dimension, in the user's consistent units.
+enum class Dim { Length, Time, Velocity, Stress, Force, Count, Number };
+
+/// "length", "time", "length/time", "force/length^2", "count", "number".
+const char* dim_name(Dim d);
+
+/// Which part of a case a parameter belongs to.
+enum class Part { Indenter, Material, Loading, History, Sampling };
+
+struct ParamSpec {
+  const char* name;    ///< option / key name, e.g. "tau"
+  const char* symbol;  ///< value placeholder in help text, e.g. "TAU"
+  Part part;           ///< the part of the case it sets
+  Dim dim;             ///< physical dimension
+  double lo;           ///< lower bound
+  bool lo_inclusive;   ///< the range is >= lo (true) or > lo (false)
+  double hi;           ///< inclusive upper bound (infinity: none)
+  bool required;       ///< the case cannot be built without it
+  const char* one_of;  ///< nullptr, or a group (e.g. "loading") of which exactly one is given
+  double fallback;     ///< default when not required
+  const char* meaning; ///< one line, lower case, no final period
+  double (*get)(const Case&);
+  void (*set)(Case&, double);
+
+  bool integer() const { return dim == Dim::Count; }
+  /// "a finite number > 0" / "an integer from 2 to 100000000" ...
+  std::string allowed() const;
+  /// Whether x is in the range (an integer where the dimension is a count).
+  bool contains(double x) const {
+    const bool above = lo_inclusive ? x >= lo : x > lo;
+    return std::isfinite(x) && above && x <= hi && (!integer() || x == std::floor(x));
+  }
+  /// Throws InvalidInput(name, "must be <allowed>, got <x>"). (Inline: every
+  /// case of a study passes here many times.)
+  void check(double x) const {
+    if (!contains(x)) refuse(x);
+  }
+  /// Throws InvalidInput(name, "must be <allowed>, got <x>").
+  [[noreturn]] void refuse(double x) const;
+};
+
+/// The scalar parameters of a case, in the order of the help text: the
+/// loading, indenter and material, then the history's v0, then the sampling.
+const std::vector<ParamSpec>& case_parameters();
+
+/// The parameters of one history segment ("w" velocity, "T" duration): the
+/// tokens of a history "W1:T1,W2:T2,..." are checked against them.
+const ParamSpec& segment_velocity_spec();
+const ParamSpec& segment_duration_spec();
+
+/// The parameters of one Maxwell branch k of the rheology ("G" modulus,
+/// "tau" time; spelled Gk, tauk as keys, G1:TAU1,... in --prony).
+const ParamSpec& branch_modulus_spec();
+const ParamSpec& branch_time_spec();
+
+/// The entry named `name`, or nullptr.
+const ParamSpec* find_parameter(const std::string& name);
+
+} // namespace mdrmap

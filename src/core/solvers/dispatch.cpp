@@ -1,0 +1,127 @@
+#include "core/solvers/dispatch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/solvers/baseline.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/load.hpp"
+#include "core/solvers/load_baseline.hpp"
+#include "core/solvers/mdr.hpp"
+
+namespace mdrmap {
+
+SolverKind parse_solver(const std::string& name) {
+  if (name == "auto") return SolverKind::Auto;
+  if (name == "exact") return SolverKind::Exact;
+  if (name == "mdr") return SolverKind::Mdr;
+  if (name == "baseline") return SolverKind::Baseline;
+  throw InvalidInput("solver", "must be one of auto, exact, mdr, baseline; got '" + name + "'");
+}
+
+const char* solver_name(SolverKind k) {
+  switch (k) {
+  case SolverKind::Auto:
+    return "auto";
+  case SolverKind::Exact:
+    return "exact";
+  case SolverKind::Mdr:
+    return "mdr";
+  case SolverKind::Baseline:
+    return "baseline";
+  }
+  return "?";
+}
+
+void validate_rtol(double rtol) {
+  if (!std::isfinite(rtol) || !(rtol > 0.0) || !(rtol <= 0.1))
+    throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
+}
+
+ModelNeeds model_needs(const Case& c) {
+  return ModelNeeds{c.loading.by_force(), !c.rheology.kelvin()};
+}
+
+bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
+  if (needs.spectrum) return false;                      // the spectrum solver is not in yet
+  return !(needs.by_force && kind == SolverKind::Exact); // exact: depth control only
+}
+
+namespace {
+
+// Load control (docs/design.md, "Load control"): auto and mdr run the load
+// solver; exact refuses (it solves depth control only).
+RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
+  switch (kind) {
+  case SolverKind::Auto:
+  case SolverKind::Mdr: {
+    LoadOptions o;
+    o.rtol = rtol;
+    o.control = &control;
+    return run_load(c, o);
+  }
+  case SolverKind::Baseline: {
+    // the fixed-step check solver at its default resolution (rtol does not set it)
+    LoadBaselineOptions o;
+    o.control = &control;
+    return run_load_baseline(c, o);
+  }
+  case SolverKind::Exact:
+    break;
+  }
+  return run_exact(c, rtol, control); // refuses a force-controlled case
+}
+
+} // namespace
+
+namespace {
+
+/// Throws InvalidInput unless `kind` handles the case: "prony" where the
+/// solver takes the Kelvin foundation only, "solver" for the loading.
+void require_handled(SolverKind kind, const Case& c) {
+  const ModelNeeds needs = model_needs(c);
+  if (solver_handles(kind, needs)) return;
+  if (needs.spectrum)
+    throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
+                                    " solves the Kelvin foundation only (no Maxwell branches); "
+                                    "this case has " +
+                                    std::to_string(c.rheology.branches.size()) +
+                                    " (no solver takes a relaxation spectrum yet)");
+  require_depth_control(c, solver_name(kind));
+}
+
+} // namespace
+
+RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
+                   const RunControl& control) {
+  validate_rtol(rtol);
+  require_handled(kind, given.get());
+  if (given.get().rheology.aT != 1.0) return run_case(given.shifted(), kind, rtol, control);
+  const CheckedCase& checked = given;
+  const Case& c = checked.get();
+  if (c.loading.by_force()) return run_load_case(c, kind, rtol, control);
+  switch (kind) {
+  case SolverKind::Auto:
+  case SolverKind::Exact:
+    return run_exact(checked, rtol, control);
+  case SolverKind::Mdr: {
+    MdrOptions o;
+    o.rtol = rtol;
+    o.control = &control;
+    return run_mdr(c, o);
+  }
+  case SolverKind::Baseline: {
+    BaselineOptions o; // first order: a1/dx ~ 1/rtol, within what a fixed-step run can afford
+    o.cells_per_a1 = std::clamp(std::ceil(0.7 / rtol), 16.0, 4000.0);
+    o.control = &control;
+    return run_baseline(c, o);
+  }
+  }
+  return run_exact(checked, rtol, control);
+}
+
+RunResult run_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
+  return run_case(CheckedCase(c), kind, rtol, control);
+}
+
+} // namespace mdrmap

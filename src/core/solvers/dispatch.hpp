@@ -1,0 +1,46 @@
+#pragma once
+// The solver dispatch: which solver handles which case, and run_case.
+#include <string>
+
+#include "core/model/case.hpp"
+#include "core/solvers/result.hpp"
+#include "core/solvers/run_control.hpp"
+
+namespace mdrmap {
+
+enum class SolverKind { Auto, Exact, Mdr, Baseline };
+
+/// Parses "auto", "exact", "mdr", "baseline"; throws InvalidInput("solver").
+SolverKind parse_solver(const std::string& name);
+const char* solver_name(SolverKind k);
+
+/// What a case asks of a solver: its loading, and whether its rheology has
+/// Maxwell branches (a relaxation spectrum) beyond the Kelvin element.
+struct ModelNeeds {
+  bool by_force = false; ///< load control (else a fixed depth)
+  bool spectrum = false; ///< Maxwell branches (else the Kelvin foundation)
+};
+ModelNeeds model_needs(const Case& c);
+
+/// Whether run_case solves cases with these needs with `kind`. exact solves
+/// depth control only; exact, mdr and baseline (and the load solvers they
+/// dispatch to) the Kelvin foundation only. run_case refuses the others with
+/// InvalidInput naming "solver" (the loading) or "prony" (the spectrum).
+bool solver_handles(SolverKind kind, const ModelNeeds& needs);
+/// The same for a loading alone, on the Kelvin foundation.
+inline bool solver_handles(SolverKind kind, bool by_force) {
+  return solver_handles(kind, ModelNeeds{by_force, false});
+}
+
+/// Runs one case (its relaxation times shifted by aT). `Auto` picks the
+/// cheapest solver that handles the case and meets rtol: at fixed depth on the
+/// Kelvin foundation that is always the continuum solver. Every solver charges its work to
+/// `control`: throws CaseAbandoned when the case needs more than its budget
+/// (or, for mdr, cannot meet rtol), Interrupted when its stop flag is set.
+RunResult run_case(const CheckedCase& c, SolverKind kind, double rtol,
+                   const RunControl& control = RunControl{});
+/// The same for a case not yet checked: validates it first (InvalidInput).
+RunResult run_case(const Case& c, SolverKind kind, double rtol,
+                   const RunControl& control = RunControl{});
+
+} // namespace mdrmap

@@ -1,0 +1,338 @@
+#include "core/solvers/load.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/error_metric.hpp"
+#include "core/metrics/load_stationary.hpp"
+
+namespace mdrmap {
+namespace {
+
+struct SingleRun {
+  Series series;
+  long steps = 0, updates = 0, elements = 0;
+  LoadChecks checks;
+  double dx = 0.0;
+  double min_piece = std::numeric_limits<double>::infinity(); ///< LoadRow::min_piece
+  double max_unresolved = 0.0;                                ///< LoadRow::max_unresolved
+};
+
+struct RunSettings {
+  double cells, phase, time_tol, dt_over_tau;
+  LoadStart start;
+  int split = 1;            ///< adaptive steps per sample interval, at least
+  double window_a = 0.0;    ///< the window is 1.6 window_a (+ 4 dx) on either side
+  double piece_floor = 0.0; ///< free-material pieces this wide and wider are recorded
+};
+
+/// The deepest stationary contact of the history (its slowest velocity; a0
+/// for a hold or a rest start), and the start: the window is sized for it. A
+/// transient that goes deeper is caught (WindowExceeded) and rerun with the
+/// window of the Hertz contact, the deepest state under load.
+double history_radius(const Case& c, LoadStart start) {
+  const double a0 = c.a0();
+  if (start != LoadStart::Stationary) return a0;
+  double wmin = c.history.v0;
+  for (const auto& seg : c.history.segments)
+    wmin = std::min(wmin, seg.w);
+  return stationary_alpha(wmin * c.rheology.tau / a0) * a0;
+}
+
+/// The shallowest contact the history reaches in a stationary state: the
+/// stationary a1 at its largest velocity (a0 at rest). Sets dx.
+double reference_radius(const Case& c, LoadStart start) {
+  double wmax = start == LoadStart::Stationary ? c.history.v0 : 0.0;
+  for (const auto& s : c.history.segments)
+    wmax = std::max(wmax, s.w);
+  return stationary_alpha(wmax * c.rheology.tau / c.a0()) * c.a0();
+}
+
+/// Steps from the row's time to `target`: fixed, or adaptive by step doubling
+/// (one step h against two of h/2; the two-step result is kept and the local
+/// error taken as their difference / 3, for d, D relative to d and e to a1).
+class Stepper {
+public:
+  Stepper(LoadRow& row, const RunSettings& s, double tau) : row_(row), s_(s), tau_(tau) {}
+  void restart() { h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol); }
+  long steps() const { return steps_; }
+
+  /// `target` on the row's clock (the time since the segment's start).
+  void advance_to(double target) {
+    const double hmax = (target - row_.t()) / s_.split;
+    while (row_.t() < target) {
+      const double left = target - row_.t();
+      double h = s_.dt_over_tau > 0.0 ? s_.dt_over_tau * tau_ : std::min(h_, hmax);
+      if (h >= left * (1.0 - 1e-12)) h = left;
+      if (!(row_.t() + h > row_.t()))
+        throw CaseAbandoned("load: the time step (" + format_number(h) +
+                            ") fell below the resolution of the time " + format_number(row_.t()) +
+                            " within its segment");
+      if (s_.dt_over_tau > 0.0 || left <= 1e-12 * (std::abs(target) + tau_)) {
+        LoadRow::Trial tr = row_.trial(h, h);
+        if (h == left) tr.t_end = target;
+        row_.commit(tr);
+        ++steps_;
+      } else {
+        adaptive_step(h, h == left, target);
+      }
+      row_.rebase_time();
+    }
+  }
+
+private:
+  // A trial outside the window is a rejected step; but when the edge already
+  // sits at the window's limit, smaller steps only creep closer: the run
+  // needs a wider window.
+  void reject_outside(const LoadRow::Trial& a, const LoadRow::Trial& b) const {
+    if (row_.at_window_edge() && (std::isfinite(a.d) || std::isfinite(b.d)))
+      throw WindowExceeded("load: the leading edge reached the element window's limit");
+  }
+
+  void adaptive_step(double h, bool to_target, double target) {
+    // (a trial that leaves the window is a rejected step, e.g. an undeformed
+    // start, where D is unbounded as d -> 0)
+    const LoadRow::Trial big = row_.trial(h, h), half = row_.trial(0.5 * h, h);
+    if (!row_.fits(big) || !row_.fits(half)) {
+      reject_outside(big, half);
+      h_ = 0.25 * h;
+      return;
+    }
+    row_.checkpoint();
+    row_.commit(half);
+    const LoadRow::Trial two = row_.trial(0.5 * h, h);
+    if (!row_.fits(two)) {
+      row_.rollback();
+      reject_outside(two, two);
+      h_ = 0.25 * h;
+      return;
+    }
+    const double err = std::max({std::abs(two.d - big.d) / two.d,
+                                 std::abs(two.D - big.D) / std::max(two.d, std::abs(two.D)),
+                                 std::abs(two.e - big.e) / std::sqrt(two.d * row_.R())}) /
+                       3.0;
+    const double fac = err > 0.0 ? 0.9 * std::cbrt(s_.time_tol / err) : 5.0;
+    if (err <= s_.time_tol || h < 1e-14 * tau_) {
+      LoadRow::Trial last = two;
+      if (to_target) last.t_end = target;
+      row_.commit(last);
+      row_.release();
+      ++steps_;
+      if (!to_target || fac < 1.0) h_ = h * std::clamp(fac, 0.2, 5.0);
+      return;
+    }
+    row_.rollback();
+    h_ = h * std::clamp(fac, 0.1, 0.9);
+  }
+
+  LoadRow& row_;
+  RunSettings s_;
+  double tau_;
+  double h_ = 0.0;
+  long steps_ = 0;
+};
+
+State hertz(const Case& c) {
+  const double a0 = c.a0();
+  State st;
+  st.FN = c.loading.F0;
+  st.a2 = a0;
+  st.a1 = a0;
+  st.d = a0 * (a0 / c.indenter.R);
+  return st;
+}
+
+// tau = 0: nothing has memory; every state is the Hertz contact of F0.
+SingleRun run_elastic(const Case& c) {
+  SingleRun out;
+  out.series.resize(c.total_samples());
+  out.series.pre = hertz(c);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k)
+    for (long j = 0; j < c.sampling.samples; ++j, ++i)
+      out.series.set(i, c.history.start(k) + c.sampling.offset(j, c.history.segments[k].T),
+                     static_cast<int>(k), hertz(c));
+  out.checks.max_a1_over_a0 = 1.0;
+  return out;
+}
+
+// Resolutions tried at most. Pieces of free material (LoadRow::min_piece)
+// narrower than kPieceFloor rtol a0 do not matter (they move the edge by less
+// than their width); a wider one with fewer than kPieceCells cells (the
+// companion: half as many) is not seen by the companion and gets
+// kCellsPerPiece cells, up to kMaxPieceElements elements in the window.
+constexpr int kAttempts = 5;
+constexpr double kPieceFloor = 0.3;
+constexpr double kPieceCells = 2.0;
+constexpr double kCellsPerPiece = 8.0;
+constexpr double kMaxPieceElements = 2e7;
+constexpr double kMaxElements = 2e7;
+
+SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& control) {
+  if (!(c.rheology.tau > 0.0)) return run_elastic(c);
+  const double dx = reference_radius(c, s.start) / s.cells;
+  const double A = 1.6 * s.window_a + 4.0 * dx;
+  // (a window of kMaxElements elements is 320 MB of row; at zeta0 = 1e12 after
+  // sliding at zeta0 = 1 it would need 4e7 and a step refreshes all of them)
+  if (!(2.0 * A / dx <= kMaxElements))
+    throw CaseAbandoned("load: the element window would hold " + format_number(2.0 * A / dx) +
+                        " elements (more than " + format_number(kMaxElements) +
+                        "): the velocities of the history differ too much for this solver");
+  LoadRow row(c, dx, A, s.phase, control);
+  row.set_pieces(s.piece_floor, kPieceCells * dx);
+  if (s.start == LoadStart::Stationary)
+    row.start_stationary(c.history.v0);
+  else if (s.start == LoadStart::Rest)
+    row.start_rest();
+  else
+    row.start_undeformed(1e-12);
+  SingleRun out;
+  out.series.resize(c.total_samples());
+  out.series.pre = row.measure();
+  Stepper stepper(row, s, c.rheology.tau);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double t0 = c.history.start(k);
+    row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
+    stepper.restart();
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      stepper.advance_to(std::max(row.t(), off));
+      row.check_one_interval();
+      out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)
+    }
+  }
+  out.steps = stepper.steps();
+  out.updates = row.updates();
+  out.elements = static_cast<long>(row.capacity());
+  out.checks = row.checks();
+  out.dx = dx;
+  out.min_piece = row.min_piece();
+  out.max_unresolved = row.max_unresolved();
+  return out;
+}
+
+// The local step tolerance, as a fraction of rtol. An edge that starts to
+// move from a tangency (a hold or a drop after the edge sat at the cap) moves
+// by ~sqrt(depth error): on a drop-hold-rise at zeta0 = 10 the depth error of
+// 1e-6 left by a tolerance of 0.05 rtol (rtol 1e-4) put a2 1.5 rtol off at the
+// hold's first sample, and the companion (4x the tolerance) shared most of it
+// (est/err 0.64). 0.02 rtol keeps it within rtol.
+constexpr double kTimeTol = 0.02;
+
+// Starting resolution and local time tolerance from rtol (refined below if
+// the companion disagrees by more than rtol).
+RunSettings initial_settings(const LoadOptions& o) {
+  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1, 0.0, 0.0};
+  if (!(s.cells > 0.0)) s.cells = std::clamp(std::ceil(0.5 / std::sqrt(o.rtol)), 16.0, 1e6);
+  if (!(s.time_tol > 0.0)) s.time_tol = kTimeTol * o.rtol;
+  return s;
+}
+
+// run_once; if the edge leaves a window sized below the Hertz contact, again
+// with the Hertz contact's window (s.window_a then says which was used).
+SingleRun run_widening(const Case& c, RunSettings& s, const RunControl& control) {
+  try {
+    return run_once(c, s, control);
+  } catch (const WindowExceeded&) {
+    if (!(s.window_a < c.a0())) throw;
+    s.window_a = c.a0();
+    return run_once(c, s, control);
+  }
+}
+
+// Refines s so that a piece `width` wide gets kCellsPerPiece cells (run at
+// spacing dx); false if that needs more than kMaxPieceElements elements.
+bool resolve_piece(RunSettings& s, double dx, double width) {
+  const double cells = std::ceil(s.cells * kCellsPerPiece * dx / width);
+  const double elements = 3.2 * s.window_a / (dx * s.cells / cells);
+  if (!(elements <= kMaxPieceElements)) return false;
+  s.cells = cells;
+  return true;
+}
+
+// The companion: half the resolution at a shifted phase (a read-out error
+// that depends on where the grid falls is not shared), four times the local
+// step error and at least two steps per sample interval (where the sample
+// spacing limits the steps, the companion does not repeat the step error).
+// The estimate is floored at the local step tolerance: below it the two runs'
+// difference no longer measures the error (it is within the scatter over grid
+// phases of an unresolved tail, ~1e-6 at zeta0 = 1e-4).
+double companion_estimate(const Case& c, RunSettings& s, const Series& fine, RunResult& res,
+                          const RunControl& control) {
+  RunSettings cs = s;
+  cs.cells = 0.5 * s.cells;
+  cs.phase = std::fmod(s.phase + 0.381966, 1.0);
+  cs.time_tol = 4.0 * s.time_tol;
+  cs.split = 2;
+  if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
+  const SingleRun coarse = run_widening(c, cs, control);
+  s.window_a = cs.window_a;
+  res.info.steps += coarse.steps;
+  res.info.element_updates += coarse.updates;
+  return std::max(case_error(coarse.series, fine, c, 1e-12).max(), s.time_tol) +
+         64.0 * std::numeric_limits<double>::epsilon();
+}
+
+void merge(LoadChecks& a, const LoadChecks& b) {
+  a.leading_edge_detached += b.leading_edge_detached;
+  a.second_contact += b.second_contact;
+  a.max_a1_over_a0 = std::max(a.max_a1_over_a0, b.max_a1_over_a0);
+}
+
+} // namespace
+
+RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
+  validate(c);
+  if (!c.loading.by_force())
+    throw InvalidInput("solver", "the load solver needs a prescribed normal force (--FN)");
+  validate_rtol(opt.rtol);
+  RunResult res;
+  res.info.solver = "mdr";
+  res.info.rtol = opt.rtol;
+  RunSettings s = initial_settings(opt);
+  s.window_a = opt.window_a0 > 0.0 ? opt.window_a0 * c.a0() : history_radius(c, s.start);
+  s.piece_floor = kPieceFloor * opt.rtol * c.a0();
+  const bool adaptive = !(opt.cells > 0.0);
+  const RunControl own;
+  const RunControl& control = opt.control != nullptr ? *opt.control : own;
+  LoadChecks all;
+  for (int attempt = 0;; ++attempt) {
+    SingleRun fine = run_widening(c, s, control);
+    res.info.steps += fine.steps;
+    res.info.element_updates += fine.updates;
+    res.info.refinements = attempt + 1;
+    merge(all, fine.checks);
+    // a piece of free material that matters but has fewer than kPieceCells
+    // cells: resolve it first (the companion would share the error)
+    const bool unresolved = fine.min_piece < kPieceCells * fine.dx;
+    if (adaptive && unresolved && attempt < kAttempts - 1 &&
+        resolve_piece(s, fine.dx, fine.min_piece))
+      continue;
+    double est = 0.0;
+    if (opt.estimate_error || adaptive) est = companion_estimate(c, s, fine.series, res, control);
+    // (a piece left unresolved, the narrow ones below the floor included, can
+    // move the edge by up to its width, unseen by the companion)
+    if (opt.estimate_error || adaptive) est = std::max(est, fine.max_unresolved / c.a0());
+    res.series = std::move(fine.series);
+    res.info.error_estimate = est;
+    res.info.cells_per_a1 = s.cells;
+    res.info.elements = fine.elements;
+    if (!adaptive || est <= opt.rtol) break;
+    if (attempt >= kAttempts - 1)
+      throw CaseAbandoned("load: the error estimate " + format_number(est) + " stays above rtol " +
+                          format_number(opt.rtol) + " after " + std::to_string(attempt + 1) +
+                          " resolutions (a_ref/dx up to " + format_number(s.cells) + ")");
+    const double f = std::clamp(std::sqrt(est / opt.rtol), 1.5, 4.0);
+    s.cells = std::ceil(s.cells * f);
+    s.time_tol /= f * f;
+  }
+  if (checks) *checks = all;
+  return res;
+}
+
+} // namespace mdrmap

@@ -1,0 +1,31 @@
+#pragma once
+// What a solver returns: the case's samples and what the run cost; the
+// tolerance every solver takes.
+#include <string>
+
+#include "core/model/state.hpp"
+
+namespace mdrmap {
+
+/// What a run cost and how accurate it believes it is.
+struct RunInfo {
+  std::string solver;          ///< "exact", "mdr" or "baseline"
+  double rtol = 0.0;           ///< requested tolerance
+  double error_estimate = 0.0; ///< estimated case error (docs/design.md, "Error metric")
+  double cells_per_a1 = 0.0;   ///< resolution a1/dx of the final run (0 for exact)
+  long elements = 0;           ///< elements held in memory at once (peak, final run)
+  long steps = 0;              ///< time steps taken, all runs included
+  long element_updates = 0;    ///< element state updates, all runs included
+  long root_solves = 0;        ///< scalar root solves (exact solver)
+  int refinements = 0;         ///< resolutions tried by the error control
+};
+
+struct RunResult {
+  Series series;
+  RunInfo info;
+};
+
+/// Throws InvalidInput("rtol") unless 0 < rtol <= 0.1.
+void validate_rtol(double rtol);
+
+} // namespace mdrmap
