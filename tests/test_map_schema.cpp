@@ -188,7 +188,7 @@ TEST_F(MapSchema, EveryResultDatasetIsDescribed) {
   const io::RowLayout layout = made_->spec.layout();
   const auto known = known_fields(layout);
   std::size_t n = 0;
-  for (const char* group : {"results", "events", "analytic", "residuals", "timeseries"}) {
+  for (const char* group : {"results", "events", "analytic", "residuals", "scales", "timeseries"}) {
     for (const std::string& name : members(f(), group)) {
       const std::string path = std::string(group) + "/" + name, entry = "schema/" + path;
       SCOPED_TRACE(path);
@@ -296,7 +296,8 @@ TEST_F(MapSchema, PerCaseDatasetsAreAttachedToTheCaseEventAndSampleScales) {
     // no data: extent 0 of an unlimited maximum, nothing allocated
     EXPECT_EQ(H5Dget_storage_size(scale), 0u);
   }
-  for (const char* group : {"cases", "results", "events", "analytic", "residuals", "timeseries"})
+  for (const char* group :
+       {"cases", "results", "events", "analytic", "residuals", "scales", "timeseries"})
     for (const std::string& name : members(f(), group)) {
       const std::string path = std::string(group) + "/" + name;
       if (path == "timeseries/segment") continue; // [K S]: the sample dimension only

@@ -36,6 +36,7 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
   add_events();
   add_closed_forms();
   add_residuals();
+  add_scales();
   offsets_.push_back(0);
   for (std::size_t f = 0; f < fields_.size(); ++f) {
     offsets_.push_back(offsets_.back() + width(f));
@@ -76,6 +77,11 @@ void RowLayout::resolve_slots() {
   s.events_end = per_quantity("events", "_end");
   s.analytic_ss = per_quantity("analytic", "_ss");
   s.residuals_end = per_quantity("residuals", "_end");
+  s.scale_length = at("scales/length");
+  s.scale_depth = at("scales/depth");
+  s.scale_force = at("scales/force");
+  s.scale_friction = at("scales/friction");
+  s.scale_time = at("scales/time");
   if (by_force_) return; // the seed's jump estimate: at fixed depth only
   s.analytic_jump = per_quantity("analytic", "_jump");
   s.residuals_jump = per_quantity("residuals", "_jump");
@@ -169,6 +175,23 @@ void RowLayout::add_closed_forms() {
         std::string(q.meaning) +
             " just after the first change (t = 0+), the corrected estimate (eqs. 15-16)");
   });
+}
+
+void RowLayout::add_scales() {
+  add("scales/length", "length",
+      by_force_ ? "reference length: the Hertz radius a0 of the load FN with the long-term "
+                  "modulus G (F0 = 16/3 G a0^3 / R)"
+                : "reference length: the leading edge a1 of the contact at the depth d");
+  add("scales/depth", "length", "indentation depth of the reference contact (d, or a0^2 / R)");
+  add("scales/force", "force",
+      "elastic normal force of the reference contact with the long-term modulus G "
+      "(16/3 G a^3 / R; FN under load)");
+  add("scales/friction", "number",
+      "friction scale: the profile's slope at the reference length "
+      "over two (a / R for the parabola)");
+  add("scales/time", "time",
+      "time scale: the longest relaxation time of the material, shifted by aT (tau for the "
+      "Kelvin foundation)");
 }
 
 void RowLayout::add_residuals() {

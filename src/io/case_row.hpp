@@ -47,6 +47,8 @@ struct RowSlots {
   std::size_t a = 0, b = 0, a_minus_b = 0, d_c = 0; ///< may be undefined (kFillValue)
   PerQuantity events_after{}, events_end{}, analytic_ss{}, residuals_end{};
   PerQuantity analytic_jump{}, residuals_jump{}; ///< at fixed depth only
+  std::size_t scale_length = 0, scale_depth = 0, scale_force = 0, scale_friction = 0,
+              scale_time = 0; ///< the case's Scales
 };
 
 /// The per-case datasets of a study's map: K segments, under load (the depth
@@ -87,6 +89,7 @@ private:
   void add_results();
   void add_events();
   void add_closed_forms();
+  void add_scales();
   void add_residuals();
   void resolve_slots();
   RowSlots::PerQuantity per_quantity(const std::string& group, const char* suffix) const;

@@ -283,7 +283,7 @@ Handle per_case(hid_t f, const Dimensions& dims, const FieldInfo& info, hid_t ty
   return d;
 }
 
-// /results, /events, /analytic, /residuals and /timeseries.
+// /results, /events, /analytic, /residuals, /scales and /timeseries.
 void create_results(hid_t f, const Dimensions& dims, const MapSpec& spec) {
   const RowLayout layout = spec.layout();
   const hsize_t n = spec.n_cases, K = spec.segments;
@@ -383,7 +383,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   const hsize_t n = spec.n_cases, K = spec.segments;
   write_header(f, spec, prov);
   // every object is closed before the file: a map is closed complete
-  std::vector<const char*> groups = {"cases", "results", "events", "analytic", "residuals"};
+  std::vector<const char*> groups = {"cases", "results", "events", "analytic", "residuals", "scales"};
   if (spec.timeseries) groups.push_back("timeseries");
   groups.push_back("failures");
   for (const char* group : groups)

@@ -8,6 +8,7 @@
 
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/events.hpp"
+#include "core/model/scales.hpp"
 
 namespace mdrmap::study {
 namespace {
@@ -81,6 +82,12 @@ void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const Run
     f.state(S.analytic_jump, jump);
     f.residuals(S.residuals_jump, x.at(0), jump);
   }
+  const Scales sc = scales(c);
+  f.put(S.scale_length, sc.length);
+  f.put(S.scale_depth, sc.depth);
+  f.put(S.scale_force, sc.force);
+  f.put(S.scale_friction, sc.friction);
+  f.put(S.scale_time, sc.time);
   for (double v : row.values)
     if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
 }
