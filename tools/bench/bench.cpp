@@ -745,7 +745,7 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   md << "\nCommand: `" << (command.empty() ? "mdrmap_bench" : command) << "`\n\n";
 
   md << "### Case set and method\n\n";
-  md << cases.size() << " scenes of `hard_case_set()` (src/core/case_set.cpp), default protocol ("
+  md << cases.size() << " scenes of `hard_case_set()` (tests/cases/case_set.cpp), default protocol ("
      << "t_end = 6 tau, or 6 a1 / min(v, v1) for tau = 0; 201 samples). Error: the case error of "
         "docs/design.md, \"Error metric\" (largest relative deviation of F_N, F_x, mu; a2 in units "
         "of a1) against `run_exact` at rtol 1e-12 (so the exact row at 1e-12 is the reference "

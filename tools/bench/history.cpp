@@ -1,5 +1,5 @@
 // mdrmap_bench_history: work-precision benchmark of the solvers on velocity
-// histories (history_case_set(), src/core/case_set.cpp).
+// histories (history_case_set(), tests/cases/case_set.cpp).
 //
 //   mdrmap_bench_history [--quick] [--out DIR]
 //

@@ -1,6 +1,6 @@
 // mdrmap_bench_load: work-precision benchmark of the load-control solver
 // (run_load, src/core/solvers/load.hpp) on the load-controlled histories of
-// load_case_set() (src/core/load_case_set.cpp); issue 11's cost criterion.
+// load_case_set() (tests/cases/load_case_set.cpp); issue 11's cost criterion.
 //
 //   mdrmap_bench_load [--quick] [--out DIR] [--command TEXT] [--max-call-seconds S]
 //
@@ -568,7 +568,7 @@ int main(int argc, char** argv) {
   for (const auto& nc : cases)
     n3 += is_3seg(nc.name) ? 1 : 0;
   md << cases.size() << " load-controlled histories of `load_case_set()` ("
-     << "src/core/load_case_set.cpp), " << n3
+     << "tests/cases/load_case_set.cpp), " << n3
      << " of them with three segments, 61 samples per segment. Error: "
         "`case_error(run, ref, c, 1e-12).max()` (the load-control contract of "
         "docs/design.md, \"Error metric\") against a reference `run_load` at "
