@@ -1,8 +1,7 @@
 #pragma once
 // The error contract (docs/design.md, "Error metric").
 #include "core/model/case.hpp"
-#include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/model/state.hpp"
 
 namespace mdrmap {
 
