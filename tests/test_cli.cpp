@@ -27,6 +27,9 @@
 #include <utility>
 #include <vector>
 
+#include "app/case_input.hpp"
+#include "app/csv_output.hpp"
+#include "app/prony_input.hpp"
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/events.hpp"
 #include "core/model/case.hpp"
@@ -216,6 +219,8 @@ std::regex case_line_regex(bool load) {
     if (p.part != mdrmap::Part::Sampling && given(p))
       re += std::string(p.name) == "aT" ? std::string(R"(( aT=\S+)?)") // only where it shifts
                                         : std::string(" ") + p.name + R"(=\S+)";
+  // a spectrum where there are terms, the temperature where --T gave aT
+  re += R"(( prony=[^,\s:]+:[^,\s:]+(,[^,\s:]+:[^,\s:]+)*)?( T=\S+ wlf=[^:\s]+:[^:\s]+:[^:\s]+)?)";
   re += R"( history=\S+ spacing=(linear|log))";
   for (const auto& p : mdrmap::case_parameters())
     if (p.part == mdrmap::Part::Sampling) re += std::string(" ") + p.name + R"(=\S+)";
@@ -827,6 +832,22 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
   const fs::path plain_file = dir.path() / "plain";
   write_file(plain_file, "x");
   const fs::path missing_dir = dir.path() / "no_such_dir";
+  // relaxation spectra from files (issue 19): each fault on its line
+  const auto prony_file = [&](const char* name, const std::string& text) {
+    write_file(dir.path() / name, text);
+    return (dir.path() / name).string();
+  };
+  const std::string no_header = prony_file("no_header.csv", "1,2\n");
+  const std::string only_header = prony_file("only_header.csv", "# spectrum\nG,tau\n\n");
+  const std::string bad_tau = prony_file("bad_tau.csv", "G,tau\n1,2\n# comment\n3,-4\n");
+  const std::string half_term = prony_file("half_term.csv", "G,tau\n1,\n");
+  const std::string three_values = prony_file("three_values.csv", "G,tau\n1,2,3\n");
+  std::string many = "G,tau\n", many_terms;
+  for (int k = 0; k < 33; ++k) {
+    many += "1,2\n";
+    many_terms += std::string(k ? "," : "") + "1:2";
+  }
+  const std::string too_many = prony_file("too_many.csv", many);
 
   const std::vector<BadCase> cases{
       {"d = 0", {{"d", "0"}}, {}, "d"},
@@ -922,6 +943,57 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        "output",
        true},
       {"output is a directory", {{"output", dir.path().string()}}, {}, "output", true},
+      // relaxation spectra and the temperature shift (issue 19)
+      {"prony G = 0", {{"prony", "0:1"}}, {}, "prony"},
+      {"prony G < 0", {{"prony", "1:1,-2:10"}}, {}, "prony"},
+      {"prony tau = 0", {{"prony", "1:0"}}, {}, "prony"},
+      {"prony tau < 0", {{"prony", "1:-1"}}, {}, "prony"},
+      {"prony G = nan", {{"prony", "nan:1"}}, {}, "prony"},
+      {"prony tau = inf", {{"prony", "1:inf"}}, {}, "prony"},
+      {"prony tau overflows", {{"prony", "1:1e999"}}, {}, "prony"},
+      {"prony term without its time", {{"prony", "5:"}}, {}, "prony"},
+      {"prony term without its modulus", {{"prony", ":2"}}, {}, "prony"},
+      {"prony term without ':'", {{"prony", "1:1,5"}}, {}, "prony"},
+      {"prony term with two ':'", {{"prony", "1:1:1"}}, {}, "prony"},
+      {"prony empty term", {{"prony", "1:1,,2:2"}}, {}, "prony"},
+      {"prony empty", {{"prony", ""}}, {}, "prony"},
+      {"prony not a number", {{"prony", "1:2s"}}, {}, "prony"},
+      {"prony 33 terms", {{"prony", many_terms}}, {}, "prony"},
+      {"prony and prony-file", {{"prony", "1:1"}, {"prony-file", bad_tau}}, {}, "prony-file"},
+      {"prony-file missing", {{"prony-file", (missing_dir / "p.csv").string()}}, {}, "prony-file"},
+      {"prony-file is a directory", {{"prony-file", dir.path().string()}}, {}, "prony-file"},
+      {"prony-file without header", {{"prony-file", no_header}}, {}, "prony-file"},
+      {"prony-file without terms", {{"prony-file", only_header}}, {}, "prony-file"},
+      {"prony-file tau < 0", {{"prony-file", bad_tau}}, {}, "prony-file"},
+      {"prony-file half a term", {{"prony-file", half_term}}, {}, "prony-file"},
+      {"prony-file three values", {{"prony-file", three_values}}, {}, "prony-file"},
+      {"prony-file 33 terms", {{"prony-file", too_many}}, {}, "prony-file"},
+      {"aT = 0", {{"aT", "0"}}, {}, "aT"},
+      {"aT = inf", {{"aT", "inf"}}, {}, "aT"},
+      {"aT shifts a time beyond a double", {{"aT", "1e300"}, {"prony", "1:1e10"}}, {}, "aT"},
+      {"aT shifts tau beyond a double", {{"aT", "1e300"}, {"tau", "1e10"}}, {}, "aT"},
+      {"T without wlf", {{"T", "20"}}, {}, "T"},
+      {"wlf without T", {{"wlf", "17.44:51.6:0"}}, {}, "wlf"},
+      {"T with aT", {{"T", "20"}, {"wlf", "17.44:51.6:0"}, {"aT", "2"}}, {}, "T"},
+      {"T = TREF - C2", {{"T", "-50"}, {"wlf", "10:50:0"}}, {}, "T"},
+      {"T below TREF - C2", {{"T", "-60"}, {"wlf", "17.44:51.6:0"}}, {}, "T"},
+      {"T = nan", {{"T", "nan"}, {"wlf", "17.44:51.6:0"}}, {}, "T"},
+      {"T shifts a time beyond a double",
+       {{"T", "-0.99"}, {"wlf", "1:1:0"}, {"prony", "1:1e250"}},
+       {},
+       "T"},
+      {"T gives an aT beyond a double", {{"T", "-49.99"}, {"wlf", "17.44:50:0"}}, {}, "T"},
+      {"wlf with two constants", {{"T", "20"}, {"wlf", "17.44:51.6"}}, {}, "wlf"},
+      {"wlf C1 = 0", {{"T", "20"}, {"wlf", "0:51.6:0"}}, {}, "wlf"},
+      {"wlf C2 < 0", {{"T", "20"}, {"wlf", "17.44:-51.6:0"}}, {}, "wlf"},
+      {"wlf TREF not a number", {{"T", "20"}, {"wlf", "17.44:51.6:room"}}, {}, "wlf"},
+      {"wlf TREF = inf", {{"T", "20"}, {"wlf", "17.44:51.6:inf"}}, {}, "wlf"},
+      // a spectrum the parser takes, on a solver that cannot: one line naming prony
+      {"prony on the exact solver", {{"prony", "1:1,2:10"}, {"solver", "exact"}}, {}, "prony"},
+      {"prony-file on the Kelvin solvers",
+       {{"prony-file", prony_file("good.csv", "G,tau\n1,2\n3,40\n")}, {"solver", "exact"}},
+       {},
+       "prony"},
       {"output empty", {{"output", ""}}, {}, "output", true},
   };
   ASSERT_GE(cases.size(), 20U);
@@ -974,6 +1046,107 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       EXPECT_FALSE(fs::exists(missing_dir));
     }
   }
+}
+
+// --- Relaxation spectra and the temperature shift (issue 19) -------------------
+
+using mdrmap::app::OptionTexts;
+
+OptionTexts spectrum_texts(OptionTexts extra) {
+  OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"v", "1"}, {"v1", "2"}};
+  for (auto& [k, v] : extra)
+    t[k] = v;
+  return t;
+}
+
+TEST(cli, SpectrumInputIsReadIntoTheRheology) {
+  const auto in = mdrmap::app::read_case_input(
+      spectrum_texts({{"prony", "1:0.01, 2.5:1,0.5:1e4"}, {"G", "0.1"}}));
+  const mdrmap::Rheology& r = in.c.rheology;
+  ASSERT_EQ(r.branches.size(), 3U);
+  EXPECT_EQ(r.branches[0].G, 1.0);
+  EXPECT_EQ(r.branches[0].tau, 0.01);
+  EXPECT_EQ(r.branches[1].G, 2.5);
+  EXPECT_EQ(r.branches[2].tau, 1e4);
+  EXPECT_EQ(r.G, 0.1);
+  EXPECT_EQ(r.tau, 0.0);
+  EXPECT_EQ(r.aT, 1.0);
+  EXPECT_FALSE(in.temperature);
+  // the default window: six times the longest relaxation time (tau = 0 here)
+  EXPECT_EQ(in.c.history.segments.at(0).T, 6e4);
+  // 32 terms are allowed, and the printed spectrum reads back to the same doubles
+  std::string text;
+  for (int k = 1; k <= 32; ++k)
+    text += (k > 1 ? "," : "") + std::to_string(k) + ":" + std::to_string(0.1 / k);
+  const auto b = mdrmap::app::parse_prony(text);
+  ASSERT_EQ(b.size(), 32U);
+  const auto again = mdrmap::app::parse_prony(mdrmap::app::format_prony(b));
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    EXPECT_EQ(again[k].G, b[k].G);
+    EXPECT_EQ(again[k].tau, b[k].tau);
+  }
+}
+
+TEST(cli, SpectrumFileEqualsTheOption) {
+  TempDir dir;
+  const fs::path f = dir.path() / "spectrum.csv";
+  write_file(f, "# a spectrum\r\n G , tau \r\n\r\n1,0.01\r\n  # between terms\n2.5 , 1\n0.5,1e4");
+  const auto a = mdrmap::app::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
+  const auto b = mdrmap::app::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1,0.5:1e4"}}));
+  ASSERT_EQ(a.c.rheology.branches.size(), 3U);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.c.rheology.branches[k].G, b.c.rheology.branches[k].G);
+    EXPECT_EQ(a.c.rheology.branches[k].tau, b.c.rheology.branches[k].tau);
+  }
+  // a fault names the file and its line
+  write_file(f, "G,tau\n1,2\n\n# comment\n3,0\n");
+  try {
+    mdrmap::app::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
+    FAIL() << "a zero time was taken";
+  } catch (const mdrmap::InvalidInput& e) {
+    EXPECT_EQ(e.option(), "prony-file");
+    EXPECT_TRUE(starts_with(e.what(), f.string() + ":5: term 2: tau2 must be")) << e.what();
+  }
+}
+
+TEST(cli, TemperatureGivesTheWlfShift) {
+  const auto in = mdrmap::app::read_case_input(
+      spectrum_texts({{"tau", "1"}, {"T", "40"}, {"wlf", "17.44:51.6:-10"}}));
+  ASSERT_TRUE(in.temperature);
+  EXPECT_EQ(in.temperature->T, 40.0);
+  EXPECT_EQ(in.temperature->wlf.C1, 17.44);
+  EXPECT_EQ(in.temperature->wlf.C2, 51.6);
+  EXPECT_EQ(in.temperature->wlf.Tref, -10.0);
+  const double aT = std::pow(10.0, -17.44 * 50.0 / (51.6 + 50.0));
+  EXPECT_NEAR(in.c.rheology.aT, aT, 1e-15 * aT);
+  // at TREF no shift
+  const auto ref = mdrmap::app::read_case_input(
+      spectrum_texts({{"tau", "1"}, {"T", "-10"}, {"wlf", "17.44:51.6:-10"}}));
+  EXPECT_EQ(ref.c.rheology.aT, 1.0);
+  // the default window is six shifted times
+  EXPECT_NEAR(in.c.history.segments.at(0).T, 6.0 * aT, 1e-15 * aT);
+}
+
+TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {
+  const auto kelvin = mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}}));
+  const std::string plain = mdrmap::app::case_line(kelvin.c, kelvin.temperature);
+  EXPECT_TRUE(std::regex_match(plain, case_line_regex(false))) << plain;
+  for (const char* word : {"prony=", "aT=", " T=", "wlf="})
+    EXPECT_EQ(plain.find(word), std::string::npos) << plain;
+
+  const auto spec = mdrmap::app::read_case_input(
+      spectrum_texts({{"prony", "1:0.5,3:20"}, {"T", "30"}, {"wlf", "8.86:101.6:20"}}));
+  const std::string line = mdrmap::app::case_line(spec.c, spec.temperature);
+  EXPECT_TRUE(std::regex_match(line, case_line_regex(false))) << line;
+  EXPECT_NE(line.find(" G=1 aT=" + mdrmap::app::format_double(spec.c.rheology.aT) +
+                      " v=1 prony=1:0.5,3:20 T=30 wlf=8.8599999999999994:101.59999999999999:20 "
+                      "history="),
+            std::string::npos)
+      << line;
+  // aT = 1 is not printed; an explicit aT is, without T and wlf
+  const auto shifted = mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"aT", "1e-3"}}));
+  const std::string s = mdrmap::app::case_line(shifted.c, shifted.temperature);
+  EXPECT_NE(s.find(" G=1 aT=0.001 v=1 history="), std::string::npos) << s;
 }
 
 // --- Velocity histories --------------------------------------------------------
@@ -1529,6 +1702,57 @@ TEST(cli, StudyTakesEveryCaseParameterOfTheTable) {
   EXPECT_EQ(both.code, 2) << both.err;
   EXPECT_EQ(std::count(both.err.begin(), both.err.end(), '\n'), 1) << both.err;
   EXPECT_FALSE(fs::exists(other));
+}
+
+// A spectrum's terms, the shift and the temperature are overrides of mdrmap
+// study (issue 19): a term given by halves, a temperature without its WLF
+// constants and a named Kelvin solver are refused with one line naming the key.
+TEST(cli, StudyTakesSpectrumTermsAndTheTemperature) {
+  TempDir dir;
+  const fs::path ini = dir.path() / "kelvin.ini";
+  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n"
+                  "[run]\nsamples = 5\n");
+  const fs::path map = dir.path() / "map.h5";
+  const std::vector<std::string> base = {"study",      "--quiet",  "--config",
+                                         ini.string(), "--output", map.string()};
+  struct Refused {
+    std::vector<std::string> extra;
+    std::string key;
+  };
+  const std::vector<Refused> refused = {
+      {{"--G1", "1"}, "grid.tau1"},
+      {{"--G2", "1", "--tau2", "1"}, "grid.G1"},
+      {{"--temperature", "20"}, "grid.temperature"},
+      {{"--wlf", "8.86:101.6:20"}, "run.wlf"},
+      {{"--temperature", "-90", "--wlf", "8.86:101.6:20"}, "grid.temperature"},
+      {{"--aT", "1e300", "--tau", "1e10"}, "grid.aT"},
+      {{"--G1", "1", "--tau1", "2", "--solver", "exact"}, "run.solver"},
+  };
+  for (const Refused& r : refused) {
+    SCOPED_TRACE(r.key);
+    auto args = base;
+    args.insert(args.end(), r.extra.begin(), r.extra.end());
+    const Outcome o = run_mdrmap(args, kNoHangSeconds);
+    EXPECT_EQ(o.code, 2) << o.err;
+    EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+    EXPECT_TRUE(starts_with(o.err, "mdrmap study: error: " + r.key + ": ")) << o.err;
+    EXPECT_FALSE(fs::exists(map));
+  }
+  auto args = base;
+  args.insert(args.end(), {"--tau", "0", "--G1", "1,2", "--tau1", "0.5", "--temperature", "20,40",
+                           "--wlf", "8.86:101.6:20"});
+  const Outcome o = run_mdrmap(args, kNoHangSeconds);
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("4 cases in " + map.string()), std::string::npos) << o.err;
+  EXPECT_TRUE(fs::is_regular_file(map));
+  // the Kelvin study with the shift as a column
+  const fs::path shifted = dir.path() / "shifted.h5";
+  const Outcome k = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
+                                shifted.string(), "--aT", "0.01,1"},
+                               kNoHangSeconds);
+  EXPECT_EQ(k.code, 0) << k.err;
+  EXPECT_NE(k.err.find("2 cases in " + shifted.string() + ": 2 done, 0 failed"), std::string::npos)
+      << k.err;
 }
 
 } // namespace

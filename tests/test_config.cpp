@@ -1136,6 +1136,165 @@ TEST(StudyHistory, DurationOverTauWithTauZero) {
   EXPECT_NE(grid.second.find("tau = 0"), std::string::npos) << grid.second;
 }
 
+// --- Relaxation spectra and the temperature (issue 19) ----------------------------
+
+const char* const kWlf = "8.86:101.6:20";
+
+double wlf_aT(double T) {
+  return std::pow(10.0, -8.86 * (T - 20.0) / (101.6 + T - 20.0));
+}
+
+TEST(StudySpectrum, GridOverATermAndTheTemperature) {
+  const StudyConfig c =
+      depth_study("tau = 0\nG = 0.1\ntemperature = 20, 50\ntau1 = 0.5, 2\nG1 = 1\nG2 = 3\n"
+                  "tau2 = 40\nv = 1\n[history]\nw1_over_v = 0.1\nT1_over_tau = 3\n[run]\n"
+                  "wlf = " +
+                  std::string(kWlf) + "\n");
+  // the terms follow G, the temperature stands where aT would: the column order
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
+                                                "temperature", "v", "w1_over_v", "T1_over_tau"}));
+  EXPECT_EQ(c.axes[col(c, "tau1")].option(), "grid.tau1");
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 4u); // tau1 x temperature, the last fastest
+  for (std::size_t i = 0; i < 4; ++i) {
+    const mdrmap::Rheology& r = cases[i].rheology;
+    ASSERT_EQ(r.branches.size(), 2u);
+    EXPECT_EQ(r.G, 0.1);
+    EXPECT_EQ(r.tau, 0.0);
+    EXPECT_EQ(r.branches[0].G, 1.0);
+    EXPECT_EQ(r.branches[0].tau, i < 2 ? 0.5 : 2.0);
+    EXPECT_EQ(r.branches[1].G, 3.0);
+    EXPECT_EQ(r.branches[1].tau, 40.0);
+    const double aT = i % 2 == 0 ? 1.0 : wlf_aT(50.0);
+    EXPECT_NEAR(r.aT, aT, 1e-15 * aT);
+    // tau = 0: the durations are relative to the time scale aT max(tau, tauk)
+    EXPECT_NEAR(cases[i].history.segments[0].T, 3.0 * 40.0 * aT, 1e-13 * aT);
+  }
+  EXPECT_NE(canonical(c).find("wlf = 8.8599999999999994:101.59999999999999:20\n"),
+            std::string::npos)
+      << canonical(c);
+}
+
+TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
+  TempDir dir;
+  dir.write("spec.csv", "tau1,G1,aT,d,R,tau,v,w1,T1_over_tau,G2,tau2\n"
+                        "0.1,2,1e-3,1e-2,1,0,1,0,10,1,5\n"
+                        "0.2,3,10,1e-2,1,1,1,1,2,1,5\n");
+  const StudyConfig c =
+      parse_config("[cases]\nfile = spec.csv\n[run]\nsamples = 3\n", dir.path(), "l.ini");
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
+                                                "aT", "v", "w1", "T1_over_tau"}));
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].rheology.branches.at(0).tau, 0.1);
+  EXPECT_EQ(cases[0].rheology.branches.at(0).G, 2.0);
+  EXPECT_EQ(cases[0].rheology.aT, 1e-3);
+  EXPECT_EQ(cases[0].history.segments[0].T, 10.0 * 5.0 * 1e-3); // aT max(tau, tauk)
+  EXPECT_EQ(cases[1].rheology.aT, 10.0);
+  EXPECT_EQ(cases[1].history.segments[0].T, 2.0 * 5.0 * 10.0);
+}
+
+TEST(StudySpectrum, ATIsAColumnOnlyWhereGiven) {
+  // a study without the optional columns has those it always had
+  EXPECT_EQ(names(parse(base())),
+            std::vector<std::string>({"d", "R", "tau", "G", "v", "v1_over_v", "t_end_over_tau"}));
+  const StudyConfig c = parse(base({{4, "tau = 2\naT = 1e-2, 1"}}));
+  EXPECT_EQ(names(c), std::vector<std::string>(
+                          {"d", "R", "tau", "G", "aT", "v", "v1_over_v", "t_end_over_tau"}));
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 2u);
+  EXPECT_EQ(cases[0].rheology.aT, 1e-2);
+  // the seed's default window t_end_over_tau = 6: six shifted times
+  EXPECT_EQ(cases[0].history.segments[0].T, 6.0 * 2.0 * 1e-2);
+  EXPECT_EQ(cases[1].history.segments[0].T, 12.0);
+}
+
+TEST(StudySpectrum, OverridesSetTermsTheShiftAndTheTemperature) {
+  StudyConfig c = parse(base());
+  apply_overrides(
+      c,
+      {{"grid.G1", "1, 2"}, {"grid.tau1", "0.5"}, {"grid.temperature", "30"}, {"run.wlf", kWlf}});
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "temperature",
+                                                "v", "v1_over_v", "t_end_over_tau"}));
+  EXPECT_EQ(cases_of(c).size(), 2u);
+  EXPECT_NEAR(cases_of(c).at(1).rheology.aT, wlf_aT(30.0), 1e-15);
+  // aT replaces the temperature (they set the same thing), whose WLF constants then apply to none
+  const auto dangling = error_of([&] {
+    StudyConfig d = c;
+    apply_overrides(d, {{"grid.aT", "2"}});
+  });
+  EXPECT_EQ(dangling.first, "run.wlf") << dangling.second;
+  EXPECT_EQ(dangling.second.rfind("command line: wlf applies to a temperature column only", 0), 0u)
+      << dangling.second;
+  EXPECT_EQ(error_of([&] {
+              StudyConfig d = c;
+              apply_overrides(d, {{"grid.G33", "1"}});
+            }).first,
+            "grid.G33");
+}
+
+TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
+  struct Bad {
+    std::string grid, run, option, said;
+  };
+  const std::vector<Bad> bad = {
+      {"G1 = 1\n", "", "grid.tau1", "term 1 of the spectrum has G1 but no tau1"},
+      {"tau2 = 1\nG1 = 1\ntau1 = 1\n", "", "grid.G2", "has tau2 but no G2"},
+      {"G2 = 1\ntau2 = 1\n", "", "grid.G1", "terms up to 2 but no G1 and tau1"},
+      {"G1 = 0\ntau1 = 1\n", "", "grid.G1", "G1 must be a finite number > 0, got 0"},
+      {"G1 = 1\ntau1 = -1\n", "", "grid.tau1", "tau1 must be a finite number > 0"},
+      {"G1 = 1\ntau1 = nan\n", "", "grid.tau1", "not a finite number"},
+      {"G1 = 1\ntau1 = 1e999\n", "", "grid.tau1", "too large"},
+      {"G1 = 1\ntau1 = 1e10\naT = 1e300\n", "", "grid.aT", "aT times tau1"},
+      {"aT = 0\n", "", "grid.aT", "aT must be a finite number > 0"},
+      {"temperature = 20\n", "", "grid.temperature", "needs the WLF constants"},
+      {"", "wlf = 8.86:101.6:20\n", "run.wlf", "applies to a temperature column only"},
+      {"temperature = -81.6\n", "wlf = 8.86:101.6:20\n", "grid.temperature",
+       "must be > TREF - C2 = -81.599999999999994"},
+      {"temperature = -90, 20\n", "wlf = 8.86:101.6:20\n", "grid.temperature",
+       "(WLF 8.8599999999999994:101.59999999999999:20)"},
+      {"temperature = 19.9001\n", "wlf = 8.86:0.1:20\n", "grid.temperature",
+       "beyond the range of a double"},
+      {"temperature = 19.5\nG1 = 1\ntau1 = 1e308\n", "wlf = 1:1:20\n", "grid.temperature",
+       "temperature gives aT = "},
+      {"temperature = 20\naT = 1\n", "wlf = 8.86:101.6:20\n", "grid.aT",
+       "both temperature (grid.temperature) and aT"},
+      {"temperature = 20\n", "wlf = 8.86:101.6\n", "run.wlf", "wlf must be C1:C2:TREF"},
+      {"temperature = 20\n", "wlf = 0:101.6:20\n", "run.wlf", "wlf C1 must be > 0"},
+      {"temperature = 20\n", "wlf = 8.86:-1:20\n", "run.wlf", "wlf C2 must be > 0"},
+      {"G1 = 1\ntau1 = 1\n", "solver = exact\n", "run.solver",
+       "solver exact solves the Kelvin foundation only, and the study has a relaxation spectrum "
+       "(G1, tau1)"},
+      {"G01 = 1\ntau01 = 1\n", "", "grid.G01", "unknown key"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.grid + b.run);
+    const auto [option, message] = error_of([&] {
+      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\n" + b.grid +
+            "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\n" + b.run);
+    });
+    EXPECT_EQ(option, b.option) << message;
+    EXPECT_NE(message.find(b.said), std::string::npos) << message;
+    EXPECT_TRUE(one_line(message)) << message;
+  }
+  // 32 terms are allowed, a 33rd is no column
+  std::string terms;
+  for (int k = 1; k <= 32; ++k)
+    terms += "G" + std::to_string(k) + " = 1\ntau" + std::to_string(k) + " = " + std::to_string(k) +
+             "\n";
+  const StudyConfig c = depth_study("tau = 0\n" + terms +
+                                    "v = 1\n[history]\nw1 = 1\n"
+                                    "T1_over_tau = 1\n");
+  EXPECT_EQ(cases_of(c).at(0).rheology.branches.size(), 32u);
+  EXPECT_EQ(cases_of(c).at(0).history.segments[0].T, 32.0);
+  Column none;
+  EXPECT_FALSE(parse_column("G33", none));
+  EXPECT_FALSE(parse_column("tau0", none));
+  EXPECT_TRUE(parse_column("tau32", none));
+  EXPECT_EQ(none.branch, 32u);
+  EXPECT_TRUE(none.spectrum());
+}
+
 TEST(StudyCases, HistoryColumnsInTheCsv) {
   const std::string p = tmp().write("hist.csv", "T2,w2,FN,R,tau,v,w1,T1,G\n"
                                                 "5,0.1,1e-3,1,1,0.1,0,2,1\n"

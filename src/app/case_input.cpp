@@ -9,11 +9,15 @@
 #include <iterator>
 #include <optional>
 
+#include "app/prony_input.hpp"
+#include "core/model/scales.hpp"
+
 namespace mdrmap::app {
 namespace {
 
 /// Options that are not case parameters of the table (core/model/params.hpp): the
 /// history's two forms, the sampling's spacing and how to run.
+constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
@@ -209,8 +213,9 @@ Segment one_step(const Texts& o, Case& c) {
   c.history.segments = {Segment{v1, 1.0}};
   validate(c);
   // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
-  // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0)
-  const double a = c.edge_scale(), R = c.indenter.R, tau = c.rheology.tau, v = c.history.v0;
+  // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0);
+  // its time scale the element's longest shifted time (tau for Kelvin)
+  const double a = c.edge_scale(), R = c.indenter.R, tau = scales(c).time, v = c.history.v0;
   const double d = c.loading.by_force() ? a * a / R : c.loading.d;
   const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
   if (!t_end) {
@@ -231,6 +236,51 @@ void read_history(const Texts& o, Case& c) {
     c.history.segments = parse_history(o["history"]);
   else
     c.history.segments = {one_step(o, c)};
+}
+
+// --- Rheology ------------------------------------------------------------------
+
+/// The Maxwell branches of --prony or --prony-file (at most one of them).
+void read_spectrum(const Texts& o, Case& c) {
+  if (o.has("prony") && o.has("prony-file"))
+    throw InvalidInput("prony-file", "cannot be combined with --prony: give the spectrum once, "
+                                     "as --prony G1:TAU1,... or as a file");
+  if (o.has("prony")) c.rheology.branches = parse_prony(o["prony"]);
+  if (o.has("prony-file")) c.rheology.branches = read_prony_file(o["prony-file"]);
+}
+
+/// --T TEMP with --wlf C1:C2:TREF: the shift aT at T (instead of --aT).
+std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c) {
+  if (o.has("T") && o.has("aT"))
+    throw InvalidInput("T", "cannot be combined with --aT: give the shift factor --aT or the "
+                            "temperature --T with its --wlf constants, not both");
+  if (o.has("T") != o.has("wlf"))
+    throw InvalidInput(o.has("T") ? "T" : "wlf",
+                       o.has("T") ? "needs --wlf C1:C2:TREF, the WLF constants that give the "
+                                    "shift factor aT at the temperature T"
+                                  : "applies with --T TEMP only: give the temperature whose shift "
+                                    "factor aT it gives (or drop --wlf)");
+  if (!o.has("T")) return std::nullopt;
+  TemperatureInput t;
+  t.T = parse_double("T", o["T"]);
+  t.wlf = parse_wlf("wlf", o["wlf"]);
+  c.rheology.aT = wlf_shift(t.wlf, t.T, "T");
+  return t;
+}
+
+/// The spectrum and the shift, checked as a whole (validate(Rheology)): a
+/// shift that takes a time out of range names --T where the temperature gave it.
+std::optional<TemperatureInput> read_rheology(const Texts& o, Case& c) {
+  read_spectrum(o, c);
+  auto t = read_temperature(o, c);
+  try {
+    validate(c.rheology);
+  } catch (const InvalidInput& e) {
+    if (!t || e.option() != "aT") throw;
+    throw InvalidInput("T", "gives aT = " + format_number(c.rheology.aT) + " (WLF " +
+                                format_wlf(t->wlf) + "), and aT " + e.what());
+  }
+  return t;
 }
 
 Spacing parse_spacing(const std::string& text) {
@@ -256,6 +306,7 @@ std::vector<std::string> case_option_names() {
   std::vector<std::string> names;
   for (const auto& p : case_parameters())
     if (p.part != Part::Sampling) names.emplace_back(p.name);
+  names.insert(names.end(), std::begin(kRheologyOptions), std::end(kRheologyOptions));
   names.insert(names.end(), std::begin(kHistoryOptions), std::end(kHistoryOptions));
   for (const auto& p : case_parameters())
     if (p.part == Part::Sampling) names.emplace_back(p.name);
@@ -269,6 +320,7 @@ CaseInput read_case_input(const OptionTexts& texts) {
   CaseInput in;
   read_case_parameters(o, in.c);
   require_one_of_each_group(o);
+  in.temperature = read_rheology(o, in.c);
   if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o["spacing"]);
   if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "

@@ -8,11 +8,13 @@
 // as the CLI spells it (without dashes), or an empty option where no single
 // option is at fault (e.g. neither or both of --d and --FN).
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/wlf.hpp"
 #include "core/solvers/dispatch.hpp"
 
 namespace mdrmap::app {
@@ -22,16 +24,24 @@ inline constexpr double kDefaultRtol = 1e-4;
 /// Option name (as the CLI spells it, without dashes) -> its text as typed.
 using OptionTexts = std::map<std::string, std::string>;
 
+/// A temperature and the WLF constants that made the case's aT (--T, --wlf).
+struct TemperatureInput {
+  double T = 0.0;
+  Wlf wlf;
+};
+
 /// A checked case and how to run it.
 struct CaseInput {
   Case c;
   SolverKind solver = SolverKind::Auto;
   double rtol = kDefaultRtol;
+  std::optional<TemperatureInput> temperature; ///< given: c.rheology.aT is its WLF shift
 };
 
 /// Every option read_case_input knows, in the order of simulate's help: the
-/// table's case parameters, v1, t-end, history, the table's sampling
-/// parameters, spacing, rtol, solver.
+/// table's case parameters, the spectrum and temperature (prony, prony-file,
+/// T, wlf), v1, t-end, history, the table's sampling parameters, spacing,
+/// rtol, solver.
 std::vector<std::string> case_option_names();
 
 /// Builds and checks a case from the texts of its options, in the CLI's

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "app/prony_input.hpp"
 #include "core/model/params.hpp"
 
 namespace mdrmap::app {
@@ -29,15 +30,6 @@ std::string parameters(const Case& c, bool sampling) {
     if ((p.part == Part::Sampling) == sampling && shown(p, c))
       s += std::string(" ") + p.name + "=" + format_double(p.get(c));
   return s;
-}
-
-/// The `# case` line (without newline).
-std::string case_line(const Case& c) {
-  const bool load = c.loading.by_force();
-  std::string s = "# case" + parameters(c, false) + " history=" + format_history(c.history) +
-                  " spacing=" + spacing_name(c.sampling.spacing) + parameters(c, true);
-  if (load) s += " a0=" + format_double(c.a0());
-  return s + " zeta0=" + format_double(c.history.v0 * c.rheology.tau / c.edge_scale());
 }
 
 void write_reference(std::FILE* out, const SimulateRecord& rec) {
@@ -67,6 +59,18 @@ void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
 
 } // namespace
 
+std::string case_line(const Case& c, const std::optional<TemperatureInput>& temperature) {
+  const bool load = c.loading.by_force();
+  std::string s = "# case" + parameters(c, false);
+  if (!c.rheology.branches.empty()) s += " prony=" + format_prony(c.rheology.branches);
+  if (temperature)
+    s += " T=" + format_double(temperature->T) + " wlf=" + format_wlf(temperature->wlf);
+  s += " history=" + format_history(c.history) + " spacing=" + spacing_name(c.sampling.spacing) +
+       parameters(c, true);
+  if (load) s += " a0=" + format_double(c.a0());
+  return s + " zeta0=" + format_double(c.history.v0 * c.rheology.tau / c.edge_scale());
+}
+
 std::string format_double(double x) {
   if (std::isnan(x)) return "nan";
   char buf[64];
@@ -83,7 +87,8 @@ std::string format_history(const History& h) {
   return s;
 }
 
-void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series) {
+void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
+                        const std::optional<TemperatureInput>& temperature) {
   const RunInfo& in = rec.info;
   std::fprintf(out,
                "# mdrmap %s (%s) simulate solver=%s rtol=%.17g error_estimate=%.17g "
@@ -95,7 +100,7 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
 
   const Case& c = rec.c;
   const bool load = c.loading.by_force();
-  std::fprintf(out, "%s\n", case_line(c).c_str());
+  std::fprintf(out, "%s\n", case_line(c, temperature).c_str());
   write_reference(out, rec);
   for (std::size_t k = 0; k < rec.events.size(); ++k)
     write_event(out, k, rec.events[k]);

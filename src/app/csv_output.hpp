@@ -4,7 +4,8 @@
 //   # mdrmap <version> (<commit>) simulate solver=... rtol=... error_estimate=...
 //     cells_per_a1=... elements=... steps=... element_updates=... root_solves=...
 //     wall_seconds=...                                        (one line)
-//   # case d=... R=... tau=... G=... v=... history=W1:T1,W2:T2,... spacing=linear|log
+//   # case d=... R=... tau=... G=... [aT=...] v=... [prony=G1:TAU1,...]
+//     [T=... wlf=C1:C2:TREF] history=W1:T1,W2:T2,... spacing=linear|log
 //     samples=... log-decades=... zeta0=...                   (one line; under load
 //     FN=... in place of d=..., and a0=... before zeta0)
 //   # error_vs_exact=...                  (fixed depth, a solver other than exact)
@@ -20,7 +21,10 @@
 //
 // The `# case` line gives every parameter of the table (core/model/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the
-// history; of a one_of group (the loading: d or FN) only the member given.
+// history; of a one_of group (the loading: d or FN) only the member given;
+// the shift aT only where it is not 1. The spectrum's terms (prony=) follow
+// the table's parameters where there are terms, then the temperature and
+// its WLF constants where --T gave aT: a Kelvin case prints what it always has.
 // `v` is the velocity v0 before t = 0 and zeta0 = v tau / a1 at fixed depth;
 // under load zeta0 = v tau / a0, a0 the Hertz radius of F0 (Case::a0). The
 // event fields are core/metrics/events.hpp's EventMetrics of the change at the start
@@ -36,6 +40,7 @@
 // Every floating-point number is printed with 17 significant digits, which
 // reads back to the same double.
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "app/simulation.hpp"
@@ -53,8 +58,13 @@ std::string format_history(const History& h);
 inline constexpr const char* kCsvHeader = "t,segment,FN,Fx,mu,a2";
 inline constexpr const char* kCsvHeaderLoad = "t,segment,FN,Fx,mu,a2,d,a1";
 
+/// The `# case` line of a case (without newline); `temperature` as the
+/// input gave it (CaseInput::temperature).
+std::string case_line(const Case& c, const std::optional<TemperatureInput>& temperature);
+
 /// Writes the comment lines, the header and one row per sample to `out`.
 /// Does not flush or check for I/O errors; the caller does (ferror / fclose).
-void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series);
+void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
+                        const std::optional<TemperatureInput>& temperature = std::nullopt);
 
 } // namespace mdrmap::app

@@ -128,7 +128,7 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
 int run(const SimulateArgs& a) {
   OutputFile out(a.output); // opened before the solver runs: a bad path fails fast
   const Simulation sim = simulate(a.in);
-  write_simulate_csv(out.get(), sim.record, sim.series);
+  write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature);
   out.commit();
   return kExitOk;
 }
@@ -187,6 +187,31 @@ std::string required_usage() {
   return s;
 }
 
+std::string rheology_help() {
+  const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
+  const std::string n = std::to_string(kMaxBranches);
+  return help_entry("--prony G1:TAU1,G2:TAU2,...",
+                    "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "
+                    "spring of modulus Gk (" +
+                        std::string(dim_name(g.dim)) + "), " + g.allowed() +
+                        ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) +
+                        "), " + t.allowed() + "; at most " + n +
+                        " terms, absolute values in the units of --G and --tau. With a spectrum "
+                        "--G is the long-term (rubbery) modulus and --tau the parallel dashpot's "
+                        "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
+         help_entry("--prony-file FILE",
+                    "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
+                    "line (at most " +
+                        n +
+                        "); blank lines and lines starting with # are skipped. Give --prony or "
+                        "--prony-file, not both") +
+         help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
+                                "equation (instead of --aT), a finite number > TREF - C2") +
+         help_entry("--wlf C1:C2:TREF",
+                    "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, "
+                    "C2 > 0 (in the unit of T), TREF the reference temperature (aT = 1)");
+}
+
 std::string history_help() {
   const ParamSpec &w = segment_velocity_spec(), &T = segment_duration_spec();
   return help_entry("--v1 V1", "one step: the sliding velocity from t = 0 on (" +
@@ -194,8 +219,10 @@ std::string history_help() {
                                    "; 0 stops the indenter, V1 > V0 is a speed-up") +
          help_entry("--t-end T", "with --v1: how long the step is followed (" +
                                      std::string(dim_name(T.dim)) + "), " + T.allowed() +
-                                     ". Default: 6 tau; for tau = 0, 6 a1/min(V0,V1) "
-                                     "(6 a1/V0 if V1 = 0), a0 in place of a1 under --FN") +
+                                     ". Default: 6 tau (with a spectrum: 6 times the longest "
+                                     "shifted time aT max(tau, tauk)); for a purely elastic "
+                                     "foundation, 6 a1/min(V0,V1) (6 a1/V0 if V1 = 0), a0 in "
+                                     "place of a1 under --FN") +
          help_entry("--history W1:T1,W2:T2,...",
                     "segments one after another from t = 0: sliding velocity Wk (" +
                         std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
@@ -226,7 +253,12 @@ std::string output_help() {
                                                    case parameter given, the
                                                    history; under --FN: FN=...
                                                    in place of d=..., and
-                                                   a0=... before zeta0)
+                                                   a0=... before zeta0; aT=...
+                                                   after G where it is not 1,
+                                                   prony=G1:TAU1,... after v
+                                                   where there are terms,
+                                                   then T=... wlf=... where
+                                                   --T was given)
   # error_vs_exact=...     (solvers other than exact only: the case error
                             against the continuum solution)
   # error_vs_reference=... reference=NAME reference_rtol=...
@@ -278,7 +310,8 @@ velocity, in the method of dimensionality reduction (MDR). A rigid parabolic
 indenter (MDR profile x^2/R) is held at indentation depth d (--d, depth
 control) or pressed with the normal force F0 (--FN, load control: the depth
 follows) on a Kelvin foundation (shear modulus G, relaxation time tau =
-eta/G). It slides steadily at velocity V0 until t = 0, then follows a
+eta/G) or a material with a relaxation spectrum (--prony), its times
+shifted by aT (--aT, or --T with --wlf). It slides steadily at velocity V0 until t = 0, then follows a
 velocity history: one step to V1 (--v1), or segments of constant velocity,
 holds included (--history). The command prints the stationary state before
 t = 0, event metrics of every velocity change and, at N instants per segment,
@@ -293,8 +326,9 @@ times, velocities length/time; forces come out in units of G * length^2.
 
 Case parameters:
 )" + parameter_help(false) +
-         "\nVelocity history after t = 0 (--v1 or --history):\n" + history_help() +
-         "\nSampling, per segment:\n" + sampling_help() + R"(
+         "\nRelaxation spectrum and temperature (optional; none: the Kelvin foundation):\n" +
+         rheology_help() + "\nVelocity history after t = 0 (--v1 or --history):\n" +
+         history_help() + "\nSampling, per segment:\n" + sampling_help() + R"(
 Other options:
   --rtol E       target accuracy: bound on the case error (below), a number
                  in (0, 0.1]. Default: 1e-4

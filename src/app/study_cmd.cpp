@@ -134,11 +134,14 @@ const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
                                         {"timeseries", "run.timeseries"},
                                         {"G", "run.G"},
                                         {"v1", "grid.v1"},
-                                        {"v1-over-v", "grid.v1_over_v"}};
+                                        {"v1-over-v", "grid.v1_over_v"},
+                                        {"temperature", "grid.temperature"},
+                                        {"wlf", "run.wlf"}};
 
 /// The override options and the keys they set: the run's, the seed's step,
-/// and every case parameter of the core's table as a grid column (--d, --FN,
-/// --R, --tau, --v, ...; G stays the seed's [run] G).
+/// the temperature and its WLF constants, every case parameter of the core's
+/// table as a grid column (--d, --FN, --R, --tau, --aT, --v, ...; G stays the
+/// seed's [run] G) and a spectrum's terms (--G1, --tau1, ..., --G32, --tau32).
 const std::vector<std::pair<std::string, std::string>>& overrides() {
   static const auto all = [] {
     std::vector<std::pair<std::string, std::string>> o;
@@ -147,6 +150,9 @@ const std::vector<std::pair<std::string, std::string>>& overrides() {
     for (const ParamSpec& p : case_parameters())
       if (p.part != Part::Sampling && std::string(p.name) != "G")
         o.emplace_back(p.name, std::string("grid.") + p.name);
+    for (const ParamSpec* p : {&branch_modulus_spec(), &branch_time_spec()})
+      for (std::size_t k = 1; k <= kMaxBranches; ++k) // a spectrum's terms: --G1 .. --tau32
+        o.emplace_back(p->name + std::to_string(k), "grid." + (p->name + std::to_string(k)));
     return o;
   }();
   return all;
@@ -258,8 +264,9 @@ std::string study_help() {
                  [--quiet] [overrides...]
 
 Runs a parameter study: every case of the config (a grid over the case
-parameters d or FN, R, tau, G, v and the history's segment velocities and
-durations, or a CSV list of cases) is one velocity history under a fixed
+parameters d or FN, R, tau, G, v, optionally a relaxation spectrum's terms
+Gk, tauk and the shift aT or the temperature, and the history's segment
+velocities and durations, or a CSV list of cases) is one velocity history under a fixed
 depth or a fixed normal load, solved as by 'mdrmap simulate'. Rank 0 hands
 out cases in chunks on request and computes too; every rank writes its
 results into one HDF5 friction map (schema mdrmap-map/2, docs/map-schema.md):
@@ -290,8 +297,11 @@ then the study is checked: a new history segment takes its two keys):
   --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
                             --set grid.FN=1e-3 --set run.spacing=log (repeatable)
   --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
-  --G G  --d SPEC  --FN SPEC  --R SPEC  --tau SPEC  --v SPEC  --v1 SPEC
-  --v1-over-v SPEC
+  --G G  --d SPEC  --FN SPEC  --R SPEC  --tau SPEC  --aT SPEC  --v SPEC
+  --v1 SPEC  --v1-over-v SPEC
+  --Gk SPEC  --tauk SPEC    a relaxation spectrum's term k = 1..32 (grid.Gk, grid.tauk)
+  --temperature SPEC  --wlf C1:C2:TREF   the temperature, shifting the times by
+                            WLF (grid.temperature, run.wlf)
   (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
 
 Progress goes to stderr on rank 0: a live bar on a terminal, a line every 10 s

@@ -47,11 +47,9 @@ Handle create_dataset(hid_t loc, const std::string& name, hid_t type, std::vecto
 
 // ---- self-description: /schema, CF attributes, dimension scales ----------------
 
-// Unit and meaning of a /cases dataset: the core's parameter table, and the
-// history's segment velocity and duration.
+// Unit and meaning of the history's /cases datasets: the segment velocity
+// and duration (the case parameters' come with the MapSpec).
 FieldInfo case_info(const std::string& name) {
-  if (const ParamSpec* p = find_parameter(name))
-    return {"cases/" + name, dim_name(p->dim), p->meaning};
   const ParamSpec& spec = name == "w" ? segment_velocity_spec() : segment_duration_spec();
   return {"cases/" + name, dim_name(spec.dim),
           std::string(spec.meaning) + " (absolute, as run), per segment"};
@@ -141,24 +139,25 @@ void write_block(hid_t dset, hid_t mem_type, hid_t dxpl, hsize_t i0, hsize_t cou
 // /cases [begin, end) from the cases, taken by range in blocks of 65536
 // (memory independent of the number of cases): the parameters, then w and T
 // [N, K].
-void write_cases(const std::vector<Handle>& sets, const std::vector<std::string>& params,
-                 hid_t dxpl, std::size_t begin, std::size_t end, std::size_t K,
+void write_cases(const std::vector<Handle>& sets, const std::vector<FieldInfo>& params, hid_t dxpl,
+                 std::size_t begin, std::size_t end, std::size_t K,
                  const MapFile::CaseRange& cases) {
   constexpr std::size_t kBlock = 65536;
   std::vector<Case> rows;
-  std::vector<double> col;
+  std::vector<double> values, col;
+  const std::size_t P = params.size();
   for (std::size_t i0 = begin; i0 < end; i0 += kBlock) {
     const std::size_t i1 = std::min(end, i0 + kBlock);
-    cases(i0, i1, rows);
-    if (rows.size() != i1 - i0) throw std::invalid_argument("MapFile::create: case count");
+    cases(i0, i1, rows, values);
+    if (rows.size() != i1 - i0 || values.size() != rows.size() * P)
+      throw std::invalid_argument("MapFile::create: case count");
     const hsize_t count = rows.size();
-    for (std::size_t c = 0; c < params.size(); ++c) {
-      const ParamSpec* p = find_parameter(params[c]);
+    for (std::size_t c = 0; c < P; ++c) {
       col.resize(rows.size());
       for (std::size_t i = 0; i < rows.size(); ++i)
-        col[i] = p->get(rows[i]);
+        col[i] = values[i * P + c];
       write_block(sets[c].id(), H5T_NATIVE_DOUBLE, dxpl, i0, count, 1, col.data(),
-                  "writing /cases/" + params[c]);
+                  "writing /" + params[c].path);
     }
     for (std::size_t j = 0; j < 2; ++j) {
       col.assign(rows.size() * K, 0.0);
@@ -235,10 +234,20 @@ std::uint64_t map_file_bytes(const MapSpec& spec, std::size_t text_bytes) {
 void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const std::vector<Case>& cases) {
   if (cases.size() != spec.n_cases) throw std::invalid_argument("MapFile::create: case count");
-  create(comm, path, spec, prov, [&cases](std::size_t i0, std::size_t i1, std::vector<Case>& out) {
-    out.assign(cases.begin() + static_cast<std::ptrdiff_t>(i0),
-               cases.begin() + static_cast<std::ptrdiff_t>(i1));
-  });
+  std::vector<const ParamSpec*> table;
+  for (const FieldInfo& p : spec.case_params) {
+    table.push_back(find_parameter(p.path.substr(p.path.find('/') + 1)));
+    if (!table.back()) throw std::invalid_argument("MapFile::create: no parameter " + p.path);
+  }
+  create(comm, path, spec, prov,
+         [&](std::size_t i0, std::size_t i1, std::vector<Case>& out, std::vector<double>& params) {
+           out.assign(cases.begin() + static_cast<std::ptrdiff_t>(i0),
+                      cases.begin() + static_cast<std::ptrdiff_t>(i1));
+           params.clear();
+           for (const Case& c : out)
+             for (const ParamSpec* p : table)
+               params.push_back(p->get(c));
+         });
 }
 
 namespace {
@@ -372,8 +381,6 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
                      const Provenance& prov, const CaseRange& cases) {
   if (spec.n_cases == 0 || spec.segments == 0)
     throw std::invalid_argument("MapFile::create: no cases");
-  for (const std::string& p : spec.case_params)
-    if (!find_parameter(p)) throw std::invalid_argument("MapFile::create: no parameter " + p);
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   Handle fapl = mpio_fapl(comm, "creating " + path);
@@ -398,10 +405,10 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   }
   Dimensions dims{create_dimension(f, "case", n), create_dimension(f, "event", K),
                   create_dimension(f, "sample", K * static_cast<hsize_t>(spec.samples))};
-  const std::vector<std::string>& params = spec.case_params;
+  const std::vector<FieldInfo>& params = spec.case_params;
   std::vector<Handle> case_sets;
-  for (const std::string& c : params)
-    case_sets.push_back(per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, 0, -1, false));
+  for (const FieldInfo& c : params)
+    case_sets.push_back(per_case(f, dims, c, H5T_IEEE_F64LE, n, 0, -1, false));
   for (const char* c : {"w", "T"})
     case_sets.push_back(
         per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, K, dims.events.id(), false));

@@ -74,9 +74,10 @@ struct MapSpec {
   long samples = 0;         ///< S, per segment
   bool by_force = false;
   bool timeseries = false;
-  /// /cases/<name> [N]: the case parameters of the core's table the study
-  /// sets (e.g. FN, R, tau, G, v), in column order
-  std::vector<std::string> case_params;
+  /// /cases/<name> [N]: the study's case parameters (e.g. FN, R, tau, G, v;
+  /// a spectrum's G1, tau1, ..., aT, temperature), in column order: their
+  /// paths "cases/<name>", units and meanings
+  std::vector<FieldInfo> case_params;
   GridInfo grid; ///< empty for a case list
   RowLayout layout() const { return RowLayout(segments, by_force); }
 };
@@ -115,8 +116,11 @@ struct Failure {
 
 class MapFile {
 public:
-  /// Cases [i0, i1) of the study into `out` (replacing its contents).
-  using CaseRange = std::function<void(std::size_t i0, std::size_t i1, std::vector<Case>& out)>;
+  /// Cases [i0, i1) of the study into `out` and the values of their case
+  /// parameters (MapSpec::case_params, case after case) into `params`
+  /// (replacing the contents of both).
+  using CaseRange = std::function<void(std::size_t i0, std::size_t i1, std::vector<Case>& out,
+                                       std::vector<double>& params)>;
   /// Collective. Creates `path` (which must not exist) with every dataset
   /// allocated and its blocks reserved; every rank writes its share of
   /// /cases (taken by range in blocks: no rank holds every case; `cases` is
@@ -124,7 +128,9 @@ public:
   /// is zero. The file is closed (complete and valid) on return.
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const CaseRange& cases);
-  /// The same from a list of all the cases (tests, small studies).
+  /// The same from a list of all the cases (tests, small studies); the case
+  /// parameters must be entries of the core's table (their values read from
+  /// the cases).
   static void create(MPI_Comm comm, const std::string& path, const MapSpec& spec,
                      const Provenance& prov, const std::vector<Case>& cases);
   /// Serial, read-only: is `path` an HDF5 file with an mdrmap map schema

@@ -51,6 +51,47 @@ const ParamSpec& ratio_spec(bool velocity) {
   return velocity ? w : T;
 }
 
+/// The temperature's range: any finite number (the WLF constants say more).
+const ParamSpec& temperature_spec() {
+  static const ParamSpec t{
+      "temperature",
+      "TEMP",
+      Part::Material,
+      Dim::Number,
+      -kInf,
+      false,
+      kInf,
+      true,
+      nullptr,
+      0.0,
+      "temperature, in the unit of the WLF constants of [run] wlf, which give the "
+      "shift factor aT at it",
+      no_get,
+      no_set};
+  return t;
+}
+
+/// Gk or tauk: the term k (1..kMaxBranches, no leading 0) of a spectrum column.
+bool branch_column(const std::string& name, Column& out) {
+  const ParamSpec* specs[] = {&branch_modulus_spec(), &branch_time_spec()};
+  for (const ParamSpec* spec : specs) {
+    const std::string stem = spec->name;
+    if (name.size() <= stem.size() || name.compare(0, stem.size(), stem) != 0) continue;
+    const std::string digits = name.substr(stem.size());
+    if (digits.size() > 2 || digits[0] == '0') return false;
+    std::size_t k = 0;
+    for (const char ch : digits) {
+      if (ch < '0' || ch > '9') return false;
+      k = 10 * k + static_cast<std::size_t>(ch - '0');
+    }
+    if (k > kMaxBranches) return false;
+    out.kind = spec == specs[0] ? Column::Kind::BranchModulus : Column::Kind::BranchTime;
+    out.branch = k;
+    return true;
+  }
+  return false;
+}
+
 /// "12" -> 12; false unless the text is 1 to 5 digits without a leading 0.
 bool segment_number(const std::string& s, std::size_t& k) {
   if (s.empty() || s.size() > 5 || s[0] == '0') return false;
@@ -71,6 +112,11 @@ bool parse_column(const std::string& name, Column& out) {
       out.param = p;
       return true;
     }
+  if (name == "temperature") {
+    out.kind = Column::Kind::Temperature;
+    return true;
+  }
+  if (branch_column(name, out)) return true;
   if (name == "v1" || name == "v1_over_v") { // the seed's step
     out.kind = name == "v1" ? Column::Kind::Velocity : Column::Kind::VelocityOverV;
     out.segment = 1;
@@ -99,10 +145,40 @@ const std::vector<const ParamSpec*>& study_parameters() {
   static const std::vector<const ParamSpec*> p = [] {
     std::vector<const ParamSpec*> out;
     for (const ParamSpec& s : case_parameters())
-      if (s.part != Part::Sampling && std::string(s.name) != "aT") out.push_back(&s);
+      if (s.part != Part::Sampling) out.push_back(&s);
     return out;
   }();
   return p;
+}
+
+bool only_where_given(const ParamSpec& p) {
+  return p.part == Part::Material && std::strcmp(p.name, "aT") == 0;
+}
+
+std::string column_name(const Column& col) {
+  switch (col.kind) {
+  case Column::Kind::Param:
+    return col.param->name;
+  case Column::Kind::BranchModulus:
+    return branch_modulus_spec().name + std::to_string(col.branch);
+  case Column::Kind::BranchTime:
+    return branch_time_spec().name + std::to_string(col.branch);
+  case Column::Kind::Temperature:
+    return temperature_spec().name;
+  default:
+    break;
+  }
+  return history_names(col.segment)[col.kind == Column::Kind::Velocity        ? 0
+                                    : col.kind == Column::Kind::VelocityOverV ? 1
+                                    : col.kind == Column::Kind::Duration      ? 2
+                                                                              : 3];
+}
+
+std::string column_meaning(const Column& col) {
+  const std::string meaning = column_spec(col).meaning;
+  if (col.history()) return "segment " + std::to_string(col.segment) + ": " + meaning;
+  if (col.spectrum()) return "term " + std::to_string(col.branch) + ": " + meaning;
+  return meaning;
 }
 
 const ParamSpec& column_spec(const Column& col) {
@@ -115,6 +191,12 @@ const ParamSpec& column_spec(const Column& col) {
     return segment_duration_spec();
   case Column::Kind::VelocityOverV:
     return ratio_spec(true);
+  case Column::Kind::BranchModulus:
+    return branch_modulus_spec();
+  case Column::Kind::BranchTime:
+    return branch_time_spec();
+  case Column::Kind::Temperature:
+    return temperature_spec();
   case Column::Kind::DurationOverTau:
     break;
   }
@@ -164,16 +246,47 @@ std::string needed() {
 
 } // namespace
 
+namespace {
+
+constexpr std::size_t kBranchPlaces = 2 * kMaxBranches;
+
+/// The slot r of a table parameter by name.
+std::size_t slot_of(const char* name) {
+  for (std::size_t r = 0; r < slots().size(); ++r)
+    for (const ParamSpec* p : slots()[r].params)
+      if (std::strcmp(p->name, name) == 0) return r;
+  throw std::logic_error(std::string("slot_of: not a study parameter: ") + name);
+}
+
+/// The place of parameter slot r in column order: the spectrum's terms
+/// follow the long-term modulus G.
+std::size_t slot_rank(std::size_t r) {
+  return r <= slot_of("G") ? r : r + kBranchPlaces;
+}
+
+/// The parameter slot at rank `rank`, or slots().size() for a term's place.
+std::size_t slot_at(std::size_t rank) {
+  for (std::size_t r = 0; r < slots().size(); ++r)
+    if (slot_rank(r) == rank) return r;
+  return slots().size();
+}
+
+} // namespace
+
 std::size_t column_rank(const Column& col) {
-  const std::size_t params = slots().size();
+  const std::size_t params = slots().size() + kBranchPlaces;
   if (col.history()) {
     const bool duration =
         col.kind == Column::Kind::Duration || col.kind == Column::Kind::DurationOverTau;
     return params + 2 * (col.segment - 1) + (duration ? 1 : 0);
   }
-  for (std::size_t r = 0; r < params; ++r)
+  if (col.spectrum())
+    return slot_rank(slot_of("G")) + 1 + 2 * (col.branch - 1) +
+           (col.kind == Column::Kind::BranchTime ? 1 : 0);
+  if (col.kind == Column::Kind::Temperature) return slot_rank(slot_of("aT")); // instead of aT
+  for (std::size_t r = 0; r < slots().size(); ++r)
     for (const ParamSpec* p : slots()[r].params)
-      if (p == col.param) return r;
+      if (p == col.param) return slot_rank(r);
   throw std::logic_error("column_rank: not a study parameter");
 }
 
@@ -182,6 +295,47 @@ std::vector<std::string> history_names(std::size_t k) {
   return {"w" + s, "w" + s + "_over_v", "T" + s, "T" + s + "_over_tau"};
 }
 
+namespace {
+
+/// Every term 1..N of a spectrum has both its modulus and its time (N the
+/// highest term given). `at` is indexed by rank.
+void check_spectrum(const std::vector<const Axis*>& at, const std::string& where) {
+  const std::size_t first = slot_rank(slot_of("G")) + 1;
+  std::size_t N = 0;
+  for (std::size_t k = 1; k <= kMaxBranches; ++k)
+    if (at[first + 2 * (k - 1)] || at[first + 2 * (k - 1) + 1]) N = k;
+  for (std::size_t k = 1; k <= N; ++k)
+    for (std::size_t j = 0; j < 2; ++j) {
+      if (at[first + 2 * (k - 1) + j]) continue;
+      const std::string G = branch_modulus_spec().name + std::to_string(k),
+                        tau = branch_time_spec().name + std::to_string(k);
+      const Axis* other = at[first + 2 * (k - 1) + 1 - j];
+      throw ConfigError(std::string("grid.") + (j == 0 ? G : tau),
+                        where + (other ? "term " + std::to_string(k) + " of the spectrum has " +
+                                             other->name + " but no " + (j == 0 ? G : tau) +
+                                             "; a term takes its modulus and its time"
+                                       : "the spectrum has terms up to " + std::to_string(N) +
+                                             " but no " + G + " and " + tau +
+                                             "; give the terms 1 to N, each with both"));
+    }
+}
+
+/// An optional parameter's column (G) with its table default, at its place.
+void add_default(std::vector<Axis>& axes, const ParamSpec& p, std::size_t rank) {
+  Axis d;
+  d.name = p.name;
+  d.section = "grid";
+  d.spec = format_number(p.fallback);
+  d.values = {p.fallback};
+  parse_column(p.name, d.column);
+  std::size_t before = 0; // its place in column order
+  while (before < axes.size() && column_rank(axes[before].column) < rank)
+    ++before;
+  axes.insert(axes.begin() + static_cast<std::ptrdiff_t>(before), d);
+}
+
+} // namespace
+
 void order_columns(std::vector<Axis>& axes, const std::string& where) {
   std::stable_sort(axes.begin(), axes.end(), [](const Axis& a, const Axis& b) {
     return column_rank(a.column) < column_rank(b.column);
@@ -189,7 +343,8 @@ void order_columns(std::vector<Axis>& axes, const std::string& where) {
   std::size_t K = 0;
   for (const Axis& a : axes)
     K = std::max(K, a.column.segment);
-  std::vector<const Axis*> at(slots().size() + 2 * K, nullptr);
+  const std::size_t P = slots().size() + kBranchPlaces;
+  std::vector<const Axis*> at(P + 2 * K, nullptr);
   for (const Axis& a : axes) {
     const Axis*& slot = at[column_rank(a.column)];
     if (slot)
@@ -198,38 +353,30 @@ void order_columns(std::vector<Axis>& axes, const std::string& where) {
                                         ") are given; they set the same thing, give only one");
     slot = &a;
   }
-  const std::size_t P = slots().size();
-  for (std::size_t r = 0; r < P; ++r)
-    if (!at[r] && slots()[r].required())
+  for (std::size_t r = 0; r < slots().size(); ++r)
+    if (!at[slot_rank(r)] && slots()[r].required())
       throw ConfigError(std::string("grid.") + slots()[r].params.front()->name,
                         where + "no " + slots()[r].names() + "; " + needed());
+  check_spectrum(at, where);
   if (K == 0)
     throw ConfigError("history.w1", where + "no history; give the segments w1 (or w1_over_v) and "
                                             "T1 (or T1_over_tau), ... in [history] or as columns "
                                             "of the case list, or the seed's v1");
   for (std::size_t k = 1; k <= K; ++k)
     for (std::size_t j = 0; j < 2; ++j)
-      if (!at[slots().size() + 2 * (k - 1) + j]) {
+      if (!at[P + 2 * (k - 1) + j]) {
         const auto names = history_names(k);
         throw ConfigError("history." + names[2 * j],
                           where + "segment " + std::to_string(k) + " of " + std::to_string(K) +
                               " has no " + (j == 0 ? "velocity" : "duration") + "; give " +
                               names[2 * j] + " or " + names[2 * j + 1]);
       }
-  for (std::size_t r = 0; r < P; ++r)
-    if (!at[r]) { // an optional parameter (G): its table default unless given
-      const ParamSpec& p = *slots()[r].params.front();
-      Axis d;
-      d.name = p.name;
-      d.section = "grid";
-      d.spec = format_number(p.fallback);
-      d.values = {p.fallback};
-      parse_column(p.name, d.column);
-      std::size_t before = 0; // its place in column order
-      while (before < axes.size() && column_rank(axes[before].column) < r)
-        ++before;
-      axes.insert(axes.begin() + static_cast<std::ptrdiff_t>(before), d);
-    }
+  for (std::size_t rank = 0; rank < P; ++rank) {
+    const std::size_t r = slot_at(rank);
+    if (r == slots().size() || at[rank]) continue;
+    const ParamSpec& p = *slots()[r].params.front();
+    if (!only_where_given(p)) add_default(axes, p, rank); // G: its table default
+  }
 }
 
 std::string grid_shape(const StudyConfig& c) {

@@ -11,17 +11,33 @@
 namespace mdrmap::study::detail {
 
 /// The table's case parameters a study sets (not the sampling): d, FN, R,
-/// tau, G, v, in the table's order.
+/// tau, G, aT, v, in the table's order.
 const std::vector<const ParamSpec*>& study_parameters();
+
+/// Whether an optional parameter is a column only where the study gives it
+/// (aT, which a temperature column may set instead), rather than always with
+/// its table default (G, a column of every study since the first schema).
+/// The spectrum's Gk, tauk and the temperature are always only where given.
+bool only_where_given(const ParamSpec& p);
+
+/// The canonical name of a column (a table parameter's, G3, tau3,
+/// temperature, wK, wK_over_v, TK, TK_over_tau): its /cases dataset.
+std::string column_name(const Column& col);
+
+/// The meaning of a column (its range entry's), "segment k: " or "term k: "
+/// before it for a history segment's or a spectrum term's.
+std::string column_meaning(const Column& col);
 
 /// The range a column's values must be in: the table's entry, the segment
 /// velocity's or duration's, or (relative columns) a ratio's.
 const ParamSpec& column_spec(const Column& col);
 
 /// Position of a column in column order: the case parameters in the table's
-/// order (a one-of group, the loading d or FN, in one place): the loading 0,
-/// R 1, tau 2, G 3, v 4; then P + 2 (k - 1) for wk and P + 1 + 2 (k - 1) for
-/// Tk, P the number of parameter places.
+/// order (a one-of group, the loading d or FN, in one place; temperature in
+/// aT's place): the loading 0, R 1, tau 2, G 3, then the spectrum's terms G1
+/// 4, tau1 5, ..., G32 66, tau32 67, then aT (or temperature) 68, v 69; then
+/// P + 2 (k - 1) for wk and P + 1 + 2 (k - 1) for Tk, P = 70 the number of
+/// parameter places.
 std::size_t column_rank(const Column& col);
 
 /// The names a history column of segment k may have.
@@ -29,7 +45,8 @@ std::vector<std::string> history_names(std::size_t k);
 
 /// Sorts the columns into column order and checks that they make cases:
 /// exactly one loading, R, tau and v (an optional parameter, G, added with
-/// its table default when missing), and for
+/// its table default when missing; aT only where given), the spectrum's
+/// terms 1..N each with its modulus and its time, and for
 /// every segment 1..K exactly one velocity and one duration. `where` locates
 /// a message. Throws ConfigError naming the column.
 void order_columns(std::vector<Axis>& axes, const std::string& where);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "core/model/params.hpp"
+#include "core/model/scales.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "study/axes.hpp"
 #include "study/case_source.hpp"
@@ -61,18 +62,23 @@ void set_velocity(Case& c, const Axis& a, double x) {
 }
 
 /// Segment k's duration from its column's value (velocities already set).
-/// Relative to tau; with tau = 0, six contact half-widths at the slower
-/// moving velocity of the segment and the one before it.
+/// Relative to the case's time scale (scales(c).time: aT max(tau, tauk), tau
+/// for Kelvin at aT = 1); with a time scale of 0, six contact half-widths
+/// at the slower moving velocity of the segment and the one before it.
 void set_duration(Case& c, const Axis& a, double x) {
   const std::size_t k = a.column.segment - 1;
   Segment& s = c.history.segments[k];
   const auto T_name = [&] { return "T" + std::to_string(a.column.segment); };
+  const double time = scales(c).time;
   if (a.column.kind == Column::Kind::Duration) {
     s.T = x;
-  } else if (c.rheology.tau > 0.0) {
-    s.T = x * c.rheology.tau;
-    check_resolved(a, segment_duration_spec(), s.T,
-                   [&] { return T_name() + " = " + a.name + " * tau"; });
+  } else if (time > 0.0) {
+    s.T = x * time;
+    check_resolved(a, segment_duration_spec(), s.T, [&] {
+      return T_name() + " = " + a.name + " * " +
+             (c.rheology.kelvin() && c.rheology.aT == 1.0 ? "tau"
+                                                          : "aT max(tau, tauk) (the time scale)");
+    });
   } else {
     const double w0 = c.history.before(k), w1 = s.w;
     const double slow = (w0 > 0.0 && w1 > 0.0) ? std::min(w0, w1) : std::max(w0, w1);
@@ -89,12 +95,16 @@ void set_duration(Case& c, const Axis& a, double x) {
   }
 }
 
-/// The option of the column a core option (a table name, "history") names.
+/// The option of the column a core option (a table name, a term's G3 or
+/// tau3, "history") names; aT is the temperature's where it gave aT.
 std::string column_option(const StudyConfig& c, const std::string& core) {
-  for (const Axis& a : c.axes)
-    if (core == "history" ? a.column.history()
-                          : (!a.column.history() && core == a.column.param->name))
-      return a.option();
+  for (const Axis& a : c.axes) {
+    const Column& col = a.column;
+    const std::string name =
+        col.history() ? "history"
+                      : (col.kind == Column::Kind::Temperature ? "aT" : column_name(col));
+    if (core == name) return a.option();
+  }
   if (core == "samples") return "run.samples";
   if (core == "log-decades") return "run.decades";
   return "config";
@@ -150,8 +160,24 @@ void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
   }
 }
 
+/// Refuses a named solver that does not solve the study's spectrum (auto
+/// picks among those that do: run_case refuses a case none handles).
+void check_solver_takes_spectrum(const StudyConfig& c, SolverKind kind) {
+  std::string terms;
+  for (const Axis& a : c.axes)
+    if (a.column.spectrum()) terms += (terms.empty() ? "" : ", ") + a.name;
+  if (terms.empty() || kind == SolverKind::Auto ||
+      solver_handles(kind, ModelNeeds{c.by_force(), true}))
+    return;
+  throw ConfigError("run.solver", std::string("solver ") + solver_name(kind) +
+                                      " solves the Kelvin foundation only, and the study has a "
+                                      "relaxation spectrum (" +
+                                      terms + "); give solver = auto");
+}
+
 /// Refuses a solver that does not solve the study's loading (the core says
-/// which do). Throws ConfigError("run.solver") without location.
+/// which do), or a named one that does not solve its spectrum. Throws
+/// ConfigError("run.solver") without location.
 void check_solver(const StudyConfig& c) {
   SolverKind kind = SolverKind::Auto;
   try {
@@ -160,7 +186,10 @@ void check_solver(const StudyConfig& c) {
     throw ConfigError("run.solver", std::string("solver ") + e.what());
   }
   const bool force = c.by_force();
-  if (solver_handles(kind, force)) return;
+  if (solver_handles(kind, force)) {
+    check_solver_takes_spectrum(c, kind);
+    return;
+  }
   std::string takes;
   for (const SolverKind k :
        {SolverKind::Auto, SolverKind::Exact, SolverKind::Mdr, SolverKind::Baseline})
@@ -190,7 +219,8 @@ std::string canonical_run(const RunSettings& r) {
   return "[run]\nsamples = " + std::to_string(r.samples) +
          "\nspacing = " + (r.spacing == Spacing::Log ? "log" : "linear") +
          "\ndecades = " + format_number(r.decades) + "\nrtol = " + format_number(r.rtol) +
-         "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") + "\n";
+         "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") + "\n" +
+         (r.wlf ? "wlf = " + format_wlf(*r.wlf) + "\n" : std::string()); // where given only
 }
 
 std::string canonical_columns(const StudyConfig& c) {
@@ -211,10 +241,42 @@ std::size_t StudyConfig::segments() const {
 
 bool StudyConfig::by_force() const {
   for (const Axis& a : axes)
-    if (!a.column.history() && a.column.param->part == Part::Loading)
+    if (a.column.kind == Column::Kind::Param && a.column.param->part == Part::Loading)
       return a.column.param->dim == Dim::Force;
   return false;
 }
+
+namespace {
+
+/// The number of terms of the study's spectrum (the highest k of Gk, tauk).
+std::size_t spectrum_terms(const StudyConfig& c) {
+  std::size_t n = 0;
+  for (const Axis& a : c.axes)
+    n = std::max(n, a.column.branch);
+  return n;
+}
+
+/// Sets a column that is not of the history: a table parameter, a term's
+/// modulus or time, or aT from the temperature by [run] wlf.
+void set_column_value(const StudyConfig& c, Case& out, const Axis& a, double x) {
+  if (a.column.kind == Column::Kind::BranchModulus)
+    out.rheology.branches[a.column.branch - 1].G = x;
+  else if (a.column.kind == Column::Kind::BranchTime)
+    out.rheology.branches[a.column.branch - 1].tau = x;
+  else if (a.column.kind == Column::Kind::Temperature) {
+    if (!c.run.wlf) // complete_columns refuses it: a hand-made config
+      throw ConfigError(a.option(), "temperature needs [run] wlf = C1:C2:TREF");
+    try {
+      out.rheology.aT = wlf_shift(*c.run.wlf, x, a.option());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(a.option(), "temperature " + std::string(e.what()) + " (WLF " +
+                                         format_wlf(*c.run.wlf) + ")");
+    }
+  } else
+    a.column.param->set(out, x);
+}
+
+} // namespace
 
 Case case_for(const StudyConfig& c, const Row& r) {
   return checked_case_for(c, r).take();
@@ -227,9 +289,10 @@ CheckedCase checked_case_for(const StudyConfig& c, const Row& r) {
                                 " columns");
   Case out;
   out.history.segments.assign(c.segments(), Segment{});
+  out.rheology.branches.assign(spectrum_terms(c), Branch{});
   for (std::size_t i = 0; i < c.axes.size(); ++i) {
     check_value(c.axes[i], r[i]);
-    if (!c.axes[i].column.history()) c.axes[i].column.param->set(out, r[i]);
+    if (!c.axes[i].column.history()) set_column_value(c, out, c.axes[i], r[i]);
   }
   for (std::size_t i = 0; i < c.axes.size(); ++i) {
     const Column::Kind k = c.axes[i].column.kind;
@@ -253,6 +316,9 @@ CheckedCase checked_case_for(const StudyConfig& c, const Row& r) {
     if (e.option().find('.') != std::string::npos) throw; // a column's own message
     const std::string option = column_option(c, e.option());
     const std::string name = option.substr(option.find('.') + 1);
+    if (name == "temperature" && e.option() == "aT") // the shift the temperature gave
+      throw InvalidInput(option, "temperature gives aT = " + format_number(out.rheology.aT) +
+                                     ", and aT " + e.what());
     throw InvalidInput(option, name + " " + e.what());
   }
 }

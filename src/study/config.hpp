@@ -9,6 +9,10 @@
 //   tau = linspace:0.5:2:4  ; n evenly spaced values from lo to hi (inclusive),
 //   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values (values, not exponents)
 //   G   = 1                 ; optional (default 1)
+//   G1 = 2                  ; optional: a relaxation spectrum's terms Gk, tauk
+//   tau1 = 0.01             ;   (k = 1..N, N <= 32, both of each term)
+//   aT = 1e-3               ; optional: the shift factor, or instead
+//   temperature = 20, 40    ;   a temperature, with [run] wlf
 //
 //   [history]               ; segments k = 1..K after stationary sliding at v
 //   w1_over_v   = 0         ; velocity: wk, or wk_over_v (times v)
@@ -24,11 +28,16 @@
 //   rtol = 1e-4
 //   solver = auto           ; auto | exact | mdr | baseline
 //   timeseries = false      ; store the full time series of every case
+//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column
 //
 // Every key of [grid] and [history] is a column of the study; in a grid each
 // column is an axis (case order: C order over the columns in column order, the
-// last fastest). The seed's one-step form is still read: [grid] v1 or
-// v1_over_v is the column w1 or w1_over_v, [run] t_end_over_tau the column
+// last fastest). The optional columns aT (or temperature), Gk and tauk are
+// columns, and /cases datasets of the map, only where the study gives them;
+// G always is (default 1). Relative durations (TK_over_tau) are in units of
+// the case's time scale, scales(c).time: the longest relaxation time shifted
+// by aT, aT max(tau, tauk) (tau for a Kelvin material at aT = 1). The seed's one-step form is still
+// read: [grid] v1 or v1_over_v is the column w1 or w1_over_v, [run] t_end_over_tau the column
 // T1_over_tau and [run] G the column G.
 //
 // Comments start with ';' or '#'. Keys are case-sensitive.
@@ -37,8 +46,11 @@
 #include <utility>
 #include <vector>
 
+#include <optional>
+
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/wlf.hpp"
 
 namespace mdrmap::study {
 
@@ -46,14 +58,30 @@ namespace mdrmap::study {
 /// and whose message starts with "FILE:LINE: " when it comes from a file.
 using ConfigError = InvalidInput;
 
-/// What a study column sets in a case: a parameter of the core's table, or
-/// a history segment's velocity or duration, absolute or relative.
+/// What a study column sets in a case: a parameter of the core's table, a
+/// term of the relaxation spectrum (Gk, tauk), the temperature (the shift aT
+/// by [run] wlf), or a history segment's velocity or duration, absolute or
+/// relative.
 struct Column {
-  enum class Kind { Param, Velocity, VelocityOverV, Duration, DurationOverTau };
+  enum class Kind {
+    Param,
+    Velocity,
+    VelocityOverV,
+    Duration,
+    DurationOverTau,
+    BranchModulus,
+    BranchTime,
+    Temperature
+  };
   Kind kind = Kind::Param;
   const ParamSpec* param = nullptr; ///< Param: the table's entry
   std::size_t segment = 0;          ///< history columns: the segment, from 1
-  bool history() const { return kind != Kind::Param; }
+  std::size_t branch = 0;           ///< Gk, tauk: the term k, from 1
+  bool history() const {
+    return kind == Kind::Velocity || kind == Kind::VelocityOverV || kind == Kind::Duration ||
+           kind == Kind::DurationOverTau;
+  }
+  bool spectrum() const { return kind == Kind::BranchModulus || kind == Kind::BranchTime; }
 };
 
 /// One column of a study: its values (a grid axis), or, in a case list, the
@@ -81,13 +109,15 @@ struct RunSettings {
   double rtol = 1e-4;
   std::string solver = "auto";
   bool timeseries = false;
+  std::optional<Wlf> wlf; ///< the WLF constants of a temperature column
 };
 
 struct StudyConfig {
   enum class Kind { Grid, Cases };
   Kind kind = Kind::Grid;
-  /// The study's columns in column order: the loading, R, tau, G, v, then w1,
-  /// T1, w2, T2, ... (each velocity and duration absolute or relative).
+  /// The study's columns in column order: the loading, R, tau, G, [G1, tau1,
+  /// G2, tau2, ...], [aT or temperature], v, then w1, T1, w2, T2, ... (each
+  /// velocity and duration absolute or relative).
   std::vector<Axis> axes;
   std::string cases_file; ///< cases only: path as resolved against the INI's directory
   RunSettings run;
@@ -131,8 +161,9 @@ void apply_overrides(StudyConfig& c,
 std::vector<std::string> override_keys();
 
 /// What a column name means: a parameter of the core's table (not the
-/// sampling), wK, wK_over_v, TK, TK_over_tau (K >= 1), or the seed's v1 and
-/// v1_over_v. False for anything else.
+/// sampling), a spectrum's Gk, tauk (k = 1..32), temperature, wK, wK_over_v,
+/// TK, TK_over_tau (K >= 1), or the seed's v1 and v1_over_v. False for
+/// anything else.
 bool parse_column(const std::string& name, Column& out);
 
 /// Parses one column's values (a number, comma list, linspace:lo:hi:n or
@@ -150,9 +181,10 @@ std::vector<Row> expand_cases(const StudyConfig& c);
 std::size_t case_count(const StudyConfig& c);
 
 /// The case a row runs, validated: each column's value against its range,
-/// relative values resolved (wK_over_v * v, TK_over_tau * tau; with tau = 0
-/// six contact half-widths at the slower moving velocity), the sampling of
-/// [run], then the whole case. Throws InvalidInput whose option() is the
+/// the spectrum's terms, aT from the temperature (WLF), relative values
+/// resolved (wK_over_v * v, TK_over_tau * the time scale aT max(tau, tauk);
+/// with a time scale of 0, six contact half-widths at the slower moving
+/// velocity), the sampling of [run], then the whole case. Throws InvalidInput whose option() is the
 /// column's option ("grid.R", "history.T1_over_tau", ...) or "run.samples".
 Case case_for(const StudyConfig& c, const Row& r);
 /// The same, marked as checked: what the solvers take without checking again.

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <sys/statvfs.h>
 
+#include "study/case_columns.hpp"
 #include "study/columns.hpp"
 
 namespace mdrmap::study::detail {
@@ -204,10 +205,7 @@ int ranks_on_this_node(MPI_Comm comm) {
 // Unit and meaning of a grid axis: its column's range entry (the core's
 // table, a segment's velocity or duration, or a ratio).
 io::FieldInfo axis_info(const Axis& a) {
-  const ParamSpec& spec = column_spec(a.column);
-  std::string meaning = spec.meaning;
-  if (a.column.history()) meaning = "segment " + std::to_string(a.column.segment) + ": " + meaning;
-  return {"grid/" + a.name, dim_name(spec.dim), meaning};
+  return {"grid/" + a.name, dim_name(column_spec(a.column).dim), column_meaning(a.column)};
 }
 
 // The map a study needs: its size, and the axes of a grid.
@@ -218,8 +216,7 @@ io::MapSpec map_spec(const StudyConfig& cfg, std::size_t n_cases) {
   spec.samples = cfg.run.samples;
   spec.by_force = cfg.by_force();
   spec.timeseries = cfg.run.timeseries;
-  for (const Axis& a : cfg.axes)
-    if (!a.column.history()) spec.case_params.push_back(a.column.param->name);
+  spec.case_params = case_parameter_info(cfg);
   if (cfg.kind == StudyConfig::Kind::Grid) {
     for (const auto& ax : cfg.axes) {
       spec.grid.names.push_back(ax.name);

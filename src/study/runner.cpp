@@ -20,6 +20,7 @@
 
 #include "io/map_lock.hpp"
 #include "mdrmap/version.hpp"
+#include "study/case_columns.hpp"
 #include "study/compute.hpp"
 #include "study/preflight.hpp"
 
@@ -187,13 +188,17 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
     collectively(comm, [&] {
       // every rank writes its share of /cases, taking the cases by range
       std::vector<Row> rows;
-      io::MapFile::create(comm, tmp, plan.spec, prov,
-                          [&](std::size_t i0, std::size_t i1, std::vector<Case>& out) {
-                            plan.cases->rows(i0, i1, rows);
-                            out.clear();
-                            for (const Row& r : rows)
-                              out.push_back(case_for(req.config, r));
-                          });
+      io::MapFile::create(
+          comm, tmp, plan.spec, prov,
+          [&](std::size_t i0, std::size_t i1, std::vector<Case>& out, std::vector<double>& params) {
+            plan.cases->rows(i0, i1, rows);
+            out.clear();
+            params.clear();
+            for (const Row& r : rows) {
+              out.push_back(case_for(req.config, r));
+              append_case_parameters(req.config, r, out.back(), params);
+            }
+          });
     });
     collectively(comm, [&] {
       if (rank == 0) install_map(tmp, req.output, replaced, lock);

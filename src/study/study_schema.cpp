@@ -25,7 +25,8 @@ std::vector<std::string> grid_keys() {
   std::vector<std::string> k;
   for (const ParamSpec* p : study_parameters())
     k.push_back(p->name);
-  k.push_back("v1"); // the seed's step: w1
+  k.push_back("temperature"); // aT by [run] wlf
+  k.push_back("v1");          // the seed's step: w1
   k.push_back("v1_over_v");
   return k;
 }
@@ -35,18 +36,25 @@ bool is_history_key(const std::string& key) {
   return key != "v1" && key != "v1_over_v" && parse_column(key, col) && col.history();
 }
 
+/// A spectrum's term Gk or tauk (k = 1..32): keys of [grid].
+bool is_spectrum_key(const std::string& key) {
+  Column col;
+  return parse_column(key, col) && col.spectrum();
+}
+
 const IniSchema& study_schema() {
-  static const IniSchema s{
-      {"grid", "history", "cases", "run"},
-      {grid_keys(),
-       history_names(1),
-       {"file"},
-       {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "t_end_over_tau", "G"}},
-      "[grid], [history], [cases] or [run]",
-      "[grid] or [cases], [history] and [run]",
-      [](const std::string& section, const std::string& key) {
-        return section == "history" && is_history_key(key);
-      }};
+  static const IniSchema s{{"grid", "history", "cases", "run"},
+                           {grid_keys(),
+                            history_names(1),
+                            {"file"},
+                            {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "wlf",
+                             "t_end_over_tau", "G"}},
+                           "[grid], [history], [cases] or [run]",
+                           "[grid] or [cases], [history] and [run]",
+                           [](const std::string& section, const std::string& key) {
+                             return (section == "history" && is_history_key(key)) ||
+                                    (section == "grid" && is_spectrum_key(key));
+                           }};
   return s;
 }
 
@@ -60,6 +68,7 @@ std::vector<std::string> override_keys() {
   for (std::size_t k = 2; k <= 9; ++k)
     for (const auto& key : history_names(k))
       all.push_back("history." + key);
+  all.insert(all.end(), {"grid.G1", "grid.tau1"}); // a spectrum's terms: any k up to 32
   return all;
 }
 
@@ -68,6 +77,7 @@ namespace {
 /// An override's key is known: a listed one or any history column.
 bool known_override(const std::string& key) {
   if (contains(override_keys(), key)) return true;
+  if (starts_with(key, "grid.") && is_spectrum_key(key.substr(5))) return true;
   return starts_with(key, "history.") && is_history_key(key.substr(8));
 }
 
@@ -142,6 +152,14 @@ Spacing run_spacing(const std::string& option, const std::string& text) {
   throw ConfigError(option, "unknown spacing " + shown(text) + "; spacing must be linear or log");
 }
 
+Wlf run_wlf(const std::string& option, const std::string& text) {
+  try {
+    return parse_wlf(option, text);
+  } catch (const InvalidInput& e) {
+    throw ConfigError(option, std::string("wlf ") + e.what());
+  }
+}
+
 /// Sets one [run] key from its text. Throws ConfigError("run.<key>") without location.
 void set_run_key(RunSettings& r, const std::string& key, const std::string& text) {
   const std::string option = "run." + key;
@@ -157,6 +175,8 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
     r.solver = run_solver(option, text);
   else if (key == "timeseries")
     r.timeseries = run_timeseries(option, text);
+  else if (key == "wlf")
+    r.wlf = run_wlf(option, text);
   else
     throw ConfigError(option, "unknown key " + shown(key) + " in [run]");
 }
@@ -211,6 +231,21 @@ void add_column(StudyConfig& c, Axis a) {
   c.axes.push_back(std::move(a));
 }
 
+/// A temperature column takes the WLF constants of [run] wlf, which apply
+/// to it only. Throws ConfigError without location.
+void check_temperature(const StudyConfig& c) {
+  const Axis* temperature = nullptr;
+  for (const Axis& a : c.axes)
+    if (a.column.kind == Column::Kind::Temperature) temperature = &a;
+  if (temperature && !c.run.wlf)
+    throw ConfigError(temperature->option(),
+                      "temperature needs the WLF constants that shift the times at it: "
+                      "[run] wlf = C1:C2:TREF (log10 aT = -C1 (T - TREF) / (C2 + T - TREF))");
+  if (!temperature && c.run.wlf)
+    throw ConfigError("run.wlf", "wlf applies to a temperature column only: give [grid] "
+                                 "temperature (or a case list's column), or drop wlf");
+}
+
 /// Makes the columns whole: the seed's default window t_end_over_tau = 6
 /// after a v1 or v1_over_v without a duration, then column order and the
 /// checks of order_columns; a case list's columns from the config take one
@@ -227,6 +262,7 @@ void complete_columns(StudyConfig& c) {
   order_columns(c.axes, c.kind == StudyConfig::Kind::Cases
                             ? shown_path(c.cases_file) + " and the config: "
                             : std::string());
+  check_temperature(c);
   if (c.kind != StudyConfig::Kind::Cases) return;
   for (const Axis& a : c.axes)
     if (!a.listed && a.values.size() != 1)

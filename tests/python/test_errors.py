@@ -83,7 +83,65 @@ ROWS = [
     ("under load a segment's W shrinks the contact below 1e-75",
      {"v1": DROP, "d": DROP, "FN": "5.333333333333333", "R": "1"}, ["--history", "5e307:1"],
      "history"),
+    # relaxation spectra and the temperature shift (issue 19); {dir} is a
+    # directory holding PRONY_FILES
+    ("prony G = 0", {"prony": "0:1"}, [], "prony"),
+    ("prony G < 0", {"prony": "1:1,-2:10"}, [], "prony"),
+    ("prony tau = 0", {"prony": "1:0"}, [], "prony"),
+    ("prony tau < 0", {"prony": "1:-1"}, [], "prony"),
+    ("prony G = nan", {"prony": "nan:1"}, [], "prony"),
+    ("prony tau = inf", {"prony": "1:inf"}, [], "prony"),
+    ("prony tau overflows", {"prony": "1:1e999"}, [], "prony"),
+    ("prony term without its time", {"prony": "5:"}, [], "prony"),
+    ("prony term without its modulus", {"prony": ":2"}, [], "prony"),
+    ("prony term without ':'", {"prony": "1:1,5"}, [], "prony"),
+    ("prony term with two ':'", {"prony": "1:1:1"}, [], "prony"),
+    ("prony empty term", {"prony": "1:1,,2:2"}, [], "prony"),
+    ("prony empty", {"prony": ""}, [], "prony"),
+    ("prony not a number", {"prony": "1:2s"}, [], "prony"),
+    ("prony 33 terms", {"prony": ",".join(["1:2"] * 33)}, [], "prony"),
+    ("prony and prony-file", {"prony": "1:1", "prony-file": "{dir}/bad_tau.csv"}, [],
+     "prony-file"),
+    ("prony-file missing", {"prony-file": "{dir}/no_such_dir/p.csv"}, [], "prony-file"),
+    ("prony-file is a directory", {"prony-file": "{dir}"}, [], "prony-file"),
+    ("prony-file without header", {"prony-file": "{dir}/no_header.csv"}, [], "prony-file"),
+    ("prony-file without terms", {"prony-file": "{dir}/only_header.csv"}, [], "prony-file"),
+    ("prony-file tau < 0", {"prony-file": "{dir}/bad_tau.csv"}, [], "prony-file"),
+    ("prony-file half a term", {"prony-file": "{dir}/half_term.csv"}, [], "prony-file"),
+    ("prony-file three values", {"prony-file": "{dir}/three_values.csv"}, [], "prony-file"),
+    ("prony-file 33 terms", {"prony-file": "{dir}/too_many.csv"}, [], "prony-file"),
+    ("aT = 0", {"aT": "0"}, [], "aT"),
+    ("aT = inf", {"aT": "inf"}, [], "aT"),
+    ("aT shifts a time beyond a double", {"aT": "1e300", "prony": "1:1e10"}, [], "aT"),
+    ("aT shifts tau beyond a double", {"aT": "1e300", "tau": "1e10"}, [], "aT"),
+    ("T without wlf", {"T": "20"}, [], "T"),
+    ("wlf without T", {"wlf": "17.44:51.6:0"}, [], "wlf"),
+    ("T with aT", {"T": "20", "wlf": "17.44:51.6:0", "aT": "2"}, [], "T"),
+    ("T = TREF - C2", {"T": "-50", "wlf": "10:50:0"}, [], "T"),
+    ("T below TREF - C2", {"T": "-60", "wlf": "17.44:51.6:0"}, [], "T"),
+    ("T = nan", {"T": "nan", "wlf": "17.44:51.6:0"}, [], "T"),
+    ("T shifts a time beyond a double", {"T": "-0.99", "wlf": "1:1:0", "prony": "1:1e250"}, [],
+     "T"),
+    ("T gives an aT beyond a double", {"T": "-49.99", "wlf": "17.44:50:0"}, [], "T"),
+    ("wlf with two constants", {"T": "20", "wlf": "17.44:51.6"}, [], "wlf"),
+    ("wlf C1 = 0", {"T": "20", "wlf": "0:51.6:0"}, [], "wlf"),
+    ("wlf C2 < 0", {"T": "20", "wlf": "17.44:-51.6:0"}, [], "wlf"),
+    ("wlf TREF not a number", {"T": "20", "wlf": "17.44:51.6:room"}, [], "wlf"),
+    ("wlf TREF = inf", {"T": "20", "wlf": "17.44:51.6:inf"}, [], "wlf"),
+    ("prony on the exact solver", {"prony": "1:1,2:10", "solver": "exact"}, [], "prony"),
+    ("prony-file on the Kelvin solvers", {"prony-file": "{dir}/good.csv", "solver": "exact"}, [],
+     "prony"),
 ]
+# The spectrum files of the rows above, as test_cli.cpp writes them.
+PRONY_FILES = {
+    "no_header.csv": "1,2\n",
+    "only_header.csv": "# spectrum\nG,tau\n\n",
+    "bad_tau.csv": "G,tau\n1,2\n# comment\n3,-4\n",
+    "half_term.csv": "G,tau\n1,\n",
+    "three_values.csv": "G,tau\n1,2,3\n",
+    "too_many.csv": "G,tau\n" + "1,2\n" * 33,
+    "good.csv": "G,tau\n1,2\n3,40\n",
+}
 # Rows about --output: the module writes no file.
 OUTPUT_ROWS = {"output into a missing directory", "output into a read-only directory",
                "output below a regular file", "output is a directory", "output empty"}
@@ -151,9 +209,21 @@ def cli_error(exe, args):
     return err[len(CLI_PREFIX):].rstrip("\n")
 
 
+def with_files(row, directory):
+    """The row with {dir} replaced by a directory holding PRONY_FILES."""
+    label, changes, extra, option = row
+    if not any("{dir}" in str(v) for v in changes.values()):
+        return row
+    for name, text in PRONY_FILES.items():
+        (directory / name).write_text(text)
+    changes = {k: v.replace("{dir}", str(directory)) if isinstance(v, str) else v
+               for k, v in changes.items()}
+    return label, changes, extra, option
+
+
 @pytest.mark.parametrize("row", [r for r in ROWS if r[0] not in TWICE_ROWS], ids=lambda r: r[0])
-def test_bad_input_raises_invalid_input_naming_the_option(exe, row, capfd):
-    args, kw = cli_and_keywords(row)
+def test_bad_input_raises_invalid_input_naming_the_option(exe, row, capfd, tmp_path):
+    args, kw = cli_and_keywords(with_files(row, tmp_path))
     with pytest.raises(mdrmap.InvalidInput) as e:
         mdrmap.simulate(**kw)
     assert isinstance(e.value, ValueError)

@@ -57,7 +57,8 @@ def main():
                 diffs.append(f"/{name}: shape/type {x.shape} {x.dtype} vs {y.shape} {y.dtype}")
                 continue
             if rows is not None and x.ndim >= 1 and x.shape[0] == rows.shape[0] and \
-                    name.split("/")[0] in ("results", "events", "analytic", "residuals", "timeseries"):
+                    name.split("/")[0] in ("results", "events", "analytic", "residuals", "scales",
+                                        "timeseries"):
                 x, y = x[rows], y[rows]
             if x.dtype.kind == "f":
                 same = np.array_equal(x.view(np.uint64 if x.dtype.itemsize == 8 else np.uint32),
