@@ -195,7 +195,7 @@ bool starts_with(const std::string& s, const std::string& prefix) {
 struct Parsed {
   std::vector<std::string> comments;
   std::string header;
-  std::map<std::string, std::string> run, case_line, pre;
+  std::map<std::string, std::string> run, case_line, scales, pre;
   std::vector<std::map<std::string, std::string>> events; ///< one per segment
   std::optional<double> error_vs_exact;                   ///< or error_vs_reference under load
   std::map<std::string, std::string> reference;           ///< the error_vs_reference line's fields
@@ -256,8 +256,8 @@ Parsed parse_output(const std::string& text) {
     EXPECT_EQ(p.header, "t,segment,FN,Fx,mu,a2");
   }
 
-  EXPECT_GE(p.comments.size(), 4U); // version, case, at least one event, pre
-  if (p.comments.size() < 4) return p;
+  EXPECT_GE(p.comments.size(), 5U); // version, case, scales, at least one event, pre
+  if (p.comments.size() < 5) return p;
   const std::regex first(R"(^# mdrmap \S+ \(\S+\) simulate solver=\S+ rtol=\S+ error_estimate=\S+ )"
                          R"(cells_per_a1=\S+ elements=-?\d+ steps=-?\d+ element_updates=-?\d+ )"
                          R"(root_solves=-?\d+ wall_seconds=\S+$)");
@@ -265,7 +265,10 @@ Parsed parse_output(const std::string& text) {
   p.run = fields(p.comments[0]);
   EXPECT_TRUE(std::regex_match(p.comments[1], case_line_regex(p.load))) << p.comments[1];
   p.case_line = fields(p.comments[1]);
-  std::size_t c = 2;
+  const std::regex scales(R"(^# scales length=\S+ depth=\S+ force=\S+ friction=\S+ time=\S+$)");
+  EXPECT_TRUE(std::regex_match(p.comments[2], scales)) << p.comments[2];
+  p.scales = fields(p.comments[2]);
+  std::size_t c = 3;
   if (starts_with(p.comments[c], "# error_vs_exact=")) {
     EXPECT_TRUE(std::regex_match(p.comments[c], std::regex(R"(^# error_vs_exact=\S+$)")))
         << p.comments[c];
@@ -445,7 +448,7 @@ TEST(cli, SimulateDefaultRunHasExactStructure) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const Parsed p = parse_output(r.out);
-  ASSERT_EQ(p.comments.size(), 4U) << "auto runs the exact solver: no error_vs_exact line";
+  ASSERT_EQ(p.comments.size(), 5U) << "auto runs the exact solver: no error_vs_exact line";
   EXPECT_FALSE(p.error_vs_exact.has_value());
   EXPECT_EQ(p.run.at("solver"), "exact");
   EXPECT_EQ(to_double(p.run.at("rtol")), 1e-4);
@@ -461,6 +464,12 @@ TEST(cli, SimulateDefaultRunHasExactStructure) {
   EXPECT_EQ(p.case_line.at("spacing"), "linear");
   EXPECT_EQ(p.case_line.at("samples"), "201");
   EXPECT_NEAR(to_double(p.case_line.at("zeta0")), 2.0, 1e-15); // v tau / sqrt(R d) = 2 / 1
+  // the scales: a1 = sqrt(R d) = 1, d, 16/3 G a1^3 / R, a1 / R, tau
+  EXPECT_NEAR(to_double(p.scales.at("length")), 1.0, 1e-15);
+  EXPECT_EQ(to_double(p.scales.at("depth")), 0.1);
+  EXPECT_NEAR(to_double(p.scales.at("force")), 16.0 / 30.0, 1e-15);
+  EXPECT_NEAR(to_double(p.scales.at("friction")), 0.1, 1e-16);
+  EXPECT_EQ(to_double(p.scales.at("time")), 1.0);
   ASSERT_EQ(p.events.size(), 1U);
   EXPECT_EQ(to_double(p.events[0].at("t")), 0.0);
   EXPECT_EQ(to_double(p.events[0].at("w_before")), 2.0);
@@ -715,7 +724,7 @@ TEST(cli, SimulateOtherSolversAreAcceptedAndNeverCrash) {
     ASSERT_TRUE(r.code == 0 || r.code == 1) << "exit " << r.code << ": " << r.err;
     if (r.code == 0) {
       const Parsed p = parse_output(read_file(out));
-      EXPECT_EQ(p.comments.size(), 5U);
+      EXPECT_EQ(p.comments.size(), 6U);
       EXPECT_TRUE(p.error_vs_exact.has_value());
       expect_time_grid(p, 5, 6.0);
     } else {
@@ -1560,6 +1569,12 @@ TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
   const double a0 = to_double(p.case_line.at("a0"));
   EXPECT_NEAR(a0, 1.0, 1e-15);                                 // 16/3 G a0^3 / R = F0
   EXPECT_NEAR(to_double(p.case_line.at("zeta0")), 1.0, 1e-15); // v tau / a0
+  // the scales under load: a0, d0 = a0^2 / R, F0, a0 / R, tau
+  EXPECT_EQ(to_double(p.scales.at("length")), a0);
+  EXPECT_NEAR(to_double(p.scales.at("depth")), 0.01, 1e-17);
+  EXPECT_EQ(to_double(p.scales.at("force")), kF0);
+  EXPECT_NEAR(to_double(p.scales.at("friction")), 0.01, 1e-17);
+  EXPECT_EQ(to_double(p.scales.at("time")), 1.0);
   ASSERT_EQ(p.rows.size(), 2U * N);
 
   // Before t = 0: the fixed-depth stationary state at the depth printed, whose

@@ -53,8 +53,7 @@ def load_cases(n):
     cases = []
     for _ in range(n):
         FN = 10 ** rng.uniform(-4, -2)
-        a0 = (3 * FN / 16) ** (1 / 3)
-        v = 10 ** rng.uniform(-1, 1) * a0  # zeta0 from 0.1 to 10 (tau = 1)
+        v = 10 ** rng.uniform(-2.5, 0)  # zeta0 = v tau / a0 from about 0.03 to 40 (tau = 1)
         w = v * 10 ** rng.choice([-1.0, 1.0])
         cases.append(dict(FN=FN, R=1, tau=1, v=v, history=[(w, 5.0)], samples=101))
     return cases

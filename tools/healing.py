@@ -5,7 +5,8 @@
 friction peak after the reslide against log10(hold time).
 
 Each run slides stationarily at v0 (zeta0 = v0 tau / a0, a0 the Hertz radius
-of F0; a1 = sqrt(R d) at fixed depth), holds (velocity 0) for t_hold, then
+of F0; a1 the leading edge at fixed depth: mdrmap's scales of the case, from
+its `# scales` line, simcsv.case_scales), holds (velocity 0) for t_hold, then
 slides again at v0 for max(20 tau, 20 a0 / v0), each segment sampled on a log
 scale (6 decades). dmu_peak = the largest mu of the reslide minus the
 stationary mu at v0 (the '# pre' line), in units of a0/R. The tool prints
@@ -62,7 +63,7 @@ def plot(runs, zetas, holds, output, dpi, load, np):
         y = [peak(runs[(z, h)])[0] for h in holds]
         ax.plot(np.log10(holds), y, "o-", label=f"zeta0 = {z:g}")
     ax.set_xlabel("log10(t_hold / tau)")
-    ax.set_ylabel("dmu_peak / (a0/R)" if load else "dmu_peak / sqrt(d/R)")
+    ax.set_ylabel("dmu_peak / (a0/R)" if load else "dmu_peak / a1/R")
     ax.set_title("peak of mu after the reslide above steady")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
@@ -81,7 +82,7 @@ def plot(runs, zetas, holds, output, dpi, load, np):
                ls=":", lw=0.8)
     bx.set_xscale("log")
     bx.set_xlabel("slip since the reslide / a0" if load else "slip / a1")
-    bx.set_ylabel("mu / (a0/R)" if load else "mu / sqrt(d/R)")
+    bx.set_ylabel("mu / (a0/R)" if load else "mu / a1/R")
     bx.set_title(f"reslides at zeta0 = {z:g} (dotted: steady)")
     bx.grid(True, which="both", alpha=0.3)
     bx.legend(fontsize=7, title="hold", title_fontsize=7)
@@ -108,20 +109,21 @@ def main():
     import numpy as np
 
     exe = None if a.from_csv else simcsv.find_mdrmap(a.mdrmap)
-    scale = simcsv.length_scale(a)
     runs = {}
     with tempfile.TemporaryDirectory(prefix="mdrmap_healing_") as tmp:
         workdir = a.csv_dir or tmp
+        sc = simcsv.case_scales(a, exe, workdir)  # mdrmap's # scales line of the case
+        scale, time = sc["length"], sc["time"]
         for z in zetas:
-            v0 = z * scale / a.tau
-            T = max(20.0 * a.tau, 20.0 * scale / v0)
+            v0 = z * scale / time
+            T = max(20.0 * time, 20.0 * scale / v0)
             for h in holds:
-                args = base + ["--v", repr(v0), "--history", f"0:{h * a.tau!r},{v0!r}:{T!r}",
+                args = base + ["--v", repr(v0), "--history", f"0:{h * time!r},{v0!r}:{T!r}",
                                "--samples", str(a.samples), "--spacing", "log", "--log-decades",
                                "6", "--rtol", repr(a.rtol)]
-                runs[(z, h)] = simcsv.obtain(a, exe, workdir, f"shs_{z:g}_{h:.6g}.csv", args, np)
+                runs[(z, h)] = simcsv.obtain(a, exe, workdir, f"shs_{z:g}_{h:.6g}.csv", args, np, sc)
     load = a.FN is not None
-    unit = "a0/R" if load else "sqrt(d/R)"
+    unit = "a0/R" if load else "a1/R"
     print(f"# dmu_peak in units of {unit}, slip_peak of {'a0' if load else 'a1'}; "
           f"per_decade = change of dmu_peak from the previous hold / decades between them")
     for z in zetas:

@@ -10,12 +10,13 @@ reslide (w2 > 0), e.g. jobs/examples/shs_holds.ini. For every done case
     dmu_peak = events/mu_peak[:, 1] - analytic/mu_pre
 
 (the sample of the reslide farthest from the stationary friction at w2, minus
-the stationary friction at v), in units of a0/R under load (a0 = (3 FN R /
-(16 G))^(1/3), the Hertz radius) or a1/R at fixed depth (a1 = sqrt(R d)), is
-plotted against T1 / tau on a log axis, one curve per value of the other
+the stationary friction at v), in units of the map's friction scale
+/scales/friction (a0/R under load, a0 the Hertz radius; a1/R at fixed depth, a1
+the leading edge), is
+plotted against T1 / tau (tau: /scales/time) on a log axis, one curve per value of the other
 parameters that vary (labelled with zeta0 = v tau / a0, or zeta = v tau / a1,
 and whatever else differs). The right panel shows the slip of the peak
-(events/slip_peak[:, 1]) in units of a0 (a1).
+(events/slip_peak[:, 1]) in units of a0 (a1): /scales/length.
 
 Prints, per curve, dmu_peak per hold with its change per decade of hold time
 from the previous hold, and the least-squares slope d(dmu_peak)/d(log10 T1)
@@ -49,53 +50,55 @@ def slope_per_decade(x, y, np):
     return float(np.polyfit(np.log10(x[ok]), y[ok], 1)[0])
 
 
-def main(argv=None):
-    ap = map_tool_parser(PROG, __doc__, "mdrmap-map/2 map (.h5) of a slide-hold-slide study",
-                         "_healing.png")
-    add_select_option(ap, SELECT_HELP + ", e.g. --select v=0.1")
-    add_figure_options(ap)
-    args, sel, output = parse_map_tool_args(ap, argv)
+def check_shs(m, path, np):
+    """UserError unless every done case is a slide-hold-slide (w1 = 0, w2 > 0)."""
+    K, done, w = m["K"], m["status"] == 1, m["w"]
+    if K >= 2 and done.any() and not np.any(w[done, 0] != 0) and np.all(w[done, 1] > 0):
+        return
+    what = (f"it has {K} segment" + ("s" if K != 1 else "")) if K < 2 else \
+        ("no case is done" if not done.any() else
+         ("segment 1 is not a hold (w1 != 0) in every case" if np.any(w[done, 0] != 0)
+          else "segment 2 is not a reslide (w2 > 0) in every case"))
+    raise UserError(f"{path} is not a slide-hold-slide map ({what}): this tool needs "
+                    f"segment 1 a hold (w1 = 0) and segment 2 a reslide (w2 > 0)")
 
-    import numpy as np
 
+def read(args, sel, np):
+    """(m, dmu, slip_a, hold, use, notes): the map's cases; the peak after the
+    reslide over the stationary mu at v in the friction scale, its slip in the
+    length scale, the hold T1 in the time scale (all /scales); the cases used."""
     f, m = open_map2(args.map, np, PROG)
     with f:
-        K = m["K"]
-        done = m["status"] == 1
-        w = m["w"]
-        if K < 2 or not done.any() or np.any(w[done, 0] != 0) or not np.all(w[done, 1] > 0):
-            what = (f"it has {K} segment" + ("s" if K != 1 else "")) if K < 2 else \
-                ("no case is done" if not done.any() else
-                 ("segment 1 is not a hold (w1 != 0) in every case" if np.any(w[done, 0] != 0)
-                  else "segment 2 is not a reslide (w2 > 0) in every case"))
-            raise UserError(f"{args.map} is not a slide-hold-slide map ({what}): this tool needs "
-                            f"segment 1 a hold (w1 = 0) and segment 2 a reslide (w2 > 0)")
+        check_shs(m, args.map, np)
         for need in ("events/mu_peak", "events/slip_peak", "analytic/mu_pre"):
             if need not in f:
                 raise UserError(f"{args.map} is an incomplete mdrmap map (no /{need})")
-        peak = read_masked(f["events/mu_peak"]).reshape(m["n"], K)[:, 1]
-        slip = read_masked(f["events/slip_peak"]).reshape(m["n"], K)[:, 1]
+        peak = read_masked(f["events/mu_peak"]).reshape(m["n"], m["K"])[:, 1]
+        slip = read_masked(f["events/slip_peak"]).reshape(m["n"], m["K"])[:, 1]
         mu_pre = read_masked(f["analytic/mu_pre"])
     keep, notes = select_cases(m, sel, np)
-    c = m["cols"]
+    done, time = m["status"] == 1, m["scales"]["time"]
     n_nd = int(np.sum(keep & ~done))
     if n_nd:
         notes.append(f"skipped {n_nd} case(s) not done (failed or pending)")
-    elastic = keep & done & ~(c["tau"] > 0)
+    elastic = keep & done & ~(time > 0)
     if elastic.any():
         notes.append(f"skipped {int(elastic.sum())} case(s) with tau = 0 (no hold time scale)")
-    use = keep & done & (c["tau"] > 0)
+    use = keep & done & (time > 0)
     if not use.any():
         raise UserError(f"{args.map}: no done case with tau > 0 in the selection")
-    hold = m["T"][:, 0] / c["tau"]
     with np.errstate(divide="ignore", invalid="ignore"):
-        dmu = (peak - mu_pre) / m["mu_scale"]
-        slip_a = slip / m["a"]
+        return (m, (peak - mu_pre) / m["mu_scale"], slip / m["a"], m["T"][:, 0] / time, use,
+                notes)
 
-    # one curve per value of everything but the hold time
-    # (the later segments by their velocity over v and duration over tau)
+
+def group_curves(m, use, hold, path, np):
+    """[(label, cases by hold)]: one curve per value of everything but the hold
+    time (the later segments by their velocity over v and duration over tau)."""
+    c, K, w, time = m["cols"], m["K"], m["w"], m["scales"]["time"]
+
     def key(i):
-        vals = [c[k][i] for k in c] + list(w[i, 1:] / c["v"][i]) + list(m["T"][i, 1:] / c["tau"][i])
+        vals = [c[k][i] for k in c] + list(w[i, 1:] / c["v"][i]) + list(m["T"][i, 1:] / time[i])
         return tuple(float(f"{x:.12g}") for x in vals)
     names = list(c) + [f"w{k + 2}_over_v" for k in range(K - 1)] + \
         [f"T{k + 2}_over_tau" for k in range(K - 1)]
@@ -103,17 +106,21 @@ def main(argv=None):
     for i in np.flatnonzero(use):
         curves.setdefault(key(i), []).append(int(i))
     if max(len({hold[i] for i in v}) for v in curves.values()) < 2:
-        raise UserError(f"{args.map} has one hold time per curve: no healing curve (the map needs "
+        raise UserError(f"{path} has one hold time per curve: no healing curve (the map needs "
                         f"several hold times T1)")
     keys = sorted(curves)
     varying = [j for j in range(len(names)) if len({k[j] for k in keys}) > 1]
-    zname = m["zeta_name"]
-
-    def label(k, i):
-        parts = [f"{zname}={fmt(m['zeta'][i])}"]
+    out = []
+    for k in keys:
+        idx = np.array(sorted(curves[k], key=lambda i: hold[i]))
+        parts = [f"{m['zeta_name']}={fmt(m['zeta'][idx[0]])}"]
         parts += [f"{names[j]}={fmt(k[j])}" for j in varying if names[j] not in ("v", "tau")]
-        return ", ".join(parts)
+        out.append((", ".join(parts), idx))
+    return out
 
+
+def figure(m, curves, dmu, slip_a, hold, args, np):
+    """The two panels; the rows report() prints."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -122,13 +129,10 @@ def main(argv=None):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.6))
     cmap = plt.get_cmap("tab10")
     rows = []
-    for ci, k in enumerate(keys):
-        idx = np.array(sorted(curves[k], key=lambda i: hold[i]))
-        col = cmap(ci % 10)
-        lab = label(k, idx[0])
+    for ci, (lab, idx) in enumerate(curves):
         x, y = hold[idx], dmu[idx]
-        ax.plot(x, y, "o-", color=col, ms=4, label=lab)
-        bx.plot(x, slip_a[idx], "o-", color=col, ms=4, label=lab)
+        ax.plot(x, y, "o-", color=cmap(ci % 10), ms=4, label=lab)
+        bx.plot(x, slip_a[idx], "o-", color=cmap(ci % 10), ms=4, label=lab)
         rows.append((lab, idx, x, y, slope_per_decade(x, y, np)))
     a_name = m["a_name"]
     for axis in (ax, bx):
@@ -141,13 +145,14 @@ def main(argv=None):
     bx.set_ylabel(f"slip of the peak / {a_name}")
     bx.set_title("slip since the reslide at the peak", fontsize=10)
     ax.legend(fontsize=8)
-    load = m["loading"] == "force"
     fig.suptitle(args.title or f"{os.path.basename(args.map)}: healing in slide-hold-slide "
-                 + ("under load" if load else "at fixed depth"), fontsize=11)
+                 + ("under load" if m["loading"] == "force" else "at fixed depth"), fontsize=11)
     fig.tight_layout()
+    return fig, rows
 
-    for note in notes:
-        print(f"{PROG}: {note}")
+
+def report(m, rows):
+    a_name = m["a_name"]
     for lab, idx, x, y, s in rows:
         print(f"curve {lab}: slope {s:.5g} {a_name}/R per decade of hold")
         print(f"  {'T1/tau':>10}  {'dmu_peak':>12}  {'per decade':>12}  {'case':>5}")
@@ -155,8 +160,25 @@ def main(argv=None):
             per = "" if j == 0 else \
                 f"{(y[j] - y[j - 1]) / math.log10(x[j] / x[j - 1]):12.5g}" if x[j] > x[j - 1] else ""
             print(f"  {x[j]:>10.4g}  {y[j]:>12.6g}  {per:>12}  {int(i):>5}")
-    print(f"dmu_peak = events/mu_peak[:, 1] - analytic/mu_pre in units of {a_name}/R; slope: "
-          f"least squares of dmu_peak against log10(T1/tau)")
+    print(f"dmu_peak = events/mu_peak[:, 1] - analytic/mu_pre in units of {a_name}/R "
+          f"(/scales/friction); slope: least squares of dmu_peak against log10(T1/tau)")
+
+
+def main(argv=None):
+    ap = map_tool_parser(PROG, __doc__, "mdrmap-map/2 map (.h5) of a slide-hold-slide study",
+                         "_healing.png")
+    add_select_option(ap, SELECT_HELP + ", e.g. --select v=0.1")
+    add_figure_options(ap)
+    args, sel, output = parse_map_tool_args(ap, argv)
+
+    import numpy as np
+
+    m, dmu, slip_a, hold, use, notes = read(args, sel, np)
+    curves = group_curves(m, use, hold, args.map, np)
+    fig, rows = figure(m, curves, dmu, slip_a, hold, args, np)
+    for note in notes:
+        print(f"{PROG}: {note}")
+    report(m, rows)
     save_figure(fig, output, args.dpi)
     print(f"{PROG}: wrote {output}")
     return 0

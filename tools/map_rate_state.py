@@ -6,9 +6,9 @@ mdrmap-map/2 grid study over two of its grid axes.
 Four panels for event K (default 0: the change at t = 0 from v to w1; event k
 is the change at the start of segment k + 1): the direct effect a, the
 evolution b, a - b (events/a, b, a_minus_b; docs/design.md "Event metrics"),
-in units of the friction scale a0/R under load (a0 = (3 FN R / (16 G))^(1/3))
-or a1/R at fixed depth (a1 = sqrt(R d)), and D_c (events/d_c) in units of a0
-or a1. `--unscaled` plots the map's values as they are. Colours of a, b and
+each in the map's scale for its /schema unit (/scales/friction: a0/R under
+load, a1/R at fixed depth, for a, b, a - b; /scales/length: a0 or a1, for
+D_c). `--unscaled` plots the map's values as they are. Colours of a, b and
 a - b are symmetric about 0 (blue < 0 < red).
 
 `--x AXIS --y AXIS` name the two grid axes (default: the two with the most
@@ -38,7 +38,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from maplib import (UserError, add_figure_options, add_select_option, fmt,  # noqa: E402
                     grid_index, map_tool_parser, nearest_index, open_map2, parse_map_tool_args,
-                    read_masked, resolve_axis, run_tool, save_figure)
+                    read_masked, resolve_axis, run_tool, save_figure, scale_of, scale_symbol)
 
 PROG = "map_rate_state"
 METRICS = [("a", "direct effect a"), ("b", "evolution b"), ("a_minus_b", "a \u2212 b"),
@@ -80,21 +80,8 @@ def edges(c, np):
     return np.concatenate([[c[0] - (mid[0] - c[0])], mid, [c[-1] + (c[-1] - mid[-1])]])
 
 
-def main(argv=None):
-    ap = map_tool_parser(PROG, __doc__, "mdrmap-map/2 map (.h5) of a grid study",
-                         "_rate_state.png")
-    ap.add_argument("--event", type=int, default=0, metavar="K",
-                    help="0-based event: the change at the start of segment K+1 (default 0)")
-    ap.add_argument("--x", default=None, metavar="AXIS", help="grid axis on x")
-    ap.add_argument("--y", default=None, metavar="AXIS", help="grid axis on y")
-    add_select_option(ap, "fix another grid axis at its value nearest to VALUE (repeatable)")
-    ap.add_argument("--unscaled", action="store_true",
-                    help="plot a, b, a-b and D_c as stored (no division by a/R and a)")
-    add_figure_options(ap)
-    args, sel, output = parse_map_tool_args(ap, argv)
-
-    import numpy as np
-
+def read_metrics(args, np):
+    """(m, {metric: values of event K [N]}) of the map."""
     f, m = open_map2(args.map, np, PROG)
     with f:
         K = m["K"]
@@ -105,12 +92,14 @@ def main(argv=None):
             if f"events/{name}" not in f:
                 raise UserError(f"{args.map} is an incomplete mdrmap map (no /events/{name})")
             data[name] = read_masked(f[f"events/{name}"]).reshape(m["n"], K)[:, args.event]
-    g = m["grid"]
-    if g is None:
+    if m["grid"] is None:
         raise UserError(f"{args.map} is a [cases] map (no /grid): this tool maps a grid study "
                         f"over two grid axes")
-    axes, shape = g["axes"], g["shape"]
-    x = y = None
+    return m, data
+
+
+def pick_axes(args, sel, axes, shape):
+    """(x, y, fixed {axis: value}): the plotted axes and the --select ones."""
     for opt, name in (("--x", args.x), ("--y", args.y)):
         if name is not None and resolve_axis(name, axes) is None:
             raise UserError(f"{opt} {name}: not a grid axis (axes: {', '.join(axes)})")
@@ -136,13 +125,21 @@ def main(argv=None):
         x = free.pop(0)
     if y is None and free:
         y = free.pop(0)
-    notes = []
     if free:
         raise UserError(f"grid axis {free[0]} has {shape[axes.index(free[0])]} values: plot it "
                         f"(--x/--y) or fix it with --select {free[0]}=VALUE")
+    return x, y, fixed
+
+
+def plan_cells(args, sel, m, np):
+    """{"x", "y", "xv", "yv", "xkind", "ykind", "idx" (the case of each cell,
+    [len(yv), len(xv)]), "at" (the fixed axes' values), "notes"}."""
+    g = m["grid"]
+    axes = g["axes"]
+    x, y, fixed = pick_axes(args, sel, axes, g["shape"])
     gi = grid_index(m, np)
     keep = np.ones(m["n"], dtype=bool)
-    at = []
+    at, notes = [], []
     for a, vals in zip(axes, g["values"]):
         if a in (x, y):
             continue
@@ -153,96 +150,129 @@ def main(argv=None):
             notes.append(f"--select {a}={fmt(fixed[a])} -> {a}={fmt(vals[j])} "
                          f"(value {j + 1} of {len(vals)})")
         at.append(f"{a}={fmt(vals[j])}")
-    xi = axes.index(x)
-    yi = axes.index(y) if y else None
+    xi, yi = axes.index(x), (axes.index(y) if y else None)
     xv = g["values"][xi]
     yv = g["values"][yi] if y else np.array([0.0])
-    rows_idx = np.full((len(yv), len(xv)), -1)
+    idx = np.full((len(yv), len(xv)), -1)
     for i in np.flatnonzero(keep):
-        rows_idx[gi[y][i] if y else 0, gi[x][i]] = i
-    if np.any(rows_idx < 0):  # cannot happen with one value per other axis
+        idx[gi[y][i] if y else 0, gi[x][i]] = i
+    if np.any(idx < 0):  # cannot happen with one value per other axis
         raise UserError("the selection does not give one case per cell")
-    idx = rows_idx
-    done = (m["status"] == 1)[idx]
+    return {"x": x, "y": y, "xv": xv, "yv": yv, "idx": idx, "at": at, "notes": notes,
+            "xkind": axis_kind(xv, g["log"][xi], np),
+            "ykind": axis_kind(yv, g["log"][yi], np) if y else "linear"}
 
-    scales = {"a": m["mu_scale"], "b": m["mu_scale"], "a_minus_b": m["mu_scale"], "d_c": m["a"]}
-    a_name = m["a_name"]
-    units = {"a": f"{a_name}/R", "b": f"{a_name}/R", "a_minus_b": f"{a_name}/R", "d_c": a_name}
 
+def panel_norm(name, z, ok, plt, colors, np):
+    """(colour map, norm): D_c sequential (log over a wide range), the others symmetric."""
+    if name == "d_c":
+        finite = z[ok]
+        cmap = plt.get_cmap("viridis").copy()
+        if finite.size and np.all(finite > 0) and finite.max() / finite.min() > 30:
+            norm = colors.LogNorm(vmin=finite.min(), vmax=finite.max())
+        else:
+            norm = colors.Normalize(vmin=finite.min() if finite.size else 0,
+                                    vmax=finite.max() if finite.size else 1)
+    else:
+        cmap = plt.get_cmap("RdBu_r").copy()
+        top = float(np.max(np.abs(z[ok]))) if ok.any() else 1.0
+        norm = colors.Normalize(vmin=-(top or 1e-16), vmax=top or 1e-16)
+    cmap.set_bad("white")
+    return cmap, norm
+
+
+def panel(ax, fig, plt, colors, p, name, label, z, unit, np):
+    """Draws one metric z [len(yv), len(xv)]."""
+    ok = np.isfinite(z)
+    cmap, norm = panel_norm(name, z, ok, plt, colors, np)
+    xc, yc = coords(p["xv"], p["xkind"], np), coords(p["yv"], p["ykind"], np)
+    suffix = {"log": " (log10)", "category": " (categories)", "linear": ""}
+    if p["y"]:
+        mesh = ax.pcolormesh(edges(xc, np), edges(yc, np), np.ma.masked_invalid(z), cmap=cmap,
+                             norm=norm, shading="flat", edgecolors="0.85", linewidth=0.3)
+        fig.colorbar(mesh, ax=ax).set_label(f"{label}{unit}", fontsize=9)
+        ax.set_ylabel(p["y"] + suffix[p["ykind"]])
+        if p["ykind"] == "category":
+            ax.set_yticks(yc, [fmt(t) for t in p["yv"]])
+    else:
+        ax.plot(xc, z[0], "o-", ms=4)
+        ax.set_ylabel(f"{label}{unit}")
+        ax.grid(True, alpha=0.3)
+    ax.set_xlabel(p["x"] + suffix[p["xkind"]])
+    if p["xkind"] == "category":
+        ax.set_xticks(xc, [fmt(t) for t in p["xv"]])
+
+
+def figure(m, data, p, args, np):
+    """The four panels, each metric in the map's scale for its /schema unit
+    (scale_of: a, b, a - b by /scales/friction, D_c by /scales/length); the table."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib import colors
 
-    xkind = axis_kind(xv, g["log"][xi], np)
-    ykind = axis_kind(yv, g["log"][yi], np) if y else "linear"
-    xc, yc = coords(xv, xkind, np), coords(yv, ykind, np)
-    suffix = {"log": " (log10)", "category": " (categories)", "linear": ""}
+    idx = p["idx"]
+    done = (m["status"] == 1)[idx]
     fig, axs = plt.subplots(2, 2, figsize=(11.5, 8.6))
     table = []
     for ax, (name, label) in zip(axs.ravel(), METRICS):
         z = data[name][idx].astype(float)
-        if not args.unscaled:
+        scale = None if args.unscaled else scale_of(m, f"events/{name}")
+        if scale:
             with np.errstate(divide="ignore", invalid="ignore"):
-                z = z / scales[name][idx]
+                z = z / m["scales"][scale][idx]
         z[~done] = np.nan
-        n_nd = int(np.sum(~done))
-        n_undef = int(np.sum(done & ~np.isfinite(z)))
-        ok = np.isfinite(z)
-        unit = "" if args.unscaled else f" / {units[name]}"
-        if name == "d_c":
-            finite = z[ok]
-            cmap = plt.get_cmap("viridis").copy()
-            if finite.size and np.all(finite > 0) and finite.max() / finite.min() > 30:
-                norm = colors.LogNorm(vmin=finite.min(), vmax=finite.max())
-            else:
-                norm = colors.Normalize(vmin=finite.min() if finite.size else 0,
-                                        vmax=finite.max() if finite.size else 1)
-        else:
-            cmap = plt.get_cmap("RdBu_r").copy()
-            top = float(np.max(np.abs(z[ok]))) if ok.any() else 1.0
-            top = top or 1e-16
-            norm = colors.Normalize(vmin=-top, vmax=top)
-        cmap.set_bad("white")
-        if y:
-            mesh = ax.pcolormesh(edges(xc, np), edges(yc, np), np.ma.masked_invalid(z), cmap=cmap,
-                                 norm=norm, shading="flat", edgecolors="0.85", linewidth=0.3)
-            cb = fig.colorbar(mesh, ax=ax)
-            cb.set_label(f"{label}{unit}", fontsize=9)
-            ax.set_ylabel(y + suffix[ykind])
-            if ykind == "category":
-                ax.set_yticks(yc, [fmt(t) for t in yv])
-        else:
-            ax.plot(xc, z[0], "o-", ms=4)
-            ax.set_ylabel(f"{label}{unit}")
-            ax.grid(True, alpha=0.3)
-        ax.set_xlabel(x + suffix[xkind])
-        if xkind == "category":
-            ax.set_xticks(xc, [fmt(t) for t in xv])
+        n_nd, ok = int(np.sum(~done)), np.isfinite(z)
+        n_undef = int(np.sum(done & ~ok))
+        unit = f" / {scale_symbol(m, scale)}" if scale else ""
+        panel(ax, fig, plt, colors, p, name, label, z, unit, np)
         ax.set_title(f"{label}{unit}: {int(ok.sum())} defined, {n_undef} undefined"
                      + (f", {n_nd} not done" if n_nd else ""), fontsize=9)
         fz = z[ok]
-        table.append((name, int(ok.sum()), n_undef, n_nd,
-                      float(fz.min()) if fz.size else math.nan,
-                      float(np.median(fz)) if fz.size else math.nan,
-                      float(fz.max()) if fz.size else math.nan, unit.strip(" /") or "as stored"))
-    k = args.event
+        stats = [float(q(fz)) if fz.size else math.nan for q in (np.min, np.median, np.max)]
+        table.append((name, int(ok.sum()), n_undef, n_nd, *stats, unit.strip(" /") or "as stored"))
+    k, at = args.event, p["at"]
     head = args.title or (f"{os.path.basename(args.map)}: rate-and-state parameters of event {k} "
-                          f"(segment {k} \u2192 {k + 1})" + (f"\nat {', '.join(at)}"
-                                                             if at else ""))
+                          f"(segment {k} \u2192 {k + 1})" + (f"\nat {', '.join(at)}" if at else ""))
     fig.suptitle(head + "\nblank: undefined (hold, equal velocities, no 1/e decay) or not done",
                  fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.95))
-    for note in notes:
-        print(f"{PROG}: {note}")
-    print(f"event {k} over {x} ({len(xv)} values, {xkind})"
-          + (f" x {y} ({len(yv)} values, {ykind})" if y else "")
+    return fig, table
+
+
+def report(p, table, k):
+    at = p["at"]
+    print(f"event {k} over {p['x']} ({len(p['xv'])} values, {p['xkind']})"
+          + (f" x {p['y']} ({len(p['yv'])} values, {p['ykind']})" if p["y"] else "")
           + (f"; at {', '.join(at)}" if at else ""))
     print(f"{'metric':<10} {'unit':>9} {'defined':>8} {'undefined':>10} {'not done':>9} "
           f"{'min':>11} {'median':>11} {'max':>11}")
     for name, nd, nu, nn, lo, med, hi, unit in table:
         print(f"{name:<10} {unit:>9} {nd:>8} {nu:>10} {nn:>9} {lo:>11.4g} {med:>11.4g} {hi:>11.4g}")
+
+
+def main(argv=None):
+    ap = map_tool_parser(PROG, __doc__, "mdrmap-map/2 map (.h5) of a grid study",
+                         "_rate_state.png")
+    ap.add_argument("--event", type=int, default=0, metavar="K",
+                    help="0-based event: the change at the start of segment K+1 (default 0)")
+    ap.add_argument("--x", default=None, metavar="AXIS", help="grid axis on x")
+    ap.add_argument("--y", default=None, metavar="AXIS", help="grid axis on y")
+    add_select_option(ap, "fix another grid axis at its value nearest to VALUE (repeatable)")
+    ap.add_argument("--unscaled", action="store_true",
+                    help="plot a, b, a-b and D_c as stored (no division by the map's /scales)")
+    add_figure_options(ap)
+    args, sel, output = parse_map_tool_args(ap, argv)
+
+    import numpy as np
+
+    m, data = read_metrics(args, np)
+    p = plan_cells(args, sel, m, np)
+    fig, table = figure(m, data, p, args, np)
+    for note in p["notes"]:
+        print(f"{PROG}: {note}")
+    report(p, table, args.event)
     save_figure(fig, output, args.dpi)
     print(f"{PROG}: wrote {output}")
     return 0

@@ -2,16 +2,19 @@
 map_steps, map_rate_state, map_friction_velocity, mapxr): opening an mdrmap
 map with clear one-line errors, and reading it.
 
-Two layouts exist (the root attribute mdrmap_schema says which):
+The tools read mdrmap-map/2 maps (a history of K segments per case,
+docs/map-schema.md): /cases/<p> [N] and /cases/{w,T} [N, K], /events/<m>
+[N, K], /analytic/<q>_ss [N, K], /failures, time series [N, K*S] with
+/timeseries/segment [K*S]; undefined values hold the netCDF fill value FILL
+(read_masked turns them into NaN). Everything a tool names comes from the
+map: the case columns and each dataset's unit and meaning from /schema, the
+reference scales (length, depth, force, friction, time) from /scales. A map
+without /schema or /scales (older ones) is refused in one line naming the
+group; an mdrmap-map/1 map likewise.
 
-  mdrmap-map/1  one velocity step per case: /cases/{d,R,tau,v,v1,G},
-                /results/<q>_{pre,jump,post} and message, time series [N, S];
-  mdrmap-map/2  a history of K segments per case (docs/map-schema.md):
-                /cases/{d or FN,R,tau,G,v} [N] and /cases/{w,T} [N, K],
-                /events/<m> [N, K], /analytic/<q>_ss [N, K], /failures,
-                time series [N, K*S] with /timeseries/segment [K*S];
-                undefined values hold the netCDF fill value FILL (read_masked
-                turns them into NaN).
+The opener and the readers of /schema and /scales are the Python package's
+(src/python/mdrmap/maps.py, loaded from the source tree: the tools need no
+build): one loader for the package and the tools.
 
 Not a script: the tools import it from their own directory.
 """
@@ -39,16 +42,15 @@ maps = _load_maps()
 SCHEMA1, SCHEMA2, SCHEMAS = maps.SCHEMA1, maps.SCHEMA2, maps.SCHEMAS
 SCHEMA = SCHEMA2  # what mdrmap writes now
 text, schema_name, schema_version = maps.text, maps.schema_name, maps.schema_version
-# The /cases columns of schema-1 maps written before /schema (the fallback of case_columns)
-CASE_COLS = ["d", "R", "tau", "v", "v1", "G"]
-# The 1-D /cases columns of a schema-2 map, in their order (loading first: d or FN)
-CASE_COLS2 = ["d", "FN", "R", "tau", "G", "v"]
+failure_messages, segment_axis = maps.failure_messages, maps.segment_axis
 # netCDF's default fill value for doubles: an undefined value in a schema-2 map
 FILL = 9.969209968386869e36
-# Hertz: FN = 16/3 G a0^3 / R; the maximum of the stationary friction under load
-# (docs/design.md, "Load control")
-ZETA0_STAR = 3 ** 0.5 * ((3 + 3 ** 0.5) / 9) ** (1 / 3)
-MU_STAR = 1.5 * (3 ** 0.5 - 1) * ((3 + 3 ** 0.5) / 9) ** (1 / 3)
+# The maximum of the stationary friction under load, in the map's scales
+# (zeta0* = v tau / a0, mu* / (a0/R)): constants of the closed form,
+# docs/design.md "Load control" (sqrt(3) ((3 + sqrt(3))/9)^(1/3) and
+# 3/2 (sqrt(3) - 1) ((3 + sqrt(3))/9)^(1/3))
+ZETA0_STAR = 1.397964867446765
+MU_STAR = 0.8862742123631036
 
 
 class UserError(Exception):
@@ -60,46 +62,22 @@ class Parser(argparse.ArgumentParser):
         raise UserError(f"{message} (see --help)")
 
 
-def v1_refused(path):
-    """The one line a tool gives for a schema-1 map it does not read."""
-    return (f"{path} is an {SCHEMA1} map; this tool reads {SCHEMA2} maps: rerun the study "
-            f"with this version")
-
-
-def open_map(path, h5py, prog, versions=(1, 2)):
-    """Opens PATH read-only; UserError unless it is a readable mdrmap map of one of
-    the schema `versions` (1, 2)."""
-    if not os.path.exists(path):
-        raise UserError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise UserError(f"{path} is a directory, not an mdrmap map")
+def open_map(path, h5py, prog):
+    """Opens PATH read-only (the package's maps.open_h5); UserError (one line)
+    unless it is a readable mdrmap-map/2 map with /schema and /scales."""
+    warn = lambda message: print(f"{prog}: warning: {message}", file=sys.stderr)  # noqa: E731
     try:
-        f = h5py.File(path, "r")
-    except OSError as e:
-        raise UserError(f"{path} is not a readable HDF5 file ({str(e).splitlines()[0]})") from None
-    if "mdrmap_schema" not in f.attrs:
+        f = maps.open_h5(path, h5py, warn, versions=(2,))
+    except maps.MapError as e:
+        raise UserError(str(e)) from None
+    try:
+        maps.require_groups(f, path)
+    except maps.MapError as e:
         f.close()
-        raise UserError(f"{path} is not an mdrmap map (no root attribute mdrmap_schema)")
-    name = schema_name(f)
-    version = schema_version(f)
-    if name not in SCHEMAS:
-        print(f"{prog}: warning: {path} has schema {name}; this tool reads {SCHEMA1} and "
-              f"{SCHEMA2} (reading it as {SCHEMA1 if version == 1 else SCHEMA2})", file=sys.stderr)
-    if version not in versions:
+        raise UserError(str(e)) from None
+    except BaseException:
         f.close()
-        if version == 1:
-            raise UserError(v1_refused(path))
-        raise UserError(f"{path} is an {SCHEMA2} map; this tool reads {SCHEMA1} maps only")
-    if version == 1:
-        need = ["results/status"] + [f"cases/{c}" for c in CASE_COLS[:5]]
-    else:
-        need = ["results/status", "cases/R", "cases/tau", "cases/v", "cases/w", "cases/T"]
-        if "cases/d" not in f and "cases/FN" not in f:
-            need.append("cases/d")  # reported as missing below
-    for item in need:
-        if item not in f:
-            f.close()
-            raise UserError(f"{path} is an incomplete mdrmap map (no /{item})")
+        raise
     return f
 
 
@@ -124,47 +102,13 @@ def read_masked(ds):
 
 
 def schema(f):
-    """{"group/name": (unit, meaning)} from the map's /schema group, in the map's
-    order; {} for a map written before /schema."""
-    out = {}
-    if "schema" not in f or not hasattr(f["schema"], "keys"):
-        return out
-    for group, g in f["schema"].items():
-        if not hasattr(g, "keys"):
-            continue
-        for name, entry in g.items():
-            out[f"{group}/{name}"] = (text(entry.attrs.get("unit", "")),
-                                      text(entry.attrs.get("meaning", "")))
-    return out
+    """{"group/name": (unit, meaning)} from the map's /schema, in the map's order."""
+    return maps.describe(f)
 
 
 def case_columns(f, described=None):
-    """The 1-D /cases columns of an open map (one value per case): those its
-    /schema lists (the map's order: the study's column order), else, for a map
-    without /schema, CASE_COLS2 (d or FN, R, tau, G, v; schema 2) or CASE_COLS. The per-segment columns /cases/w and /cases/T of a
-    schema-2 map ([N, K]) are not among them. `described`: schema(f), when
-    already read."""
-    described = schema(f) if described is None else described
-    cols = [p.split("/", 1)[1] for p in described if p.startswith("cases/")]
-    cols = [c for c in cols if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
-    if cols:
-        return cols
-    if schema_version(f) == 2:  # a map without /schema: the documented order
-        return [c for c in CASE_COLS2 if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
-    return list(CASE_COLS)
-
-
-def failure_messages(f, n):
-    """Per case, why it failed ('' where no message): /failures/{case,message} of a
-    schema-2 map, /results/message of a schema-1 map."""
-    msgs = [""] * n
-    if "failures/case" in f and "failures/message" in f:
-        for i, m in zip(f["failures/case"][()], f["failures/message"][()]):
-            if 0 <= int(i) < n:
-                msgs[int(i)] = text(m).rstrip("\0").strip()
-    elif "results/message" in f:
-        msgs = [text(x).rstrip("\0").strip() for x in f["results/message"][()]]
-    return msgs
+    """The 1-D /cases columns of an open map, in the order its /schema lists them."""
+    return maps.case_columns(f, described)
 
 
 def read_grid(f, n, path):
@@ -190,24 +134,6 @@ def read_grid(f, n, path):
     return {"axes": axes, "shape": shape, "log": log, "values": values}
 
 
-def segment_axis(name):
-    """A grid axis of the history: ("w" or "T", segment k from 1, scaled) for
-    wk, wk_over_v, Tk, Tk_over_tau (and the seed's v1, v1_over_v as w1 and
-    t_end_over_tau as T1_over_tau), else None."""
-    import re
-
-    if name == "t_end_over_tau":  # the seed's window: T1_over_tau
-        return "T", 1, True
-    m = re.fullmatch(r"(w|T|v)([1-9][0-9]*)(_over_(v|tau))?", name)
-    if not m:
-        return None
-    kind = "w" if m.group(1) in ("w", "v") else "T"
-    over = m.group(4)
-    if (kind == "w" and over not in (None, "v")) or (kind == "T" and over not in (None, "tau")):
-        return None
-    return kind, int(m.group(2)), over is not None
-
-
 def axis_values_per_case(m, axis, np):
     """The value of grid axis `axis` for every case of a loaded schema-2 map `m`
     (load_cases), computed from /cases (the loading, R, tau, G, v, wk, Tk and the
@@ -229,34 +155,76 @@ def axis_values_per_case(m, axis, np):
 
 
 def load_cases(f, path, np):
-    """The case description of an open schema-2 map: {"n", "K", "status", "cols"
-    (1-D /cases columns), "w", "T" ([N, K]), "loading" ("force" or "depth"),
-    "a" (the length scale: a0 = (3 FN R / 16 G)^(1/3) under load, a1 = sqrt(R d)
-    at depth), "a_name" ("a0" or "a1"), "mu_scale" (a / R), "zeta" (v tau / a),
-    "grid" (read_grid or None), "message"}."""
+    """The case description of an open map (open_map): {"n", "K", "status",
+    "cols" (the 1-D /cases columns /schema lists), "w", "T" ([N, K]), "loading"
+    (the root attribute: "force" or "depth"), "schema" (schema(f)), "scales"
+    ({name: values [N]} of /scales: length, depth, force, friction, time),
+    "a" (/scales/length: a0 under load, a1 at depth), "a_name" ("a0" or "a1"),
+    "mu_scale" (/scales/friction), "zeta" (v over the velocity scale
+    length / time), "zeta_name", "grid" (read_grid or None), "message"}.
+    Nothing here computes a scale: they are the map's."""
     n = int(f["results/status"].shape[0])
     m = {"path": path, "n": n, "status": f["results/status"][()].astype(int)}
-    m["cols"] = {c: f[f"cases/{c}"][()].astype(float) for c in case_columns(f)}
-    if "G" not in m["cols"]:
-        m["cols"]["G"] = np.ones(n)
+    m["schema"] = schema(f)
+    m["cols"] = {c: f[f"cases/{c}"][()].astype(float) for c in case_columns(f, m["schema"])}
     m["w"] = np.asarray(f["cases/w"][()], dtype=float).reshape(n, -1)
     m["T"] = np.asarray(f["cases/T"][()], dtype=float).reshape(n, -1)
     m["K"] = int(m["w"].shape[1])
-    load = "FN" in m["cols"]
-    m["loading"] = "force" if load else "depth"
-    c = m["cols"]
+    try:
+        scales = maps.read_scales(f, path, m["schema"])
+    except maps.MapError as e:
+        raise UserError(str(e)) from None
+    m["scales"] = {k: v[0] for k, v in scales.items()}
+    m["scale_units"] = {k: v[1] for k, v in scales.items()}
+    for name in ("length", "friction", "time"):
+        if name not in m["scales"]:
+            raise UserError(f"{path}: /scales has no {name}")
+    loading = text(f.attrs.get("loading", "")).rstrip("\0")
+    m["loading"] = loading if loading in ("force", "depth") else "depth"
+    load = m["loading"] == "force"
+    m["a"] = m["scales"]["length"]
+    m["mu_scale"] = m["scales"]["friction"]
     with np.errstate(divide="ignore", invalid="ignore"):
-        if load:
-            m["a"] = np.cbrt(3 * c["FN"] * c["R"] / (16 * c["G"]))
-        else:
-            m["a"] = np.sqrt(c["R"] * c["d"])
-        m["mu_scale"] = m["a"] / c["R"]
-        m["zeta"] = c["v"] * c["tau"] / m["a"]
+        m["zeta"] = m["cols"]["v"] * m["scales"]["time"] / m["a"]
     m["a_name"] = "a0" if load else "a1"
     m["zeta_name"] = "zeta0" if load else "zeta"
     m["grid"] = read_grid(f, n, path)
     m["message"] = failure_messages(f, n)
     return m
+
+
+# how a dataset is scaled, by its /schema unit: (scale, its symbol given a_name)
+SCALE_OF_UNIT = {"length": "length", "force": "force", "time": "time"}
+
+
+def scale_of(m, key):
+    """The name of the /scales entry a dataset "group/name" (or a per-event
+    column "group/name_<k>") is measured in, from its /schema unit and
+    meaning: lengths by the length scale (depths by the depth scale), forces by
+    the force scale, times by the time scale, dimensionless friction
+    quantities (mu, a, b, a - b) by the friction scale; None for residuals,
+    error estimates and anything else."""
+    group, name = key.split("/", 1)
+    entry = m["schema"].get(key)
+    if entry is None and "_" in name and name.rsplit("_", 1)[1].isdigit():
+        entry = m["schema"].get(f"{group}/{name.rsplit('_', 1)[0]}")
+    if entry is None or group in ("residuals", "cases", "grid", "scales"):
+        return None
+    unit, meaning = entry
+    if unit == "length" and meaning.startswith("indentation depth"):
+        return "depth" if "depth" in m["scales"] else None
+    if unit in SCALE_OF_UNIT:
+        return SCALE_OF_UNIT[unit] if SCALE_OF_UNIT[unit] in m["scales"] else None
+    if unit == "number" and "error" not in meaning:
+        return "friction"
+    return None
+
+
+def scale_symbol(m, scale):
+    """A short name of a scale in a label: a0 or a1, a0/R, ..., tau."""
+    a = m["a_name"]
+    return {"length": a, "depth": "d0" if a == "a0" else "d", "force": "F0" if a == "a0"
+            else "F(a1)", "friction": f"{a}/R", "time": "tau"}.get(scale, scale)
 
 
 def resolve_axis(name, axes):
@@ -411,7 +379,7 @@ def open_map2(path, np, prog):
     (f, load_cases(f)), f open (use it in a with block); UserError as open_map."""
     import h5py
 
-    f = open_map(path, h5py, prog, versions=(2,))
+    f = open_map(path, h5py, prog)
     try:
         return f, load_cases(f, path, np)
     except BaseException:

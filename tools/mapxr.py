@@ -20,8 +20,10 @@ reads both layouts (the root attribute mdrmap_schema):
   - /events (mdrmap-map/2) under their bare names over (case, event): t,
     mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
     fill value) are NaN;
-  - /analytic as analytic_<name>, /residuals as residual_<name> (the names of
-    map_summary.py's CSV), /timeseries as ts_<name> over (case, sample)
+  - /analytic as analytic_<name>, /residuals as residual_<name>, /scales as
+    scale_<name> (each case's reference length, depth, force, friction and
+    time; the names of map_summary.py's CSV), /timeseries as ts_<name> over
+    (case, sample)
     (mdrmap-map/2: also ts_segment over sample, the segment of each sample);
   - each variable with the attributes units and long_name from the map's
     /schema (maps written before /schema have none) and map_path (its

@@ -5,6 +5,13 @@ Not a script: the tools import it from their own directory. Reads the format
 of `mdrmap simulate --help` ("Output"): comment lines `# mdrmap ...`,
 `# case ...`, optional `# error_vs_...`, one `# event ...` per segment,
 `# pre ...`, then the header and the rows.
+
+The scales the tools measure by (the reference length a0 or a1, depth,
+force, friction a/R, time tau) are mdrmap's own: its `# scales` line (the
+map's /scales). case_scales() reads them from a short probe run of the case
+before the tools choose their velocities, and keeps them in the CSV
+directory as scales.txt, which --from-csv reads back. Nothing here computes
+a scale.
 """
 import math
 import os
@@ -42,10 +49,9 @@ class Run:
         self.col, self.load = columns, load
 
     def scales(self):
-        """(a, d_ref, mu_ref): a0, d0 = a0^2/R, a0/R under load; a1, d, sqrt(d/R) at fixed depth."""
-        R = self.case["R"]
-        a = self.case["a0"] if self.load else math.sqrt(R * self.case["d"])
-        return a, a * a / R, a / R
+        """(length, depth, friction) of the case: mdrmap's `# scales`
+        (case_scales; a0, d0, a0/R under load, a1, d, a1/R at fixed depth)."""
+        return self.sc["length"], self.sc["depth"], self.sc["friction"]
 
     def history(self):
         return [tuple(number(x, f"{self.path}: history") for x in seg.split(":"))
@@ -134,11 +140,44 @@ def loading_args(a):
     return load + ["--R", repr(a.R), "--tau", repr(a.tau), "--G", repr(a.G)]
 
 
-def length_scale(a):
-    """a0 (Hertz radius of F0) under load, a1 = sqrt(R d) at fixed depth."""
-    if a.FN is not None:
-        return (3.0 * a.FN * a.R / (16.0 * a.G)) ** (1.0 / 3.0)
-    return math.sqrt(a.R * a.d)
+SCALES = "scales.txt"  # the case's scales, kept in the CSV directory for --from-csv
+
+
+def probe_scales(exe, a, workdir):
+    """The `# scales` line of a short `mdrmap simulate` of the tools' case
+    (loading, R, tau, G; a two-sample run), as {name: value}."""
+    path = os.path.join(workdir, "probe.csv")
+    simulate(exe, loading_args(a) + ["--v", "1", "--history", "1:1", "--samples", "2"], path)
+    with open(path, encoding="utf-8") as f:
+        lines = [ln for ln in f.read().splitlines() if ln.startswith("# scales ")]
+    os.remove(path)
+    if len(lines) != 1:
+        raise UserError(f"{exe} printed no '# scales' line: an mdrmap older than these tools")
+    return {k: number(v, f"probe: {k}") for k, v in fields(lines[0]).items()}
+
+
+def case_scales(a, exe, workdir):
+    """{name: value} of the case's scales (length, depth, force, friction,
+    time): mdrmap's `# scales` line of the case (written to WORKDIR/scales.txt
+    with the case), or with --from-csv read back from there; UserError if it
+    is missing or is another case's."""
+    path = os.path.join(workdir, SCALES)
+    want = {"R": a.R, "tau": a.tau, "G": a.G}
+    want.update({"FN": a.FN} if a.FN is not None else {"d": a.d})
+    if not a.from_csv:
+        scales = probe_scales(exe, a, workdir)
+        with open(path, "w") as f:
+            f.write(" ".join(f"{k}={v!r}" for k, v in {**want, **scales}.items()) + "\n")
+    if not os.path.exists(path):
+        raise UserError(f"no such file: {path} (the case's scales, which a run without "
+                        f"--from-csv writes there)")
+    with open(path) as f:
+        got = {k: number(v, f"{path}: {k}") for k, v in fields("# " + f.read()).items()}
+    for k, v in want.items():
+        if k not in got or not math.isclose(got[k], v, rel_tol=1e-12):
+            raise UserError(f"{path}: {k}={got.get(k)}, but {k}={v:g} asked for (rerun without "
+                            f"--from-csv)")
+    return {k: v for k, v in got.items() if k not in want}
 
 
 def add_common(p):
@@ -171,13 +210,15 @@ def check_common(a):
         raise UserError(f"-o: {a.output} is a directory")
 
 
-def obtain(a, exe, workdir, name, args, np):
-    """The run NAME: read from --csv-dir with --from-csv, else simulated into WORKDIR/NAME."""
+def obtain(a, exe, workdir, name, args, np, scales):
+    """The run NAME: read from --csv-dir with --from-csv, else simulated into
+    WORKDIR/NAME; `scales` (case_scales) attached."""
     path = os.path.join(workdir, name)
     if not a.from_csv:
         simulate(exe, args, path)
     run = read_csv(path, np)
     expect_case(run, a)
+    run.sc = scales
     return run
 
 

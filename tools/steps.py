@@ -4,7 +4,7 @@
 the rate-and-state numbers: runs `mdrmap simulate` (or reads its CSVs) and
 plots friction and depth against slip.
 
-For each zeta0 = v0 tau / a0 (a0 the Hertz radius of F0; a1 = sqrt(R d) at
+For each zeta0 = v0 tau / a0 (a0 the Hertz radius of F0; a1 the leading edge at
 fixed depth) the tool runs a step up (v0 -> RATIO v0) and a step down
 (v0 -> v0 / RATIO) out of stationary sliding at v0. The segment after the step
 lasts max(30 tau, 30 a0 / v_after), long enough to settle, sampled on a log
@@ -114,7 +114,7 @@ def plot(runs, zetas, a, output, dpi, load):
                 ax.axhline(pre / ref, color=c, ls=":", lw=0.8)
         ratio = runs[(zetas[0], direction)].history()[0][0] / runs[(zetas[0], direction)].case["v"]
         axes[0][j].set_title(f"step {direction}: v -> {ratio:g} v")
-        axes[0][j].set_ylabel("mu / (a0/R)" if load else "mu / sqrt(d/R)")
+        axes[0][j].set_ylabel("mu / (a0/R)" if load else "mu / a1/R")
         if load:
             axes[1][j].set_ylabel("d / d0")
         axes[-1][j].set_xlabel("slip since the step / a0" if load else "slip / a1")
@@ -143,21 +143,22 @@ def main():
     import numpy as np
 
     exe = None if a.from_csv else simcsv.find_mdrmap(a.mdrmap)
-    scale = simcsv.length_scale(a)
     runs = {}
     with tempfile.TemporaryDirectory(prefix="mdrmap_steps_") as tmp:
         workdir = a.csv_dir or tmp
+        sc = simcsv.case_scales(a, exe, workdir)  # mdrmap's # scales line of the case
+        scale, time = sc["length"], sc["time"]
         for z in zetas:
-            v0 = z * scale / a.tau
+            v0 = z * scale / time
             for direction, w in (("up", v0 * a.ratio), ("down", v0 / a.ratio)):
-                T = max(30.0 * a.tau, 30.0 * scale / w)
+                T = max(30.0 * time, 30.0 * scale / w)
                 args = base + ["--v", repr(v0), "--history", f"{w!r}:{T!r}", "--samples",
                                str(a.samples), "--spacing", "log", "--log-decades", "6",
                                "--rtol", repr(a.rtol)]
                 runs[(z, direction)] = simcsv.obtain(a, exe, workdir, f"step_{direction}_{z:g}.csv",
-                                                     args, np)
+                                                     args, np, sc)
     load = a.FN is not None
-    unit = "a0/R" if load else "sqrt(d/R)"
+    unit = "a0/R" if load else "a1/R"
     cols = ["mu_pre", "jump", "mu_end", "D_c", "a", "a-b", "b", "d_end", "settle"]
     print(f"# mu-like columns in units of {unit}, D_c in units of {'a0' if load else 'a1'}, "
           f"d_end of d0; settle = spread of mu over the last tenth of the slip / mu_end")

@@ -6,6 +6,7 @@
 
 #include "app/prony_input.hpp"
 #include "core/model/params.hpp"
+#include "core/model/scales.hpp"
 
 namespace mdrmap::app {
 namespace {
@@ -71,6 +72,13 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
   return s + " zeta0=" + format_double(c.history.v0 * c.rheology.tau / c.edge_scale());
 }
 
+std::string scales_line(const Case& c) {
+  const Scales sc = scales(c);
+  return "# scales length=" + format_double(sc.length) + " depth=" + format_double(sc.depth) +
+         " force=" + format_double(sc.force) + " friction=" + format_double(sc.friction) +
+         " time=" + format_double(sc.time);
+}
+
 std::string format_double(double x) {
   if (std::isnan(x)) return "nan";
   char buf[64];
@@ -101,6 +109,7 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
   const Case& c = rec.c;
   const bool load = c.loading.by_force();
   std::fprintf(out, "%s\n", case_line(c, temperature).c_str());
+  std::fprintf(out, "%s\n", scales_line(c).c_str());
   write_reference(out, rec);
   for (std::size_t k = 0; k < rec.events.size(); ++k)
     write_event(out, k, rec.events[k]);

@@ -8,6 +8,8 @@
 //     [T=... wlf=C1:C2:TREF] history=W1:T1,W2:T2,... spacing=linear|log
 //     samples=... log-decades=... zeta0=...                   (one line; under load
 //     FN=... in place of d=..., and a0=... before zeta0)
+//   # scales length=... depth=... force=... friction=... time=...
+//                                         (the case's Scales, core/model/scales.hpp)
 //   # error_vs_exact=...                  (fixed depth, a solver other than exact)
 //   # error_vs_reference=... reference=NAME reference_rtol=...
 //                                         (under load, a solver other than the default)
@@ -61,6 +63,10 @@ inline constexpr const char* kCsvHeaderLoad = "t,segment,FN,Fx,mu,a2,d,a1";
 /// The `# case` line of a case (without newline); `temperature` as the
 /// input gave it (CaseInput::temperature).
 std::string case_line(const Case& c, const std::optional<TemperatureInput>& temperature);
+
+/// The `# scales` line of a case (without newline): its Scales, which the
+/// tools measure by (as the map's /scales).
+std::string scales_line(const Case& c);
 
 /// Writes the comment lines, the header and one row per sample to `out`.
 /// Does not flush or check for I/O errors; the caller does (ferror / fclose).

@@ -18,6 +18,7 @@
 #include "app/case_input.hpp"
 #include "app/simulation.hpp"
 #include "core/model/params.hpp"
+#include "core/model/scales.hpp"
 #include "mdrmap/version.hpp"
 
 namespace py = pybind11;
@@ -113,8 +114,8 @@ py::dict info(const app::SimulateRecord& rec) {
 }
 
 /// The `# case` line as a dict: the table's parameters (of a one_of group
-/// the member given), the history as (w, T) pairs, the spacing; a0 under
-/// load; zeta0.
+/// the member given), the history as (w, T) pairs, the spectrum as (G, tau)
+/// pairs where it has terms, the spacing; a0 under load; zeta0.
 py::dict case_dict(const Case& c) {
   py::dict d;
   for (const auto& p : case_parameters())
@@ -128,6 +129,12 @@ py::dict case_dict(const Case& c) {
   for (const Segment& s : c.history.segments)
     history.append(py::make_tuple(s.w, s.T));
   d["history"] = history;
+  if (!c.rheology.branches.empty()) {
+    py::list prony;
+    for (const Branch& b : c.rheology.branches)
+      prony.append(py::make_tuple(b.G, b.tau));
+    d["prony"] = prony;
+  }
   d["spacing"] = c.sampling.spacing == Spacing::Log ? "log" : "linear";
   if (c.loading.by_force()) d["a0"] = c.a0();
   d["zeta0"] = c.history.v0 * c.rheology.tau / c.edge_scale();
@@ -149,6 +156,10 @@ py::dict simulate(const py::dict& options) {
   out["pre"] = fields(app::state_fields(sim->series.pre, load));
   out["info"] = info(sim->record);
   out["case"] = case_dict(sim->record.c);
+  const Scales sc = scales(sim->record.c);
+  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
+                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
+                           py::arg("time") = sc.time);
   const Series& s = sim->series;
   // the capsule owns the result: the arrays below are views of its vectors
   py::capsule owner(sim.get(), [](void* p) { delete static_cast<app::Simulation*>(p); });

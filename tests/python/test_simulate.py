@@ -84,9 +84,15 @@ def check_equal(exe, kw):
     for key, value in r.case.items():
         if key == "aT" and key not in case:  # the CLI shows aT only where it shifts
             assert value == 1.0
+        elif key == "prony":
+            assert ",".join(f"{G!r}:{t!r}" for G, t in value) == case[key] or \
+                [tuple(map(float, x.split(":"))) for x in case[key].split(",")] == list(value)
         elif key not in ("history", "spacing"):
             assert value == float(case[key]), key
     assert r.case["spacing"] == case["spacing"]
+    assert r.scales.keys() == comments["scales"].keys()
+    for key, text in comments["scales"].items():
+        assert r.scales[key] == float(text), key
 
 
 @pytest.mark.parametrize("which", ["history", "load"])

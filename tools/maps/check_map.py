@@ -6,7 +6,8 @@ Usage: check_map.py MAP.h5 [--complete] [--expect-failed N] [--quiet]
 Checks every dataset of the map's schema, mdrmap-map/2 (docs/map-schema.md)
 or mdrmap-map/1 (names, shapes, types), the root provenance attributes, that
 status holds only -1/0/1, that no value is NaN or infinite, and that done
-cases carry a positive normal force. For mdrmap-map/2 also: the fill value
+cases carry a positive normal force. For mdrmap-map/2 also: /scales (length,
+depth, force, friction, time); the fill value
 (9.969209968386869e36) appears only in events/{a,b,a_minus_b,d_c}, which carry
 it as their attribute _FillValue; /timeseries/segment numbers the segments;
 every failed case has a message in /failures. With --complete, also that no
@@ -51,6 +52,7 @@ ROOT_ATTRS2 = ["mdrmap_schema", "n_cases", "segments", "samples", "loading", "pr
 EVENTS = ["t", "FN_after", "Fx_after", "mu_after", "a2_after", "mu_before", "mu_peak", "t_peak",
           "slip_peak", "FN_end", "Fx_end", "mu_end", "a2_end", "a", "b", "a_minus_b", "d_c"]
 FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c"}
+SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/map-schema.md)
 
 
 def expected_datasets2(n, k, s, load, timeseries):
@@ -77,6 +79,8 @@ def expected_datasets2(n, k, s, load, timeseries):
         for x in ["t"] + q:
             d[f"timeseries/{x}"] = ((n, k * s), "f8")
         d["timeseries/segment"] = ((k * s,), "i4")
+    for x in SCALES:
+        d[f"scales/{x}"] = ((n,), "f8")
     d["failures/case"] = (None, "u8")
     d["failures/message"] = (None, "S")
     return d
@@ -103,21 +107,10 @@ def check_grid_status(f, n, problems):
     return status
 
 
-def check2(f, complete, expect_failed):
-    problems = []
-    for a in ROOT_ATTRS2:
-        if a not in f.attrs:
-            problems.append(f"missing root attribute {a}")
-    if problems:
-        return problems, {}
-    n, k, s = (int(f.attrs[a]) for a in ("n_cases", "segments", "samples"))
-    load = "cases/FN" in f
-    loading = f.attrs["loading"]
-    loading = loading.decode() if isinstance(loading, bytes) else str(loading)
-    if loading != ("force" if load else "depth"):
-        problems.append(f"root attribute loading is {loading!r} but /cases has "
-                        f"{'FN' if load else 'd'}")
-    for name, (shape, kind) in expected_datasets2(n, k, s, load, "timeseries" in f).items():
+def check_datasets2(f, expected, problems):
+    """Each expected dataset: present, of its shape and type, finite, the fill
+    value only where the schema allows it."""
+    for name, (shape, kind) in expected.items():
         if name not in f:
             problems.append(f"missing dataset /{name}")
             continue
@@ -143,10 +136,30 @@ def check2(f, complete, expect_failed):
             elif np.any(filled) and not name.startswith(("results/", "analytic/", "residuals/",
                                                           "timeseries/", "events/")):
                 problems.append(f"/{name} holds the fill value")
+
+
+def check2(f, complete, expect_failed):
+    problems = []
+    for a in ROOT_ATTRS2:
+        if a not in f.attrs:
+            problems.append(f"missing root attribute {a}")
+    if problems:
+        return problems, {}
+    n, k, s = (int(f.attrs[a]) for a in ("n_cases", "segments", "samples"))
+    load = "cases/FN" in f
+    loading = f.attrs["loading"]
+    loading = loading.decode() if isinstance(loading, bytes) else str(loading)
+    if loading != ("force" if load else "depth"):
+        problems.append(f"root attribute loading is {loading!r} but /cases has "
+                        f"{'FN' if load else 'd'}")
+    check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f), problems)
     status = check_grid_status(f, n, problems)
     done = status == 1
     if "results/FN_pre" in f and np.any(f["results/FN_pre"][()][done] <= 0):
         problems.append("a done case has F_N <= 0 before t = 0")
+    for name in ("scales/length", "scales/force", "scales/friction"):
+        if name in f and np.any(f[name][()][done] <= 0):
+            problems.append(f"a done case has /{name} <= 0")
     if done.any():
         for name in ("cases/w", "events/mu_after", "events/d_c"):
             if name in f and name not in FILLED and np.any(f[name][()][done] == FILL):

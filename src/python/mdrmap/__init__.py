@@ -121,7 +121,10 @@ class Result:
              as the CSV gives them)
     case     the case as run (the CSV's `# case` line): its parameters, the
              history as (w, T) pairs (the default window resolved), spacing,
-             a0 under load, zeta0
+             a0 under load, zeta0; prony as (G, tau) pairs where the
+             material has a spectrum
+    scales   the case's scales (the CSV's `# scales` line, the map's /scales):
+             length, depth, force, friction, time
     """
 
     def __init__(self, fields):

@@ -12,8 +12,9 @@ reads both layouts (the root attribute mdrmap_schema):
   - /events (mdrmap-map/2) under their bare names over (case, event): t,
     mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
     fill value) are NaN;
-  - /analytic as analytic_<name>, /residuals as residual_<name>, /timeseries
-    as ts_<name> over (case, sample) (mdrmap-map/2: also ts_segment over
+  - /analytic as analytic_<name>, /residuals as residual_<name>, /scales as
+    scale_<name> (the case's reference length, depth, force, friction and
+    time), /timeseries as ts_<name> over (case, sample) (mdrmap-map/2: also ts_segment over
     sample, the segment of each sample);
   - each variable with the attributes units and long_name from the map's
     /schema (maps written before /schema have none) and map_path (its
@@ -83,8 +84,11 @@ def schema_version(f):
     return 2 if "events" in f or "cases/w" in f else 1
 
 
-def _open_h5(path, h5py):
-    """PATH opened read-only with h5py; MapError unless it is a readable map."""
+def open_h5(path, h5py, warn=None, versions=(1, 2)):
+    """PATH opened read-only with h5py; MapError (one line) unless it is a
+    readable map of one of the layouts `versions`. `warn(message)` reports a
+    map of an unknown schema name (default: a MapWarning). The one opener of
+    the package and the tools (tools/maplib.py)."""
     if not os.path.exists(path):
         raise MapError(f"no such file: {path}")
     if os.path.isdir(path):
@@ -99,14 +103,21 @@ def _open_h5(path, h5py):
     name = schema_name(f)
     version = schema_version(f)
     if name not in SCHEMAS:
-        warnings.warn(f"{path} has schema {name}; mdrmap reads {SCHEMA1} and {SCHEMA2} "
-                      f"(reading it as {SCHEMA1 if version == 1 else SCHEMA2})", MapWarning)
+        message = (f"{path} has schema {name}; mdrmap reads {SCHEMA1} and {SCHEMA2} "
+                   f"(reading it as {SCHEMA1 if version == 1 else SCHEMA2})")
+        if warn is None:
+            warnings.warn(message, MapWarning)
+        else:
+            warn(message)
+    if version not in versions:
+        f.close()
+        raise MapError(f"{path} is an {SCHEMA1 if version == 1 else SCHEMA2} map; this tool "
+                       f"reads {SCHEMA2 if version == 1 else SCHEMA1} maps: rerun the study with "
+                       f"this version")
     if version == 1:
         need = ["results/status"] + [f"cases/{c}" for c in _CASE_COLS1]
     else:
         need = ["results/status", "cases/R", "cases/tau", "cases/v", "cases/w", "cases/T"]
-        if "cases/d" not in f and "cases/FN" not in f:
-            need.append("cases/d")  # reported as missing below
     for item in need:
         if item not in f:
             f.close()
@@ -114,7 +125,60 @@ def _open_h5(path, h5py):
     return f
 
 
-def _failure_messages(f, n):
+def require_groups(f, path, groups=("schema", "scales")):
+    """MapError (one line naming the group) unless the open map has each of
+    `groups`: /schema (units and meanings) and /scales (the reference scales
+    of each case) are in every map this version writes."""
+    for g in groups:
+        if g not in f or not hasattr(f[g], "keys"):
+            raise MapError(f"{path} has no /{g} group: it was made before mdrmap wrote /{g} "
+                           f"(rerun the study with this version)")
+
+
+def describe(f):
+    """{"group/name": (unit, meaning)} from the map's /schema group, in the
+    map's order; {} for a map written before /schema."""
+    out = {}
+    if "schema" not in f or not hasattr(f["schema"], "keys"):
+        return out
+    for group, g in f["schema"].items():
+        if not hasattr(g, "keys"):
+            continue
+        for name, entry in g.items():
+            out[f"{group}/{name}"] = (text(entry.attrs.get("unit", "")).rstrip("\0"),
+                                      text(entry.attrs.get("meaning", "")).rstrip("\0"))
+    return out
+
+
+def case_columns(f, described=None):
+    """The 1-D /cases columns (one value per case) of an open map, as its
+    /schema lists them (the study's column order: the loading first); the
+    per-segment /cases/w and /cases/T ([N, K]) are not among them."""
+    described = describe(f) if described is None else described
+    cols = [p.split("/", 1)[1] for p in described if p.startswith("cases/")]
+    return [c for c in cols if f"cases/{c}" in f and len(f[f"cases/{c}"].shape) == 1]
+
+
+def read_scales(f, path, described=None):
+    """The map's /scales: {name: (values [N] as float, unit, meaning)} in the
+    order of /schema/scales (length, depth, force, friction, time). MapError
+    for a map without /scales (require_groups)."""
+    import numpy as np
+
+    require_groups(f, path, ("scales",))
+    described = describe(f) if described is None else described
+    names = [p.split("/", 1)[1] for p in described if p.startswith("scales/")]
+    names += [k for k in f["scales"] if k not in names]
+    out = {}
+    for name in names:
+        if name not in f["scales"]:
+            raise MapError(f"{path}: /schema lists scales/{name}, the map has no /scales/{name}")
+        unit, meaning = described.get(f"scales/{name}", ("", ""))
+        out[name] = (np.asarray(f["scales"][name][()], dtype=float), unit, meaning)
+    return out
+
+
+def failure_messages(f, n):
     """Per case, why it failed ('' where no message)."""
     msgs = [""] * n
     if "failures/case" in f and "failures/message" in f:
@@ -126,7 +190,7 @@ def _failure_messages(f, n):
     return msgs
 
 
-def _segment_axis(name):
+def segment_axis(name):
     """A grid axis of the history: ("w" or "T", segment k from 1, scaled) for
     wk, wk_over_v, Tk, Tk_over_tau (and the seed's v1, v1_over_v as w1 and
     t_end_over_tau as T1_over_tau), else None."""
@@ -144,7 +208,7 @@ def _segment_axis(name):
 
 # map group -> variable name prefix
 GROUPS = [("cases", ""), ("results", ""), ("events", ""), ("analytic", "analytic_"),
-          ("residuals", "residual_"), ("timeseries", "ts_")]
+          ("residuals", "residual_"), ("scales", "scale_"), ("timeseries", "ts_")]
 
 
 def _attr(value):
@@ -164,7 +228,7 @@ def _read_h5(path):
     import h5py
     import numpy as np
 
-    with _open_h5(path, h5py) as f:
+    with open_h5(path, h5py) as f:
         attrs = {k: _attr(f.attrs[k]) for k in f.attrs}
         n = int(f["results/status"].shape[0])
         groups = [g for g, _ in GROUPS if g in f and hasattr(f[g], "keys") and len(f[g])]
@@ -186,8 +250,56 @@ def _read_h5(path):
             grid = {"axes": axes, "values": values, "log": log, "described": described}
         scaled = "case" in f and f["case"].attrs.get("CLASS") == b"DIMENSION_SCALE"
         version = schema_version(f)
-        messages = _failure_messages(f, n) if version == 2 else None
+        messages = failure_messages(f, n) if version == 2 else None
     return attrs, n, groups, grid, scaled, version, messages
+
+
+def _open_group(path, group, prefix, n, scaled, version):
+    """One group of the map as a Dataset along `case`, its variables renamed
+    with `prefix` and marked with map_path (the /cases columns as coordinates)."""
+    import xarray as xr
+
+    try:
+        # mdrmap-map/2: the fill value of undefined values becomes NaN
+        ds = xr.open_dataset(path, engine="h5netcdf", group=group, decode_times=False,
+                             decode_timedelta=False, mask_and_scale=version == 2,
+                             phony_dims=None if scaled else "sort")
+    except (OSError, ValueError) as e:
+        raise MapError(f"{path}: cannot open /{group} with xarray "
+                       f"({str(e).splitlines()[0]})") from None
+    if not scaled:  # a map without dimension scales: name the phony dimensions
+        second = "sample" if group == "timeseries" else "event"
+        names = {}
+        for var in ds.data_vars.values():
+            want = ["case", second] if len(var.dims) == 2 or var.shape[0] == n else [second]
+            for dim, name in zip(var.dims, want):
+                if names.setdefault(dim, name) != name:
+                    raise MapError(f"{path}: /{group} has no dimension scales and its "
+                                   f"dimensions are ambiguous")
+        ds = ds.rename_dims(names)
+    if ds.sizes.get("case") != n:
+        raise MapError(f"{path}: /{group} is not along the {n} cases")
+    for name in ds.data_vars:
+        ds[name].attrs["map_path"] = f"{group}/{name}"
+    ds = ds.rename({k: prefix + k for k in ds.data_vars}) if prefix else ds
+    if group == "cases":
+        ds = ds.set_coords(list(ds.data_vars))
+    ds.attrs = {}
+    return ds
+
+
+def _grid_attrs(grid):
+    """The Dataset attributes that describe a grid study's axes."""
+    out = {"grid_axes": ",".join(grid["axes"]), "grid_shape": [len(v) for v in grid["values"]],
+           "grid_log": grid["log"]}
+    for a, v in zip(grid["axes"], grid["values"]):
+        out[f"grid_{a}"] = v
+        unit, meaning = grid["described"][a]
+        if unit:
+            out[f"grid_{a}_units"] = unit
+        if meaning:
+            out[f"grid_{a}_long_name"] = meaning
+    return out
 
 
 def open_map(path):
@@ -198,37 +310,8 @@ def open_map(path):
     import numpy as np
 
     attrs, n, groups, grid, scaled, version, messages = _read_h5(path)
-    parts = []
-    for group, prefix in GROUPS:
-        if group not in groups:
-            continue
-        try:
-            # mdrmap-map/2: the fill value of undefined values becomes NaN
-            ds = xr.open_dataset(path, engine="h5netcdf", group=group, decode_times=False,
-                                 decode_timedelta=False, mask_and_scale=version == 2,
-                                 phony_dims=None if scaled else "sort")
-        except (OSError, ValueError) as e:
-            raise MapError(f"{path}: cannot open /{group} with xarray "
-                            f"({str(e).splitlines()[0]})") from None
-        if not scaled:  # a map without dimension scales: name the phony dimensions
-            second = "sample" if group == "timeseries" else "event"
-            names = {}
-            for var in ds.data_vars.values():
-                want = ["case", second] if len(var.dims) == 2 or var.shape[0] == n else [second]
-                for dim, name in zip(var.dims, want):
-                    if names.setdefault(dim, name) != name:
-                        raise MapError(f"{path}: /{group} has no dimension scales and its "
-                                        f"dimensions are ambiguous")
-            ds = ds.rename_dims(names)
-        if ds.sizes.get("case") != n:
-            raise MapError(f"{path}: /{group} is not along the {n} cases")
-        for name in ds.data_vars:
-            ds[name].attrs["map_path"] = f"{group}/{name}"
-        ds = ds.rename({k: prefix + k for k in ds.data_vars}) if prefix else ds
-        if group == "cases":
-            ds = ds.set_coords(list(ds.data_vars))
-        ds.attrs = {}
-        parts.append(ds)
+    parts = [_open_group(path, group, prefix, n, scaled, version)
+             for group, prefix in GROUPS if group in groups]
     out = xr.merge(parts, compat="identical", join="exact", combine_attrs="override")
     if messages is not None:
         out["message"] = xr.Variable(("case",), np.array(messages, dtype=object),
@@ -236,16 +319,7 @@ def open_map(path):
                                       "map_path": "failures/message"})
     out.attrs = dict(attrs)
     if grid:
-        out.attrs["grid_axes"] = ",".join(grid["axes"])
-        out.attrs["grid_shape"] = [len(v) for v in grid["values"]]
-        out.attrs["grid_log"] = grid["log"]
-        for a, v in zip(grid["axes"], grid["values"]):
-            out.attrs[f"grid_{a}"] = v
-            unit, meaning = grid["described"][a]
-            if unit:
-                out.attrs[f"grid_{a}_units"] = unit
-            if meaning:
-                out.attrs[f"grid_{a}_long_name"] = meaning
+        out.attrs.update(_grid_attrs(grid))
     return out
 
 
@@ -253,7 +327,6 @@ def to_grid(ds):
     """The Dataset of a grid study (open_map) with the grid's axes as dimensions
     (see the module's help). Raises MapError for a map without /grid."""
     import numpy as np
-    import xarray as xr
 
     if "grid_axes" not in ds.attrs:
         raise MapError("not a grid study (the map has no /grid): to_grid needs the grid's axes")
@@ -274,12 +347,20 @@ def to_grid(ds):
                         f"dimensions: use open_map's rows along `case` (grid_* attributes name "
                         f"each case's axis values)")
 
+    _check_case_order(ds, axes, values, shape)
+    return _reshaped(ds, axes, values, shape, n)
+
+
+def _check_case_order(ds, axes, values, shape):
+    """MapError unless the /cases columns are the grid's axes in C order."""
+    import numpy as np
+
     # the /cases columns must be the grid, in C order (last axis fastest)
     mesh = dict(zip(axes, np.meshgrid(*values, indexing="ij")))
     if "v1_over_v" in mesh and "v" in mesh:
         mesh.setdefault("v1", mesh["v1_over_v"] * mesh["v"])
     for a, want in mesh.items():
-        seg = _segment_axis(a) if a not in ds.variables else None
+        seg = segment_axis(a) if a not in ds.variables else None
         if seg is not None and seg[0] in ds.variables and ds[seg[0]].ndim == 2:
             # an mdrmap-map/2 history axis: from /cases/w or /cases/T [N, K]
             kind, k, over = seg
@@ -304,6 +385,12 @@ def to_grid(ds):
         if not same:
             raise MapError(f"/cases/{a} does not follow the grid's axes {axes} in C order: "
                             f"not a grid study's case order")
+
+
+def _reshaped(ds, axes, values, shape, n):
+    """Every variable along `case` reshaped to the grid's axes (see to_grid)."""
+    import numpy as np
+    import xarray as xr
 
     coords = {}
     for a, v in zip(axes, values):
