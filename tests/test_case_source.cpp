@@ -277,7 +277,7 @@ TEST(CaseSource, SpectrumAndTemperatureColumnsAsExpansion) {
   EXPECT_EQ(s.canonical(), canonical(g));
   EXPECT_EQ(case_for(g, s.row(0)).rheology.branches.at(0).tau, 0.01);
   EXPECT_LT(case_for(g, s.row(1)).rheology.aT, 1.0); // temperature fastest: 30 > TREF
-  std::string text = "G1,tau1,aT,FN,R,tau,v,w1,T1\n";
+  std::string text = "G1,tau1,aT,d,R,tau,v,w1,T1\n";
   const std::size_t n = CaseListIndex::kStride + 3;
   for (std::size_t i = 0; i < n; ++i)
     text += "2," + std::to_string(1 + i) + ",0.5,1e-3,1,0,1,0,3\n";

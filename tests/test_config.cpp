@@ -1277,6 +1277,15 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
     EXPECT_NE(message.find(b.said), std::string::npos) << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
+  // no solver takes a spectrum under load yet: refused at the config, not case by case
+  const auto [option, message] = error_of([&] {
+    parse("[grid]\nFN = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n[history]\n"
+          "w1_over_v = 0.5\nT1 = 1\n");
+  });
+  EXPECT_EQ(option, "run.solver") << message;
+  EXPECT_NE(message.find("no solver takes a relaxation spectrum (G1, tau1) under load control"),
+            std::string::npos)
+      << message;
   // 32 terms are allowed, a 33rd is no column
   std::string terms;
   for (int k = 1; k <= 32; ++k)

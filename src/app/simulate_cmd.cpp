@@ -332,12 +332,15 @@ Case parameters:
 Other options:
   --rtol E       target accuracy: bound on the case error (below), a number
                  in (0, 0.1]. Default: 1e-4
-  --solver S     auto, exact, mdr or baseline. Default: auto
+  --solver S     auto, exact, mdr, baseline or spectrum. Default: auto
                    exact     continuum (dx -> 0) solution, semi-analytic
                    mdr       discrete MDR element simulation with error control
                    baseline  the paper's brute-force method, for reference
+                   spectrum  element row of any rheology (--prony), exact
+                             exponential updates, error control; fixed depth
                    auto      the cheapest solver that meets rtol (exact at
-                             fixed depth, the load solver under --FN)
+                             fixed depth, the load solver under --FN, spectrum
+                             with --prony)
   --output FILE  write to FILE instead of stdout. A regular file (or the
                  file a symbolic link points to) is replaced at once when
                  the run succeeds and left untouched when it fails; a

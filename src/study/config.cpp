@@ -166,13 +166,15 @@ void check_solver_takes_spectrum(const StudyConfig& c, SolverKind kind) {
   std::string terms;
   for (const Axis& a : c.axes)
     if (a.column.spectrum()) terms += (terms.empty() ? "" : ", ") + a.name;
-  if (terms.empty() || kind == SolverKind::Auto ||
-      solver_handles(kind, ModelNeeds{c.by_force(), true}))
-    return;
+  if (terms.empty() || solver_handles(kind, ModelNeeds{c.by_force(), true})) return;
+  if (c.by_force())
+    throw ConfigError("run.solver", "no solver takes a relaxation spectrum (" + terms +
+                                        ") under load control yet; the spectrum solver takes "
+                                        "it at a fixed depth d");
   throw ConfigError("run.solver", std::string("solver ") + solver_name(kind) +
                                       " solves the Kelvin foundation only, and the study has a "
                                       "relaxation spectrum (" +
-                                      terms + "); give solver = auto");
+                                      terms + "); give solver = auto or spectrum");
 }
 
 /// Refuses a solver that does not solve the study's loading (the core says
@@ -191,8 +193,7 @@ void check_solver(const StudyConfig& c) {
     return;
   }
   std::string takes;
-  for (const SolverKind k :
-       {SolverKind::Auto, SolverKind::Exact, SolverKind::Mdr, SolverKind::Baseline})
+  for (const SolverKind k : kSolverKinds)
     if (solver_handles(k, force)) takes += std::string(takes.empty() ? "" : ", ") + solver_name(k);
   throw ConfigError("run.solver",
                     std::string("solver ") + solver_name(kind) + " does not solve " +

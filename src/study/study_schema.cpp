@@ -133,7 +133,7 @@ std::string run_solver(const std::string& option, const std::string& text) {
     return solver_name(parse_solver(text));
   } catch (const InvalidInput&) {
     throw ConfigError(option, "unknown solver " + shown(text) +
-                                  "; solver must be one of auto, exact, mdr, baseline");
+                                  "; solver must be one of auto, exact, mdr, baseline, spectrum");
   }
 }
 

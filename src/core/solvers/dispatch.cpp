@@ -8,15 +8,15 @@
 #include "core/solvers/load.hpp"
 #include "core/solvers/load_baseline.hpp"
 #include "core/solvers/mdr.hpp"
+#include "core/solvers/spectrum.hpp"
 
 namespace mdrmap {
 
 SolverKind parse_solver(const std::string& name) {
-  if (name == "auto") return SolverKind::Auto;
-  if (name == "exact") return SolverKind::Exact;
-  if (name == "mdr") return SolverKind::Mdr;
-  if (name == "baseline") return SolverKind::Baseline;
-  throw InvalidInput("solver", "must be one of auto, exact, mdr, baseline; got '" + name + "'");
+  for (const SolverKind k : kSolverKinds)
+    if (name == solver_name(k)) return k;
+  throw InvalidInput("solver",
+                     "must be one of auto, exact, mdr, baseline, spectrum; got '" + name + "'");
 }
 
 const char* solver_name(SolverKind k) {
@@ -29,6 +29,8 @@ const char* solver_name(SolverKind k) {
     return "mdr";
   case SolverKind::Baseline:
     return "baseline";
+  case SolverKind::Spectrum:
+    return "spectrum";
   }
   return "?";
 }
@@ -43,8 +45,18 @@ ModelNeeds model_needs(const Case& c) {
 }
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
-  if (needs.spectrum) return false;                      // the spectrum solver is not in yet
-  return !(needs.by_force && kind == SolverKind::Exact); // exact: depth control only
+  switch (kind) {
+  case SolverKind::Auto:
+    return !(needs.by_force && needs.spectrum); // no solver takes a spectrum under load yet
+  case SolverKind::Exact:
+    return !needs.by_force && !needs.spectrum;
+  case SolverKind::Mdr:
+  case SolverKind::Baseline:
+    return !needs.spectrum;
+  case SolverKind::Spectrum:
+    return !needs.by_force;
+  }
+  return false;
 }
 
 namespace {
@@ -67,6 +79,7 @@ RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunCo
     return run_load_baseline(c, o);
   }
   case SolverKind::Exact:
+  case SolverKind::Spectrum:
     break;
   }
   return run_exact(c, rtol, control); // refuses a force-controlled case
@@ -81,12 +94,15 @@ namespace {
 void require_handled(SolverKind kind, const Case& c) {
   const ModelNeeds needs = model_needs(c);
   if (solver_handles(kind, needs)) return;
+  if (needs.spectrum && needs.by_force)
+    throw InvalidInput("prony", "no solver takes a relaxation spectrum under load control yet "
+                                "(--FN); the spectrum solver takes it at a fixed depth (--d)");
   if (needs.spectrum)
     throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
                                     " solves the Kelvin foundation only (no Maxwell branches); "
                                     "this case has " +
                                     std::to_string(c.rheology.branches.size()) +
-                                    " (no solver takes a relaxation spectrum yet)");
+                                    ": use --solver auto or spectrum");
   require_depth_control(c, solver_name(kind));
 }
 
@@ -99,6 +115,12 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
   if (given.get().rheology.aT != 1.0) return run_case(given.shifted(), kind, rtol, control);
   const CheckedCase& checked = given;
   const Case& c = checked.get();
+  if (kind == SolverKind::Spectrum || (kind == SolverKind::Auto && !c.rheology.kelvin())) {
+    SpectrumOptions o;
+    o.rtol = rtol;
+    o.control = &control;
+    return run_spectrum(c, o);
+  }
   if (c.loading.by_force()) return run_load_case(c, kind, rtol, control);
   switch (kind) {
   case SolverKind::Auto:
@@ -116,6 +138,8 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
     o.control = &control;
     return run_baseline(c, o);
   }
+  case SolverKind::Spectrum: // taken above
+    break;
   }
   return run_exact(checked, rtol, control);
 }

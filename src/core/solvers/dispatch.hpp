@@ -8,9 +8,14 @@
 
 namespace mdrmap {
 
-enum class SolverKind { Auto, Exact, Mdr, Baseline };
+enum class SolverKind { Auto, Exact, Mdr, Baseline, Spectrum };
 
-/// Parses "auto", "exact", "mdr", "baseline"; throws InvalidInput("solver").
+/// Every kind, in the order of the help text.
+inline constexpr SolverKind kSolverKinds[] = {SolverKind::Auto, SolverKind::Exact, SolverKind::Mdr,
+                                              SolverKind::Baseline, SolverKind::Spectrum};
+
+/// Parses "auto", "exact", "mdr", "baseline", "spectrum"; throws
+/// InvalidInput("solver").
 SolverKind parse_solver(const std::string& name);
 const char* solver_name(SolverKind k);
 
@@ -24,8 +29,10 @@ ModelNeeds model_needs(const Case& c);
 
 /// Whether run_case solves cases with these needs with `kind`. exact solves
 /// depth control only; exact, mdr and baseline (and the load solvers they
-/// dispatch to) the Kelvin foundation only. run_case refuses the others with
-/// InvalidInput naming "solver" (the loading) or "prony" (the spectrum).
+/// dispatch to) the Kelvin foundation only; spectrum (the element row of any
+/// rheology) depth control only, with or without branches; auto whatever one
+/// of them solves. run_case refuses the others with InvalidInput naming
+/// "solver" (the loading) or "prony" (the spectrum).
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);
 /// The same for a loading alone, on the Kelvin foundation.
 inline bool solver_handles(SolverKind kind, bool by_force) {
@@ -33,8 +40,9 @@ inline bool solver_handles(SolverKind kind, bool by_force) {
 }
 
 /// Runs one case (its relaxation times shifted by aT). `Auto` picks the
-/// cheapest solver that handles the case and meets rtol: at fixed depth on the
-/// Kelvin foundation that is always the continuum solver. Every solver charges its work to
+/// cheapest solver that handles the case and meets rtol: on the Kelvin
+/// foundation the continuum solver at fixed depth and the load solver under
+/// load; with a spectrum the spectrum solver. Every solver charges its work to
 /// `control`: throws CaseAbandoned when the case needs more than its budget
 /// (or, for mdr, cannot meet rtol), Interrupted when its stop flag is set.
 RunResult run_case(const CheckedCase& c, SolverKind kind, double rtol,

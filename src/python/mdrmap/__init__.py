@@ -146,7 +146,7 @@ def simulate(**options):
     Keywords: d (depth control) or FN (load control), R, tau, v, and G,
     the history: v1 (one step, with t_end) or history=[(w1, T1), ...],
     the sampling: samples, spacing ("linear", "log"), log_decades,
-    the run: rtol, solver ("auto", "exact", "mdr", "baseline").
+    the run: rtol, solver ("auto", "exact", "mdr", "baseline", "spectrum").
     Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError
     (the case cannot be computed within its budget or rtol, exit code 1).
     """

@@ -1,0 +1,32 @@
+#pragma once
+// The spectrum solver: the MDR element row for any relaxation spectrum
+// (core/model/rheology.hpp: long-term G, parallel dashpot tau >= 0, Maxwell
+// branches G_k, tau_k), at fixed depth. Every element moves exactly (an
+// exponential per branch in contact, the free system in its modes), its
+// contact switches located in time; the window [-a1, a1] moves with the
+// indenter (memory independent of travel); the resolution a1/dx is refined
+// until a half-resolution companion run agrees within rtol. Runs N = 0
+// (Kelvin) cases too, as a check of the specialised solvers. Expects a
+// shifted case (aT folded in; an unshifted one is shifted here).
+#include "core/model/case.hpp"
+#include "core/solvers/result.hpp"
+#include "core/solvers/run_control.hpp"
+
+namespace mdrmap {
+
+struct SpectrumOptions {
+  double rtol = 1e-3;         ///< target case error; sets dx when cells_per_a1 == 0, and
+                              ///< the trailing edge is located to 1e-2 rtol a1 always
+  double cells_per_a1 = 0.0;  ///< fixed resolution a1/dx (0: chosen from rtol, refined)
+  double phase = 0.5;         ///< element offset at t = 0, in cells
+  double sub_travel = 0.25;   ///< largest travel of a sub-step, in a1 (switch detection)
+  bool estimate_error = true; ///< run the half-resolution companion for error_estimate
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag).
+  const RunControl* control = nullptr;
+};
+
+/// Throws InvalidInput("solver") under load control (not supported yet),
+/// CaseAbandoned when the estimate stays above rtol or past the work budget.
+RunResult run_spectrum(const Case& c, const SpectrumOptions& o);
+
+} // namespace mdrmap

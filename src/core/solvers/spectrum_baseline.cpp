@@ -1,0 +1,193 @@
+#include "core/solvers/spectrum_baseline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "core/metrics/error_metric.hpp"
+
+namespace mdrmap {
+namespace {
+
+constexpr const char* kName = "spectrum-baseline";
+
+/// The element row over the whole travel path: u, q_1..q_N per element.
+struct Row {
+  const Case& c;
+  const RunControl& control;
+  double a1, dx, x0; // lab position of element i: x0 + i dx; xi = x + s
+  std::size_t N;
+  std::vector<double> u, q;
+  std::vector<unsigned char> contact;
+  long updates = 0;
+
+  double h(double x) const { return (a1 - x) * (a1 + x) / c.indenter.R; }
+  double xi(std::size_t i, double s) const { return x0 + static_cast<double>(i) * dx + s; }
+  double force(std::size_t i, double x, double w) const { // per 4 dx
+    const Rheology& r = c.rheology;
+    double p = r.G * u[i] + r.G * r.tau * (-w * c.indenter.slope(x));
+    for (std::size_t k = 0; k < N; ++k)
+      p += r.branches[k].G * (u[i] - q[i * N + k]);
+    return p;
+  }
+  // elements that can touch: the rest lies ahead (untouched) or behind a1 (never again)
+  std::pair<std::size_t, std::size_t> range(double s) const {
+    const double lo = std::floor((-a1 - s - x0) / dx) - 1.0,
+                 hi = std::ceil((a1 - s - x0) / dx) + 1.0;
+    const double n = static_cast<double>(u.size());
+    return {static_cast<std::size_t>(std::clamp(lo, 0.0, n)),
+            static_cast<std::size_t>(std::clamp(hi, 0.0, n))};
+  }
+
+  void step(double s, double w, double dt, const std::vector<double>& e) {
+    const Rheology& r = c.rheology;
+    const auto [lo, hi] = range(s);
+    control.charge(static_cast<double>(hi - lo), kName);
+    updates += static_cast<long>(hi - lo);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double x = xi(i, s), hx = h(x);
+      double* qi = &q[i * N];
+      if (!contact[i]) { // implicit force balance with the relaxed branches
+        double num = r.G * r.tau * u[i] / dt, den = r.G + r.G * r.tau / dt;
+        for (std::size_t k = 0; k < N; ++k) {
+          num += r.branches[k].G * e[k] * qi[k];
+          den += r.branches[k].G * e[k];
+        }
+        u[i] = num / den;
+        if (u[i] <= hx && x >= -a1 && x <= a1) contact[i] = 1;
+      }
+      if (contact[i]) u[i] = hx;
+      for (std::size_t k = 0; k < N; ++k)
+        qi[k] = u[i] + (qi[k] - u[i]) * e[k];
+      if (contact[i] && (force(i, x, w) < 0.0 || x > a1)) contact[i] = 0;
+    }
+  }
+  void change(double s, double w) {
+    const auto [lo, hi] = range(s);
+    control.charge(static_cast<double>(hi - lo), kName);
+    for (std::size_t i = lo; i < hi; ++i)
+      if (contact[i] && force(i, xi(i, s), w) < 0.0) contact[i] = 0;
+  }
+  State measure(double s, double w) const {
+    const auto [lo, hi] = range(s);
+    control.charge(static_cast<double>(hi - lo), kName);
+    double sN = 0.0, sX = 0.0, a2 = -a1;
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (!contact[i]) continue;
+      const double x = xi(i, s), f = force(i, x, w);
+      sN += f;
+      sX += f * (-c.indenter.slope(x));
+      a2 = std::max(a2, x);
+    }
+    State st;
+    st.FN = 4.0 * dx * sN;
+    st.Fx = 4.0 * dx * sX;
+    st.mu = st.Fx / st.FN;
+    st.d = c.loading.d;
+    st.a1 = a1;
+    st.a2 = a2;
+    return st;
+  }
+};
+
+RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunControl& control) {
+  if (!(o.cells_per_a1 >= 2.0) || !(o.spinup_travel >= 2.5) || !(o.steps_per_cell > 0.0))
+    throw InvalidInput("cells-per-a1",
+                       "spectrum-baseline needs cells_per_a1 >= 2, spin-up >= 2.5 a1");
+  const double a1 = c.a1(), dx = a1 / o.cells_per_a1, v0 = c.history.v0;
+  double wmax = v0;
+  for (const auto& seg : c.history.segments)
+    wmax = std::max(wmax, seg.w);
+  const double dt0 = dx / (o.steps_per_cell * wmax);
+  const auto n_pre = static_cast<long>(std::ceil(o.spinup_travel * a1 / (v0 * dt0)));
+  double travel = v0 * dt0 * static_cast<double>(n_pre), steps = static_cast<double>(n_pre);
+  for (const auto& seg : c.history.segments) {
+    travel += seg.w * seg.T;
+    steps += std::max(1.0, std::ceil(seg.T / dt0));
+  }
+  const double n_elem = std::ceil((2.0 * a1 + travel) / dx) + 4.0;
+  if (!(n_elem <= static_cast<double>(o.max_elements)) || !(steps <= 1e9))
+    throw std::runtime_error("spectrum-baseline: the case needs " + format_number(n_elem) +
+                             " elements and " + format_number(steps) + " steps; too expensive");
+  const std::size_t N = c.rheology.branches.size();
+  const auto ne = static_cast<std::size_t>(n_elem);
+  const double s_pre = -v0 * dt0 * static_cast<double>(n_pre);
+  // lab positions x0 + i dx cover every material point that passes [-a1, a1]
+  // while s runs from s_pre to its end, travel + s_pre
+  Row row{c,
+          control,
+          a1,
+          dx,
+          -a1 - (travel + s_pre) - 2.0 * dx,
+          N,
+          std::vector<double>(ne, 0.0),
+          std::vector<double>(ne * N, 0.0),
+          std::vector<unsigned char>(ne, 0),
+          0};
+  auto decays = [&](double dt) {
+    std::vector<double> e(N);
+    for (std::size_t k = 0; k < N; ++k)
+      e[k] = std::exp(-dt / c.rheology.branches[k].tau);
+    return e;
+  };
+  RunResult res;
+  res.info.solver = kName;
+  res.info.cells_per_a1 = o.cells_per_a1;
+  res.info.elements = static_cast<long>(ne);
+  const std::vector<double> e0 = decays(dt0);
+  for (long k = 1; k <= n_pre; ++k)
+    row.step(s_pre + v0 * dt0 * static_cast<double>(k), v0, dt0, e0);
+  res.series.pre = row.measure(0.0, v0);
+  res.series.resize(c.total_samples());
+  double sp = 0.0;
+  long nsteps = n_pre;
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const long n = static_cast<long>(std::max(1.0, std::ceil(seg.T / dt0)));
+    const double dt = seg.T / static_cast<double>(n), t0 = c.history.start(k), sp0 = sp;
+    const std::vector<double> e = decays(dt);
+    row.change(sp, seg.w);
+    long done = 0;
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      const long target = std::min(n, static_cast<long>(std::llround(off / dt)));
+      for (; done < target; ++done)
+        row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
+      sp = sp0 + seg.w * dt * static_cast<double>(done);
+      res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
+    }
+    for (; done < n; ++done)
+      row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
+    sp = sp0 + seg.w * seg.T;
+    nsteps += done;
+  }
+  res.info.steps = nsteps;
+  res.info.element_updates = row.updates;
+  return res;
+}
+
+} // namespace
+
+RunResult run_spectrum_baseline(const Case& given, const SpectrumBaselineOptions& o) {
+  validate(given);
+  if (given.loading.by_force())
+    throw InvalidInput("solver", "spectrum-baseline solves depth control only (--d)");
+  Case c = given;
+  c.rheology = given.rheology.shifted();
+  const RunControl own;
+  const RunControl& control = o.control != nullptr ? *o.control : own;
+  RunResult res = run_once(c, o, control);
+  if (o.estimate_error) { // first order: the difference to half resolution is about the error
+    SpectrumBaselineOptions half = o;
+    half.cells_per_a1 = std::max(2.0, 0.5 * o.cells_per_a1);
+    const RunResult coarse = run_once(c, half, control);
+    res.info.error_estimate = case_error(coarse.series, res.series, c, 1e-12).max();
+    res.info.steps += coarse.info.steps;
+    res.info.element_updates += coarse.info.element_updates;
+  }
+  return res;
+}
+
+} // namespace mdrmap

@@ -1,0 +1,29 @@
+#pragma once
+// The brute-force counterpart of the spectrum solver, deliberately plain and
+// first order (a generalisation of baseline.hpp): elements laid over the whole
+// travel path, one fixed step dt = dx / (largest velocity), starting from an
+// undeformed foundation, contact decided at step ends, raw element sums. Each
+// branch relaxes towards the element's depression at the step end,
+// q_k <- u + (q_k - u) exp(-dt/tau_k); a free element's u solves its
+// force balance implicitly, G u + G tau (u - u_old)/dt + sum G_k (u - q_k) = 0
+// with those q_k: stable for any dt, tau_k and tau.
+#include "core/model/case.hpp"
+#include "core/solvers/result.hpp"
+#include "core/solvers/run_control.hpp"
+
+namespace mdrmap {
+
+struct SpectrumBaselineOptions {
+  double cells_per_a1 = 100;      ///< a1/dx
+  double spinup_travel = 4.0;     ///< travel before t = 0, in a1 (>= 2.5)
+  double steps_per_cell = 1.0;    ///< dt = dx / (steps_per_cell * largest velocity)
+  long max_elements = 20'000'000; ///< refuse scenes that would need more
+  bool estimate_error = true;     ///< run a half-resolution companion for error_estimate
+  /// Work budget and stop flag (nullptr: the default budget, no stop flag).
+  const RunControl* control = nullptr;
+};
+
+/// Throws InvalidInput("solver") under load control.
+RunResult run_spectrum_baseline(const Case& c, const SpectrumBaselineOptions& o);
+
+} // namespace mdrmap

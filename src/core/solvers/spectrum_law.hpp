@@ -1,0 +1,85 @@
+#pragma once
+// The element law of a relaxation spectrum (core/model/rheology.hpp), per unit 4 dx:
+//
+//   p = G u + G tau u' + sum_k G_k (u - q_k),   tau_k q_k' = u - q_k,
+//
+// with exact updates over a time step (never explicit Euler):
+//  - in contact u is prescribed, u(t) = h0 + h1 t + h2 t^2 along a step at
+//    constant velocity (the parabola's depth at the moving material point), and
+//    each branch is updated in closed form with phi functions (stable and
+//    exact for tau_k << dt);
+//  - free (p = 0) the state y = (u, q_1..q_N) (tau > 0) or y = q (tau = 0, u =
+//    sum G_k q_k / G0 algebraic) obeys y' = M y with B M symmetric negative
+//    definite, B = diag(G tau, G_k tau_k) (or diag(G_k tau_k)): with
+//    S = B M, x^T S x = -G u^2 - sum G_k (u - q_k)^2 (tau > 0) or
+//    (sum G_k q_k)^2 / G0 - sum G_k q_k^2 < 0 (tau = 0, Cauchy-Schwarz and
+//    G > 0). So A = B^-1/2 S B^-1/2 = Q L Q^T (Jacobi, once per case) and
+//    y = P z, P = B^-1/2 Q, z_i(t) = z_i(0) exp(L_i t): every free element
+//    moves exactly in modal coordinates z.
+#include <cstddef>
+#include <vector>
+
+#include "core/model/rheology.hpp"
+
+namespace mdrmap::spectrum {
+
+/// Per-step coefficients of a contact update over dt: for branch k,
+/// q(dt) = e q0 + (1 - e) h0 + a h1 + b h2 (e = exp(-dt/tau_k),
+/// a = dt phi_a(dt/tau_k), b = dt^2 phi_b(dt/tau_k)); and the modal factors
+/// exp(L_i dt) of a free update.
+/// Which coefficients a StepCoef holds.
+enum class Part { Both, Contact, Free };
+
+struct StepCoef {
+  double dt = -1.0;
+  Part part = Part::Both;
+  std::vector<double> e, a, b, modal;
+};
+
+class Law {
+public:
+  explicit Law(const Rheology& r);
+
+  std::size_t branches() const { return n_; }
+  /// Dimension of the free state (N + 1 with a dashpot, else N).
+  std::size_t free_dim() const { return m_; }
+  double G() const { return G_; }
+  double tau() const { return tau_; }
+  double G0() const { return G0_; }
+  /// Decay rates -L_i of the free modes (> 0).
+  const std::vector<double>& rates() const { return rate_; }
+
+  /// Coefficients of a step of dt (both parts, or the one a caller needs).
+  void coef(double dt, StepCoef& c, Part part = Part::Both) const;
+
+  /// Contact update of the branch states q over a step (coefficients c).
+  void contact_step(double* q, double h0, double h1, double h2, const StepCoef& c) const;
+  /// Contact force per 4 dx for depth u, rate du, branch states q.
+  double pressure(double u, double du, const double* q) const;
+  /// Free update in modal coordinates: z_i *= exp(L_i dt).
+  void free_step(double* z, const StepCoef& c) const;
+  /// Free depression u of modal state z.
+  double free_u(const double* z) const;
+
+  /// Contact (u = h, branch states q) -> free modal state z.
+  void to_modal(double h, const double* q, double* z) const;
+  /// Free modal state z -> branch states q.
+  void from_modal(const double* z, double* q) const;
+
+private:
+  std::size_t n_ = 0, m_ = 0;
+  double G_, tau_, G0_;
+  std::vector<double> Gk_, tk_;
+  std::vector<double> rate_;     // -L_i
+  std::vector<double> P_, Pinv_; // m x m, row-major
+  std::vector<double> cu_;       // u = cu . z
+};
+
+/// Eigen-decomposition of a symmetric matrix a (n x n, row-major, destroyed)
+/// by cyclic Jacobi with the relative stopping test |a_pq| <= eps
+/// sqrt(|a_pp a_qq|) (high relative accuracy for scaled definite matrices):
+/// eigenvalues in `lam`, eigenvectors the columns of v.
+void jacobi_eigen(std::vector<double>& a, std::size_t n, std::vector<double>& lam,
+                  std::vector<double>& v);
+
+} // namespace mdrmap::spectrum

@@ -1,0 +1,374 @@
+#include "core/solvers/spectrum_row.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+namespace mdrmap::spectrum {
+namespace {
+
+constexpr int kMaxEvents = 8; // contact switches of one element within one step
+
+// Root of f on [0, hi] with f(0) > 0 > f(hi); the end itself when the sign
+// condition fails there (rounding at a tangency).
+template <class F> double solve(F f, double hi) {
+  const double flo = f(0.0), fhi = f(hi);
+  if (!(flo > 0.0)) return 0.0;
+  if (!(fhi < 0.0)) return hi;
+  std::uintmax_t iters = 100;
+  const auto r = boost::math::tools::toms748_solve(
+      f, 0.0, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(50), iters);
+  return 0.5 * (r.first + r.second);
+}
+
+// Integral over [lo, hi] of the cubic through (x_i, f_i), i < 4 (2-point
+// Gauss: exact for cubics); 0 for an empty interval.
+double cubic_integral(const double* x, const double* f, double lo, double hi) {
+  if (!(hi > lo)) return 0.0;
+  auto cubic = [&](double t) {
+    double s = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      double l = 1.0;
+      for (int k = 0; k < 4; ++k)
+        if (k != i) l *= (t - x[k]) / (x[i] - x[k]);
+      s += f[i] * l;
+    }
+    return s;
+  };
+  const double mid = 0.5 * (lo + hi), off = 0.5 * (hi - lo) / std::sqrt(3.0);
+  return 0.5 * (hi - lo) * (cubic(mid - off) + cubic(mid + off));
+}
+
+} // namespace
+
+Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
+         double edge_tol, const RunControl& control, const char* name)
+    : law_(law), control_(control), name_(name), a1_(c.a1()), R_(c.indenter.R), d_(c.loading.d),
+      dx_(a1_ / cells_per_a1), phase_(phase), sub_travel_(sub_travel) {
+  cap_ = static_cast<std::size_t>(std::floor(2.0 * cells_per_a1)) + 8;
+  stride_ = std::max<std::size_t>(law.free_dim(), 1);
+  y_.assign(cap_ * stride_, 0.0);
+  mode_.assign(cap_, Mode::Fresh);
+  // switches need a force or gap beyond rounding: a point that let go at a
+  // tangency (p = 0 and h - u = 0 together) must not flip back and forth
+  psi_tiny_ = 1e-13 * d_;
+  p_tiny_ = law.G0() * psi_tiny_;
+  edge_tol_ = std::clamp(edge_tol, 1e-15, 1e-3 / cells_per_a1); // at least 1e-3 dx
+}
+
+void Row::set_position(long double P) {
+  P_ = P;
+  const long double fl = std::floor(P);
+  m_ = static_cast<long long>(fl);
+  theta_ = static_cast<double>(P - fl);
+  const double c = a1_ / dx_;
+  jlo_ = static_cast<long long>(std::ceil(-c - theta_ - phase_)) - m_;
+  // two nodes past a1: the gap of the free material there locates an edge
+  jhi_ = static_cast<long long>(std::floor(c - theta_ - phase_)) - m_ + 2;
+}
+
+void Row::start_stationary(double v0) {
+  w_ = v0;
+  log_.clear();
+  const double dt = (2.0 * a1_ + 6.0 * dx_) / v0;
+  set_position(-static_cast<long double>(v0 * dt / dx_));
+  jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
+  advance(dt);
+}
+
+void Row::change_velocity(double w) {
+  control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  w_ = w;
+  log_.push_back(Entry{-1.0, w, P_, Grid{}});
+  for (long long j = jlo_; j <= jhi_; ++j)
+    change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w);
+}
+
+// A contact element whose force at the new velocity is negative lets go.
+void Row::change_material(Mode& md, double* y, double x, double w) const {
+  if (md != Mode::Contact || !(law_.pressure(depth(x), -2.0 * x * w / R_, y) < 0.0)) return;
+  double q[kMaxBranches + 1];
+  std::copy(y, y + law_.branches(), q);
+  law_.to_modal(depth(x), q, y);
+  md = Mode::Free;
+}
+
+Row::Grid Row::grid(double dt, double w) const {
+  Grid g;
+  g.dt = dt;
+  g.D = w > 0.0 ? std::min(dt, sub_travel_ * a1_ / w) : dt;
+  g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
+  law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
+  law_.coef(g.D, g.full);
+  return g;
+}
+
+void Row::advance(double dt) {
+  if (!(dt > 0.0)) return;
+  ++steps_;
+  // keep the travel counter small (renumbering by whole rings keeps every slot)
+  const long long ring = static_cast<long long>(cap_);
+  if (m_ > (1LL << 24) || m_ < -(1LL << 24)) {
+    const long long K = (m_ / ring) * ring;
+    P_ -= static_cast<long double>(K);
+    m_ -= K;
+    jlo_ += K;
+    jhi_ += K;
+    for (Entry& e : log_)
+      e.P -= static_cast<long double>(K);
+  }
+  const long long lo0 = jlo_, hi0 = jhi_;
+  set_position(P_ + static_cast<long double>(w_ * dt / dx_));
+  log_.push_back(Entry{dt, w_, P_, grid(dt, w_)});
+  const Grid& g = log_.back().g;
+  const long before = updates_;
+  for (long long j = jlo_; j <= jhi_; ++j) {
+    const std::size_t s = slot(j);
+    if (j < lo0 || j > hi0) mode_[s] = Mode::Fresh; // entered during the step
+    step_material(mode_[s], &y_[s * stride_], xi(j), dt, w_, g);
+  }
+  control_.charge(static_cast<double>(updates_ - before), name_);
+}
+
+// One material point over a step of dt at w, from its state at 0 (or fresh)
+// to dt, at the end position xe; positions at time t are xe - w (dt - t).
+void Row::step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g) const {
+  double t = 0.0;
+  if (md == Mode::Fresh) {
+    const double since = w > 0.0 ? (xe + a1_) / w : -1.0; // time since the entry at -a1
+    if (!(since > 0.0)) return;
+    t = std::max(0.0, dt - since);
+    md = Mode::Contact;
+    std::fill(y, y + stride_, 0.0);
+  }
+  StepCoef local;
+  int events = 0;
+  while (t < dt) {
+    const long long i = std::max(0LL, static_cast<long long>(std::ceil((dt - t) / g.D)) - 1);
+    double tn = dt - static_cast<double>(i) * g.D;
+    if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
+    const double h = tn - t;
+    const StepCoef* c = &local;
+    if (t == 0.0 && i == g.K - 1) {
+      c = &g.first;
+    } else if (std::abs(h - g.D) <= 1e-13 * g.D) {
+      c = &g.full;
+    } else {
+      law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
+    }
+    ++updates_;
+    const double done = substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents);
+    if (done < h) {
+      t += done;
+      ++events;
+    } else {
+      t = tn;
+    }
+  }
+}
+
+// One sub-step of h from position x (coefficients c): the exact update, or,
+// where the element switches during it (if it still may), the update up to
+// the switch, located, and the switch. Returns the time advanced.
+double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
+                    bool may_switch) const {
+  double tmp[kMaxBranches + 1];
+  StepCoef at;
+  const double xn = x + w * h, h1 = -2.0 * x * w / R_, h2 = -w * w / R_;
+  if (md == Mode::Contact) {
+    std::copy(y, y + law_.branches(), tmp);
+    law_.contact_step(tmp, depth(x), h1, h2, c);
+    if (!(may_switch && law_.pressure(depth(xn), -2.0 * xn * w / R_, tmp) < -p_tiny_)) {
+      std::copy(tmp, tmp + law_.branches(), y);
+      return h;
+    }
+    const double tc = locate(true, y, x, h, w); // lets go
+    std::copy(y, y + law_.branches(), tmp);
+    law_.coef(tc, at, Part::Contact);
+    law_.contact_step(tmp, depth(x), h1, h2, at);
+    law_.to_modal(depth(x + w * tc), tmp, y);
+    md = Mode::Free;
+    return tc;
+  }
+  std::copy(y, y + law_.free_dim(), tmp);
+  law_.free_step(tmp, c);
+  if (!(may_switch && depth(xn) - law_.free_u(tmp) > psi_tiny_ && std::abs(xn) <= a1_)) {
+    std::copy(tmp, tmp + law_.free_dim(), y);
+    return h;
+  }
+  const double tc = locate(false, y, x, h, w); // touches
+  law_.coef(tc, at, Part::Free);
+  law_.free_step(y, at);
+  std::copy(y, y + law_.free_dim(), tmp);
+  law_.from_modal(tmp, y);
+  md = Mode::Contact;
+  return tc;
+}
+
+// The state now of the material point at J (node numbering: node j is J = j),
+// replayed from the log: fresh until it enters at -a1.
+Row::Material Row::replay(long double J) const {
+  Material mt;
+  long done = 0;
+  for (const Entry& e : log_) {
+    const double x = static_cast<double>((J + e.P + static_cast<long double>(phase_)) *
+                                         static_cast<long double>(dx_));
+    if (e.dt < 0.0) {
+      change_material(mt.mode, mt.y, x, e.w);
+    } else if (mt.mode != Mode::Fresh || (e.w > 0.0 && x > -a1_)) {
+      if (x > a1_ + 2.0 * dx_ && mt.mode != Mode::Contact) break; // never touches again
+      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g);
+      ++done;
+    }
+  }
+  control_.charge(static_cast<double>(done), name_);
+  return mt;
+}
+
+// Time within a sub-step of length h (from position x, state y) where a
+// contact element's force turns negative, or a free element touches.
+double Row::locate(bool contact, const double* y, double x, double h, double w) const {
+  StepCoef c;
+  double tmp[kMaxBranches + 1];
+  if (contact) {
+    return solve(
+        [&](double tau) {
+          std::copy(y, y + law_.branches(), tmp);
+          law_.coef(tau, c, Part::Contact);
+          law_.contact_step(tmp, depth(x), -2.0 * x * w / R_, -w * w / R_, c);
+          const double xn = x + w * tau;
+          return law_.pressure(depth(xn), -2.0 * xn * w / R_, tmp);
+        },
+        h);
+  }
+  return solve(
+      [&](double tau) {
+        std::copy(y, y + law_.free_dim(), tmp);
+        law_.coef(tau, c, Part::Free);
+        law_.free_step(tmp, c);
+        return law_.free_u(tmp) - depth(x + w * tau);
+      },
+      h);
+}
+
+double Row::pressure_at(const double* q, double x) const {
+  return law_.pressure(depth(x), -2.0 * x * w_ / R_, q);
+}
+
+double Row::node_p(long long j) const {
+  return pressure_at(&y_[slot(j) * stride_], xi(j));
+}
+
+// The trailing edge of a contact run ending at node jb: the end of the
+// contact among the material points between node jb and the next one, each
+// replayed: the root of s = p/G0 on material in contact (>= 0; with tau = 0
+// the gap of its free projection) and s = h - u on free material (< 0), to
+// edge_tol (TOMS 748: bisection where s jumps, superlinear where it is
+// smooth); pe the force of the outermost point found in contact.
+double Row::trailing_edge(long long jb, double& pe) const {
+  const double xb = xi(jb);
+  pe = node_p(jb);
+  if (jb + 1 > jhi_) return std::min(xb + 0.5 * dx_, a1_); // (contact past a1: never)
+  double best = 0.0;
+  auto s = [&](double frac) {
+    const Material mt = replay(static_cast<long double>(jb) + static_cast<long double>(frac));
+    const double x = xb + frac * dx_;
+    if (mt.mode == Mode::Contact) {
+      const double p = pressure_at(mt.y, x);
+      if (frac >= best) {
+        best = frac;
+        pe = p;
+      }
+      return std::max(p, 0.0) / law_.G0() + 1e-300; // (> 0: in contact)
+    }
+    return std::min(mt.mode == Mode::Fresh ? depth(x) : depth(x) - law_.free_u(mt.y), -1e-300);
+  };
+  const double s1 = s(1.0);
+
+  if (!(s1 < 0.0)) return std::min(xb + dx_, a1_); // (the next node is in contact: never)
+  std::uintmax_t iters = 200;
+  const double tol = edge_tol_ * a1_ / dx_;
+  const auto r = boost::math::tools::toms748_solve(
+      s, 0.0, 1.0, node_p(jb) / law_.G0() + 1e-300, s1,
+      [tol](double a, double b) { return b - a <= tol; }, iters);
+  pe = std::max(0.0, pe);
+  return std::min(xb + r.first * dx_, a1_);
+}
+
+// Forces (per 4, as sums of p dx) of the contact run ja..jb: the 4th-order
+// Gregory rule over its nodes, and the partial cells at its ends integrated on
+// the cubic through the end value and the three nearest nodes (the leading
+// edge -a1, where the material is fresh; the trailing edge from the replay).
+void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const {
+  const long long n = jb - ja + 1;
+  const double xa = xi(ja), xb = xi(jb);
+  auto fx = [&](double x, double p) { return p * (-2.0 * x / R_); };
+  const bool leading = ja == jlo_ || mode_[slot(ja - 1)] == Mode::Fresh;
+  const double xl = leading ? -a1_ : xa - 0.5 * dx_;
+  const double pl = leading ? law_.tau() * law_.G() * w_ * 2.0 * a1_ / R_ : node_p(ja);
+  double pe = 0.0;
+  e = trailing_edge(jb, pe);
+  if (n < 8) { // few nodes: trapezoid, linear end cells
+    double sN = 0.0, sX = 0.0;
+    for (long long k = ja; k <= jb; ++k) {
+      const double p = node_p(k), wgt = (k == ja || k == jb) ? 0.5 : 1.0;
+      sN += wgt * p;
+      sX += wgt * fx(xi(k), p);
+    }
+    if (n == 1) sN = sX = 0.0;
+    const double pa = node_p(ja), pb = node_p(jb);
+    FN += dx_ * sN + 0.5 * (xa - xl) * (pl + pa) + 0.5 * (e - xb) * (pb + pe);
+    Fx += dx_ * sX + 0.5 * (xa - xl) * (fx(xl, pl) + fx(xa, pa)) +
+          0.5 * (e - xb) * (fx(xb, pb) + fx(e, pe));
+    return;
+  }
+  long double sN = 0.0L, sX = 0.0L;
+  for (long long k = ja; k <= jb; ++k) {
+    const double p = node_p(k);
+    double wgt = 1.0;
+    const long long r = std::min(k - ja, jb - k);
+    if (r == 0) wgt = 3.0 / 8.0;
+    if (r == 1) wgt = 7.0 / 6.0;
+    if (r == 2) wgt = 23.0 / 24.0;
+    sN += static_cast<long double>(wgt * p);
+    sX += static_cast<long double>(wgt * fx(xi(k), p));
+  }
+  FN += dx_ * static_cast<double>(sN);
+  Fx += dx_ * static_cast<double>(sX);
+  const double XL[4] = {xl, xa, xa + dx_, xa + 2.0 * dx_},
+               XR[4] = {xb - 2.0 * dx_, xb - dx_, xb, e};
+  const double PL[4] = {pl, node_p(ja), node_p(ja + 1), node_p(ja + 2)};
+  const double PR[4] = {node_p(jb - 2), node_p(jb - 1), node_p(jb), pe};
+  double FL[4], FR[4];
+  for (int i = 0; i < 4; ++i) {
+    FL[i] = fx(XL[i], PL[i]);
+    FR[i] = fx(XR[i], PR[i]);
+  }
+  FN += cubic_integral(XL, PL, xl, xa) + cubic_integral(XR, PR, xb, e);
+  Fx += cubic_integral(XL, FL, xl, xa) + cubic_integral(XR, FR, xb, e);
+}
+
+State Row::measure() const {
+  control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  State st;
+  st.a1 = a1_;
+  st.a2 = -a1_;
+  double FN = 0.0, Fx = 0.0;
+  for (long long j = jlo_; j <= jhi_; ++j) {
+    if (mode_[slot(j)] != Mode::Contact) continue;
+    const long long ja = j;
+    while (j + 1 <= jhi_ && mode_[slot(j + 1)] == Mode::Contact)
+      ++j;
+    run_forces(ja, j, FN, Fx, st.a2);
+  }
+  st.FN = 4.0 * FN;
+  st.Fx = 4.0 * Fx;
+  st.mu = st.Fx / st.FN;
+  st.d = d_;
+  return st;
+}
+
+} // namespace mdrmap::spectrum

@@ -1,0 +1,118 @@
+#pragma once
+// The element row of the spectrum solver inside a moving window (ring buffer:
+// memory independent of travel). Element j sits at lab position
+// x_j = (j + phase) dx; in the indenter's frame at xi_j = x_j + s(t), so the
+// indenter occupies [-a1, a1], fresh material enters at -a1 (the leading edge)
+// and leaves at +a1. Material beyond a1 can never touch again while w >= 0:
+// there h(xi) < 0 and xi only grows, while a free depression u stays >= 0
+// (q_k are positive-kernel averages of past u, u = h > 0 in contact, free u
+// a positive combination of the q_k, or with a dashpot G tau u' >= 0 at
+// u = 0), so its gap h - u stays negative: it is dropped.
+//
+// Every element moves exactly (spectrum_law.hpp) and independently of the
+// others; its contact switches are located in time within a step as roots
+// (detachment where p turns negative, re-touch where h - u turns
+// non-negative, the entry at -a1 where xi crosses it). Steps are needed only
+// at samples and velocity changes; an element's step is cut into sub-steps of
+// at most `sub_travel` a1 of travel so that a switch and its reversal cannot
+// hide inside one.
+//
+// Trailing edge. Because elements are independent, the state of any material
+// point is its history replayed from the log of steps (a few entries per
+// sample: memory independent of travel). The edge lies between the last
+// contact node and the next node; it is found by a root search over the
+// material points between them, each replayed: exact wherever the contact is one
+// interval near its end, whatever the free material's profile (thin tails,
+// tangencies after a drop, material let go at a rise).
+#include <cstddef>
+#include <vector>
+
+#include "core/model/case.hpp"
+#include "core/model/state.hpp"
+#include "core/solvers/run_control.hpp"
+#include "core/solvers/spectrum_law.hpp"
+
+namespace mdrmap::spectrum {
+
+enum class Mode : unsigned char { Fresh, Contact, Free };
+
+class Row {
+public:
+  /// edge_tol: the trailing edge is located to edge_tol a1 (at least 1e-3 dx).
+  Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
+      double edge_tol, const RunControl& control, const char* name);
+
+  /// Stationary sliding at v0 with the indenter at s = 0: one step at v0 from
+  /// an empty window long enough that every element in the window entered
+  /// fresh at the leading edge during it (the stationary state, exactly).
+  void start_stationary(double v0);
+  /// Velocity change to w: contact elements whose force turns negative let go.
+  void change_velocity(double w);
+  /// Advance by dt at the current velocity.
+  void advance(double dt);
+  /// Forces and trailing edge now.
+  State measure() const;
+
+  std::size_t capacity() const { return cap_; }
+  long updates() const { return updates_; }
+  long steps() const { return steps_; }
+
+private:
+  /// Sub-steps of one step: a whole number of full sub-steps D ending at dt,
+  /// after a first (partial) one from 0.
+  struct Grid {
+    double dt = 0.0, D = 0.0;
+    long long K = 1; // sub-steps of an element that starts at 0
+    StepCoef first, full;
+  };
+  /// One entry of the log: a step of dt at w ending at travel P (cells), or
+  /// (dt < 0) a velocity change to w.
+  struct Entry {
+    double dt, w;
+    long double P;
+    Grid g;
+  };
+  struct Material { // one material point's state
+    Mode mode = Mode::Fresh;
+    double y[kMaxBranches + 1] = {};
+  };
+  void set_position(long double P);
+  Grid grid(double dt, double w) const;
+  void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g) const;
+  double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
+                 bool may_switch) const;
+  void change_material(Mode& md, double* y, double x, double w) const;
+  Material replay(long double J) const;
+  double locate(bool contact, const double* y, double x, double h, double w) const;
+  double pressure_at(const double* q, double x) const;
+  double node_p(long long j) const;
+  double trailing_edge(long long jb, double& pe) const;
+  void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const;
+
+  double depth(double x) const { return (a1_ - x) * (a1_ + x) / R_; }
+  double xi(long long j) const { return (static_cast<double>(j + m_) + theta_ + phase_) * dx_; }
+  std::size_t slot(long long j) const {
+    const auto c = static_cast<long long>(cap_);
+    return static_cast<std::size_t>(((j % c) + c) % c);
+  }
+
+  const Law& law_;
+  const RunControl& control_;
+  const char* name_;
+  double a1_, R_, d_, dx_, phase_, sub_travel_;
+  std::size_t cap_, stride_;
+  std::vector<double> y_; // per slot: q (contact) or z (free), stride_ each
+  std::vector<Mode> mode_;
+  std::vector<Entry> log_;
+  long double P_ = 0.0L; // travel s/dx in cells
+  long long m_ = 0;      // floor(P)
+  double theta_ = 0.0;   // P - m
+  long long jlo_ = 0, jhi_ = -1;
+  double w_ = 0.0;
+  mutable long updates_ = 0;
+  long steps_ = 0;
+  double edge_tol_ = 1e-9;               // the trailing edge's tolerance, in a1
+  double psi_tiny_ = 0.0, p_tiny_ = 0.0; // gap and force below rounding
+};
+
+} // namespace mdrmap::spectrum
