@@ -79,12 +79,13 @@ def read(args, sel, np):
     keep, notes = select_cases(m, sel, np, "--select")
     c, done = m["cols"], m["status"] == 1
     n_notdone = int(np.sum(keep & ~done))
-    elastic = keep & done & ~(c["tau"] > 0)
+    relaxes = m["scales"]["time"] > 0  # tau > 0 or a spectrum: not purely elastic
+    elastic = keep & done & ~relaxes
     if n_notdone:
         notes.append(f"skipped {n_notdone} case(s) not done (failed or pending)")
     if elastic.any():
-        notes.append(f"skipped {int(elastic.sum())} case(s) with tau = 0 (mu = 0)")
-    return m, mu, mu_an, keep & done & (c["tau"] > 0) & (c["v"] > 0), notes
+        notes.append(f"skipped {int(elastic.sum())} purely elastic case(s) (mu = 0)")
+    return m, mu, mu_an, keep & done & relaxes & (c["v"] > 0), notes
 
 
 def group_curves(m, use, path, np):

@@ -149,7 +149,9 @@ def axis_values_per_case(m, axis, np):
     x = m[kind][:, k - 1]
     if not scaled:
         return x
-    ref = m["cols"]["v"] if kind == "w" else m["cols"]["tau"]
+    # TK_over_tau multiplies the case's time scale (/scales/time: tau for the
+    # Kelvin foundation, the longest shifted relaxation time of a spectrum)
+    ref = m["cols"]["v"] if kind == "w" else m["scales"]["time"]
     with np.errstate(divide="ignore", invalid="ignore"):
         return x / ref
 

@@ -49,14 +49,10 @@ using Field = std::pair<const char*, double>;
 
 /// The fields of the `# event` line after k, in its order: t, w_before,
 /// w_after, mu_before, mu_after, mu_peak, t_peak, slip_peak, mu_end,
-/// mu_ss_before, mu_ss_after, D_c, a, a_minus_b, b.
+/// mu_ss_before, mu_ss_after, D_c, overshoot, a, a_minus_b, b.
 std::vector<Field> event_fields(const EventMetrics& e);
 
 /// The fields of the `# pre` line: FN, Fx, mu, a2; under load also d, a1.
 std::vector<Field> state_fields(const State& s, bool load);
-
-/// The stationary state at velocity w of the case's loading (at its depth, or
-/// under its load F0): the events' mu_ss_before / mu_ss_after.
-State stationary_state(const Case& c, double w);
 
 } // namespace mdrmap::app

@@ -73,6 +73,7 @@ void RowLayout::resolve_slots() {
   s.b = at("events/b");
   s.a_minus_b = at("events/a_minus_b");
   s.d_c = at("events/d_c");
+  s.overshoot = at("events/overshoot");
   s.events_after = per_quantity("events", "_after");
   s.events_end = per_quantity("events", "_end");
   s.analytic_ss = per_quantity("analytic", "_ss");
@@ -140,7 +141,8 @@ void RowLayout::add_events() {
   add("events/mu_before", "number",
       "friction coefficient just before the change (the previous segment's last sample)", true);
   add("events/mu_peak", "number",
-      "the segment's extreme friction coefficient: the sample farthest from its stationary value",
+      "the segment's extreme friction coefficient: the value farthest from its stationary value "
+      "(from the solution, not the output instants)",
       true);
   add("events/t_peak", "time", "time of mu_peak since the change", true);
   add("events/slip_peak", "length", "slip of mu_peak since the change", true);
@@ -155,9 +157,14 @@ void RowLayout::add_events() {
   add("events/a_minus_b", "number",
       "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold", true, true);
   add("events/d_c", "length",
-      "slip over which |mu - mu_ss(w)| falls to 1/e of its value after the change; undefined "
-      "during a hold or when it does not fall that far within the segment",
+      "slip over which |mu - mu_ss(w)| first falls to 1/e of its value after the change; "
+      "undefined during a hold, when it does not fall that far within the segment, or when the "
+      "transient overshoots mu_ss(w) by more than 1/e of that value",
       true, true);
+  add("events/overshoot", "number",
+      "largest excursion of mu beyond mu_ss(w) on the side opposite to mu just after the change, "
+      "relative to |mu - mu_ss(w)| just after the change; 0 for a one-sided transient",
+      true);
 }
 
 void RowLayout::add_closed_forms() {
@@ -173,7 +180,9 @@ void RowLayout::add_closed_forms() {
   for_each_quantity([&](const Quantity& q) {
     add(std::string("analytic/") + q.name + "_jump", q.unit,
         std::string(q.meaning) +
-            " just after the first change (t = 0+), the corrected estimate (eqs. 15-16)");
+            " just after the first change (t = 0+), the corrected estimate (eqs. 15-16) of the "
+            "Kelvin foundation; undefined for a relaxation spectrum",
+        false, true);
   });
 }
 
@@ -214,7 +223,8 @@ void RowLayout::add_residuals() {
     add(std::string("residuals/") + q.name + "_jump", "number",
         residual(std::string("events/") + q.name + "_after[0]",
                  std::string("analytic/") + q.name + "_jump",
-                 "numerical error just after the first change"));
+                 "numerical error just after the first change"),
+        false, true);
   });
 }
 

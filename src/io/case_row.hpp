@@ -45,6 +45,7 @@ struct RowSlots {
   PerQuantity results_pre{}, analytic_pre{}, residuals_pre{};
   std::size_t event_t = 0, mu_before = 0, mu_peak = 0, t_peak = 0, slip_peak = 0;
   std::size_t a = 0, b = 0, a_minus_b = 0, d_c = 0; ///< may be undefined (kFillValue)
+  std::size_t overshoot = 0;
   PerQuantity events_after{}, events_end{}, analytic_ss{}, residuals_end{};
   PerQuantity analytic_jump{}, residuals_jump{}; ///< at fixed depth only
   std::size_t scale_length = 0, scale_depth = 0, scale_force = 0, scale_friction = 0,

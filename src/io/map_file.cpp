@@ -136,13 +136,13 @@ void write_block(hid_t dset, hid_t mem_type, hid_t dxpl, hsize_t i0, hsize_t cou
   check_status(H5Dwrite(dset, mem_type, mspace.id(), fspace.id(), dxpl, data), what);
 }
 
-// /cases [begin, end) from the cases, taken by range in blocks of 65536
+// /cases [begin, end) from the cases, taken by range in blocks of 16384
 // (memory independent of the number of cases): the parameters, then w and T
 // [N, K].
 void write_cases(const std::vector<Handle>& sets, const std::vector<FieldInfo>& params, hid_t dxpl,
                  std::size_t begin, std::size_t end, std::size_t K,
                  const MapFile::CaseRange& cases) {
-  constexpr std::size_t kBlock = 65536;
+  constexpr std::size_t kBlock = 16384;
   std::vector<Case> rows;
   std::vector<double> values, col;
   const std::size_t P = params.size();
@@ -390,7 +390,8 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
   const hsize_t n = spec.n_cases, K = spec.segments;
   write_header(f, spec, prov);
   // every object is closed before the file: a map is closed complete
-  std::vector<const char*> groups = {"cases", "results", "events", "analytic", "residuals", "scales"};
+  std::vector<const char*> groups = {"cases",    "results",   "events",
+                                     "analytic", "residuals", "scales"};
   if (spec.timeseries) groups.push_back("timeseries");
   groups.push_back("failures");
   for (const char* group : groups)

@@ -17,6 +17,7 @@
 
 #include "app/case_input.hpp"
 #include "app/simulation.hpp"
+#include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
 #include "mdrmap/version.hpp"
@@ -181,7 +182,7 @@ py::dict simulate(const py::dict& options) {
 /// simulate, with a history of one segment (the case must be complete).
 py::dict stationary(const py::dict& options) {
   const app::CaseInput in = app::read_case_input(to_texts(options));
-  const State st = app::stationary_state(in.c, in.c.history.v0);
+  const State st = stationary_state(in.c, in.c.history.v0);
   return fields(app::state_fields(st, in.c.loading.by_force()));
 }
 

@@ -36,6 +36,11 @@ public:
     for (std::size_t q = 0; q < L_.quantities(); ++q)
       v_[at[q] + k] = L_.value(s, q);
   }
+  // the fill value (undefined) at every quantity's slot
+  void fill(const PerQuantity& at, std::size_t k = 0) {
+    for (std::size_t q = 0; q < L_.quantities(); ++q)
+      v_[at[q] + k] = io::kFillValue;
+  }
   void residuals(const PerQuantity& at, const State& sim, const State& an, std::size_t k = 0) {
     for (std::size_t q = 0; q < L_.quantities(); ++q)
       v_[at[q] + k] = residual(L_.value(sim, q), L_.value(an, q));
@@ -59,15 +64,32 @@ void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, const S
   f.put(S.b, defined_or_fill(e.b), k);
   f.put(S.a_minus_b, defined_or_fill(e.a_minus_b), k);
   f.put(S.d_c, defined_or_fill(e.d_c), k);
+  f.put(S.overshoot, e.overshoot, k);
   f.state(S.analytic_ss, e.ss_after, k);
   f.residuals(S.residuals_end, e.end, e.ss_after, k);
+}
+
+// The seed's corrected estimate of the first change at fixed depth (of the
+// Kelvin foundation, its time shifted by aT), and the state's residual from
+// it; undefined (the fill value) for a spectrum.
+void fill_jump(Filler& f, const io::RowSlots& S, const Case& c, const State& after) {
+  if (!c.rheology.kelvin()) {
+    f.fill(S.analytic_jump);
+    f.fill(S.residuals_jump);
+    return;
+  }
+  Case shifted = c;
+  shifted.rheology = c.rheology.shifted();
+  const State jump = analytic::jump(shifted, c.history.v0, c.history.segments.front().w);
+  f.state(S.analytic_jump, jump);
+  f.residuals(S.residuals_jump, after, jump);
 }
 
 // The row of a solved case. Throws for a non-finite value.
 void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const RunResult& r) {
   const Series& x = r.series;
   const io::RowSlots& S = L.slots();
-  const std::vector<EventMetrics> ev = event_metrics(c, x);
+  const std::vector<EventMetrics> ev = event_metrics(c, x, r.transients);
   Filler f(L, row.values);
   f.put(S.error_estimate, r.info.error_estimate);
   f.state(S.results_pre, x.pre);
@@ -77,11 +99,7 @@ void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const Run
   const auto N = static_cast<std::size_t>(c.sampling.samples);
   for (std::size_t k = 0; k < ev.size(); ++k)
     fill_event(f, S, ev[k], x.at(k * N), k);
-  if (!L.by_force()) { // the seed's corrected estimate of the first change
-    const State jump = analytic::jump(c, c.history.v0, c.history.segments.front().w);
-    f.state(S.analytic_jump, jump);
-    f.residuals(S.residuals_jump, x.at(0), jump);
-  }
+  if (!L.by_force()) fill_jump(f, S, c, x.at(0));
   const Scales sc = scales(c);
   f.put(S.scale_length, sc.length);
   f.put(S.scale_depth, sc.depth);

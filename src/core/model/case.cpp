@@ -252,6 +252,14 @@ void require_depth_control(const Case& c, const char* solver) {
                                      "normal force (--FN)");
 }
 
+void require_kelvin(const Case& c, const char* solver) {
+  if (!c.rheology.kelvin())
+    throw InvalidInput("prony", std::string(solver) +
+                                    " solves the Kelvin foundation only (no Maxwell branches); "
+                                    "this case has " +
+                                    std::to_string(c.rheology.branches.size()));
+}
+
 double zeta(const Case& c, double w) {
   return w * c.rheology.tau / c.a1();
 }

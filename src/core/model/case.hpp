@@ -168,6 +168,11 @@ double default_step_duration(double d, double R, double tau, double v, double v1
 /// depth solvers' guard (`solver` names the caller in the message).
 void require_depth_control(const Case& c, const char* solver);
 
+/// Throws InvalidInput("prony") unless the case's rheology is the Kelvin
+/// foundation (no Maxwell branches): the guard of the solvers and closed forms
+/// that take the Kelvin foundation only (`solver` names the caller).
+void require_kelvin(const Case& c, const char* solver);
+
 /// Similarity variable zeta = w tau / a1 at velocity w.
 double zeta(const Case& c, double w);
 

@@ -177,6 +177,7 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt, const Run
 RunResult run_baseline(const Case& s, const BaselineOptions& opt) {
   validate(s);
   require_depth_control(s, "baseline");
+  require_kelvin(s, "baseline");
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
   RunResult res = run_baseline_once(s, opt, control);

@@ -236,28 +236,49 @@ double ExactSolution::max_gap_beyond_edge(std::size_t k, double offset, int poin
   return worst / c_.loading.d;
 }
 
-// Time in [0, T] at which the front of a segment with w > 0 reached the cap:
-// the gap at the cap of the material passing it changes sign once, there.
-// Material that was in contact at the segment start counts as touching
-// (gap h(cap) > 0): the sign changes where it arrives, if the front sat on it.
-double ExactSolution::cap_time(const SegmentStart& seg, double T) const {
+// Time in [0, T] at which the front reached x (<= the cap; the cap_time when
+// x is the cap, w > 0): the gap at x of the material passing it changes sign
+// once, there. Material that was in contact at the segment start counts as
+// touching (gap h(x) > 0): the sign changes where it arrives, if the front
+// sat on it.
+double ExactSolution::arrival(const SegmentStart& seg, double x, double T, int bits) const {
   const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
-  if (seg.tail.empty() || seg.tail.front().lo >= seg.cap) return 0.0;
-  auto gap_at_cap = [&](double dt) {
+  if (seg.tail.empty() || seg.tail.front().lo >= x) return 0.0;
+  auto gap_at_x = [&](double dt) {
     for (const TailPiece& p0 : seg.tail) {
       const TailPiece p = advanced(p0, f, seg.w, dt);
-      if (p.hi >= seg.cap) return p.lo >= seg.cap ? f.h(seg.cap) : gap(p, f, seg.cap);
+      if (p.hi >= x) return p.lo >= x ? f.h(x) : gap(p, f, x);
     }
-    return f.h(seg.cap);
+    return f.h(x);
   };
-  const double g0 = gap_at_cap(0.0), gT = gap_at_cap(T);
+  const double g0 = gap_at_x(0.0), gT = gap_at_x(T);
   if (g0 >= 0.0) return 0.0;
-  if (gT < 0.0) return T; // (rounding: the front is at the cap only just)
+  if (gT < 0.0) return T; // (rounding: the front is at x only just)
   std::uintmax_t iters = 200;
-  const auto tol = boost::math::tools::eps_tolerance<double>(static_cast<unsigned>(bits_));
-  const auto r = boost::math::tools::toms748_solve(gap_at_cap, 0.0, T, g0, gT, tol, iters);
+  const auto tol = boost::math::tools::eps_tolerance<double>(static_cast<unsigned>(bits));
+  const auto r = boost::math::tools::toms748_solve(gap_at_x, 0.0, T, g0, gT, tol, iters);
   charge(static_cast<double>(iters));
   return 0.5 * (r.first + r.second);
+}
+
+// One Exp piece reaching to infinity: the material at x at time t left its
+// place x - w t of the start, so its gap is h(x) - (h(x) - g0(x)) exp(-k t),
+// k = 1/tau - w/lam (g0: the gap at t = 0). It touches at
+// t = log1p(-g0/h) / k, unless the piece's first material has passed x
+// before (the material there was in contact at the start: gap h > 0).
+double ExactSolution::arrival_time(const SegmentStart& seg, double x, double T, int bits) const {
+  const TailPiece* p = seg.tail.size() == 1 ? &seg.tail.front() : nullptr;
+  if (p == nullptr || p->kind != TailPiece::Kind::Exp || p->hi != kInf)
+    return arrival(seg, x, T, bits);
+  if (p->lo >= x) return 0.0;
+  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const double g0 = exp_gap(*p, f, x - p->xa);
+  if (g0 >= 0.0) return 0.0;
+  const double h = (p->a1_minus_xa - (x - p->xa)) * (a1_ + x) / f.R;
+  const double k = 1.0 / f.tau - seg.w / p->lam;
+  const double t_piece = k > 0.0 ? std::log1p(-g0 / h) / k : kInf;
+  const double t_lo = seg.w > 0.0 ? (x - p->lo) / seg.w : kInf;
+  return std::min({t_piece, t_lo, T});
 }
 
 // The start of the next segment (velocity w_next) from the end of `seg`.
@@ -294,6 +315,11 @@ State ExactSolution::at(std::size_t k, double offset) const {
   const SegmentStart& seg = starts_[k];
   if (!(c_.rheology.tau > 0.0)) return seg.at_cap; // no memory: stationary at once
   const Edge fr = front(seg, offset);
+  if (offset == 0.0) {
+    seg.start_edge = fr.e;
+    seg.start_a1_minus_edge = fr.a1_minus_e;
+    seg.start_at_cap = fr.at_cap;
+  }
   if (fr.at_cap) return seg.at_cap;
   return analytic::contact_forces(c_, fr.e, fr.a1_minus_e, seg.w);
 }
@@ -350,6 +376,7 @@ RunResult run_exact(const Case& c, double rtol, const RunControl& control) {
 RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& control) {
   const Case& c = checked.get();
   require_depth_control(c, "exact");
+  require_kelvin(c, "exact");
   // Solve the roots to ~10 bits beyond what rtol asks, 52 bits at most.
   const int bits = std::clamp(static_cast<int>(std::ceil(-std::log2(rtol))) + 12, 24, 52);
   ExactSolution ex(c, bits, &control);
@@ -373,6 +400,9 @@ RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& c
         add_edge_error(c, st, c.history.segments[k].w, edge_error(st, a1, ex.last_bracket()), err);
     }
   }
+  res.transients.reserve(c.history.size());
+  for (std::size_t k = 0; k < c.history.size(); ++k)
+    res.transients.push_back(ex.transient(k, c.history.segments[k].T));
   res.info.root_solves = ex.root_solves();
   res.info.error_estimate =
       relative_error(c, res.series, err) + 64.0 * std::numeric_limits<double>::epsilon();

@@ -20,9 +20,11 @@
 // Quad piece). Segment boundaries are processed once; samples are then
 // independent evaluations.
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "core/metrics/analytic.hpp"
+#include "core/metrics/transient.hpp"
 #include "core/model/case.hpp"
 #include "core/solvers/result.hpp"
 #include "core/solvers/run_control.hpp"
@@ -68,6 +70,11 @@ struct SegmentStart {
   /// above cap_margin. Later offsets are at the cap without the walk: a
   /// cache of the walk's own answer, filled as it is asked.
   mutable double at_cap_from = std::numeric_limits<double>::infinity();
+  /// The edge just after the change (offset 0), once the walk found it: a
+  /// cache for the transient, which starts there (NaN: not yet).
+  mutable double start_edge = std::numeric_limits<double>::quiet_NaN();
+  mutable double start_a1_minus_edge = 0.0;
+  mutable bool start_at_cap = false;
 };
 
 class ExactSolution {
@@ -91,6 +98,12 @@ public:
   const SegmentStart& segment_start(std::size_t k) const { return starts_[k]; }
   /// Trailing edge (front) in segment k at `offset`, the cap included.
   double edge(std::size_t k, double offset) const;
+  /// The transient of segment k over its first T (core/metrics/transient.hpp),
+  /// independent of any output instants: within a segment mu is a closed-form
+  /// function of the edge and the edge only moves outward, so the extremum
+  /// and the 1/e decay are found on mu(e) and timed by when the front
+  /// reaches them (docs/design.md, "Event metrics").
+  Transient transient(std::size_t k, double T) const;
   /// Largest gap h - u of the free material beyond the edge, over `points`
   /// instants per piece up to min(a1, its end), relative to h(0) = d. Negative
   /// means the contact is one interval: nothing behind the edge touches.
@@ -102,7 +115,17 @@ private:
     bool at_cap;
   };
   Edge front(const SegmentStart& seg, double offset) const;
-  double cap_time(const SegmentStart& seg, double T) const;
+  double cap_time(const SegmentStart& seg, double T) const {
+    return arrival(seg, seg.cap, T, bits_);
+  }
+  /// When the front reaches x in [0, T], to `bits` binary digits.
+  double arrival(const SegmentStart& seg, double x, double T, int bits) const;
+  /// The same, in closed form where the free material is one Exp piece to
+  /// infinity (a drop or a hold out of stationary sliding; the transients).
+  double arrival_time(const SegmentStart& seg, double x, double T, int bits) const;
+  /// Extremum of s (mu(e) - mu_ss) on [lo, hi] (lo < hi): its edge and value.
+  std::pair<double, double> refine_extremum(const SegmentStart& seg, double s, double lo, double hi,
+                                            double a1_minus_lo) const;
   SegmentStart next_start(const SegmentStart& seg, double T, double w_next) const;
   SegmentStart make_start(double w, std::vector<TailPiece> tail, double edge) const;
   void charge(double units) const {

@@ -14,6 +14,7 @@ namespace {
 
 struct SingleRun {
   Series series;
+  std::vector<Transient> transients; ///< one per segment, from every accepted step
   long steps = 0, updates = 0, elements = 0;
   LoadChecks checks;
   double dx = 0.0;
@@ -57,7 +58,12 @@ double reference_radius(const Case& c, LoadStart start) {
 class Stepper {
 public:
   Stepper(LoadRow& row, const RunSettings& s, double tau) : row_(row), s_(s), tau_(tau) {}
-  void restart() { h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol); }
+  /// A new segment: the first step size again, and the tracker that is fed
+  /// the state after every accepted step (and its midpoint) from now on.
+  void restart(TransientTracker* tracker) {
+    h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol);
+    tracker_ = tracker;
+  }
   long steps() const { return steps_; }
 
   /// `target` on the row's clock (the time since the segment's start).
@@ -75,6 +81,7 @@ public:
         LoadRow::Trial tr = row_.trial(h, h);
         if (h == left) tr.t_end = target;
         row_.commit(tr);
+        track();
         ++steps_;
       } else {
         adaptive_step(h, h == left, target);
@@ -103,6 +110,7 @@ private:
     }
     row_.checkpoint();
     row_.commit(half);
+    const double t_mid = row_.t(), mu_mid = row_.measure().mu;
     const LoadRow::Trial two = row_.trial(0.5 * h, h);
     if (!row_.fits(two)) {
       row_.rollback();
@@ -120,6 +128,8 @@ private:
       if (to_target) last.t_end = target;
       row_.commit(last);
       row_.release();
+      if (tracker_ != nullptr) tracker_->add(t_mid, mu_mid);
+      track();
       ++steps_;
       if (!to_target || fac < 1.0) h_ = h * std::clamp(fac, 0.2, 5.0);
       return;
@@ -128,11 +138,16 @@ private:
     h_ = h * std::clamp(fac, 0.1, 0.9);
   }
 
+  void track() {
+    if (tracker_ != nullptr) tracker_->add(row_.t(), row_.measure().mu);
+  }
+
   LoadRow& row_;
   RunSettings s_;
   double tau_;
   double h_ = 0.0;
   long steps_ = 0;
+  TransientTracker* tracker_ = nullptr;
 };
 
 State hertz(const Case& c) {
@@ -198,13 +213,16 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
     const Segment& seg = c.history.segments[k];
     const double t0 = c.history.start(k);
     row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
-    stepper.restart();
+    TransientTracker tracker(stationary_under_load(c, seg.w).mu, row.measure().mu);
+    stepper.restart(&tracker);
     for (long j = 0; j < c.sampling.samples; ++j, ++i) {
       const double off = c.sampling.offset(j, seg.T);
       stepper.advance_to(std::max(row.t(), off));
       row.check_one_interval();
       out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)
     }
+    out.transients.push_back(tracker.result());
+    stepper.restart(nullptr);
   }
   out.steps = stepper.steps();
   out.updates = row.updates();
@@ -290,6 +308,7 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   validate(c);
   if (!c.loading.by_force())
     throw InvalidInput("solver", "the load solver needs a prescribed normal force (--FN)");
+  require_kelvin(c, "the load solver");
   validate_rtol(opt.rtol);
   RunResult res;
   res.info.solver = "mdr";
@@ -319,6 +338,7 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
     // move the edge by up to its width, unseen by the companion)
     if (opt.estimate_error || adaptive) est = std::max(est, fine.max_unresolved / c.a0());
     res.series = std::move(fine.series);
+    res.transients = std::move(fine.transients);
     res.info.error_estimate = est;
     res.info.cells_per_a1 = s.cells;
     res.info.elements = fine.elements;

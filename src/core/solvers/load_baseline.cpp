@@ -347,6 +347,7 @@ RunResult run_load_baseline(const Case& c, const LoadBaselineOptions& opt) {
   if (!c.loading.by_force())
     throw InvalidInput("solver", "the load-control baseline solves load control only (--FN); "
                                  "this case prescribes the depth (--d)");
+  require_kelvin(c, "the load-control baseline");
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
   RunResult res = run_once(c, opt, control);

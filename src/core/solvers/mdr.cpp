@@ -766,6 +766,7 @@ constexpr double kRoundingLevel = 1e-11;
 RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   validate(s);
   require_depth_control(s, "mdr");
+  require_kelvin(s, "mdr");
   RunResult res;
   res.info.solver = "mdr";
   res.info.rtol = opt.rtol;

@@ -1,15 +1,18 @@
 #pragma once
-// What a solver returns: the case's samples and what the run cost; the
-// tolerance every solver takes.
+// What a solver returns: the case's samples, the transients of its segments
+// from the solution itself, and what the run cost; the tolerance every solver
+// takes.
 #include <string>
+#include <vector>
 
+#include "core/metrics/transient.hpp"
 #include "core/model/state.hpp"
 
 namespace mdrmap {
 
 /// What a run cost and how accurate it believes it is.
 struct RunInfo {
-  std::string solver;          ///< "exact", "mdr" or "baseline"
+  std::string solver;          ///< which solver ran: "exact", "mdr", "spectrum", ...
   double rtol = 0.0;           ///< requested tolerance
   double error_estimate = 0.0; ///< estimated case error (docs/design.md, "Error metric")
   double cells_per_a1 = 0.0;   ///< resolution a1/dx of the final run (0 for exact)
@@ -22,6 +25,10 @@ struct RunInfo {
 
 struct RunResult {
   Series series;
+  /// One per segment, from the continuous solution (independent of the
+  /// output instants: core/metrics/transient.hpp); empty where the solver
+  /// gives only its samples (the event metrics then read those).
+  std::vector<Transient> transients;
   RunInfo info;
 };
 

@@ -31,7 +31,9 @@ __all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Resul
 _OPTIONS = _core.option_names()
 _TABLE = _core.parameter_table()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
-_STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]]
+# the case's parameters without history and sampling, and its spectrum and temperature
+_STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
+    [o for o in ("prony", "prony-file", "T", "wlf") if o in _OPTIONS]
 
 
 def _keywords(options):
@@ -69,23 +71,28 @@ def _number_text(option, value):
     return repr(x)
 
 
-def _history_text(value):
-    """[(w1, T1), (w2, T2), ...] as "W1:T1,W2:T2,..." (a str as it is)."""
+_PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
+          "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}
+
+
+def _pairs_text(option, value):
+    """history [(w1, T1), (w2, T2), ...] as "W1:T1,W2:T2,...", prony [(G1, tau1),
+    ...] as "G1:TAU1,..." (a str as it is)."""
     if isinstance(value, str) or value is None:
-        return _number_text("history", value)
+        return _number_text(option, value)
+    item, pair = _PAIRS[option]
     try:
-        segments = list(value)
+        items = list(value)
     except TypeError:
-        raise InvalidInput(f"must be a list of segments (W, T), got {value!r}", "history") \
-            from None
+        raise InvalidInput(f"must be a list of {item}s {pair.split(':')[0]}, got {value!r}",
+                           option) from None
     parts = []
-    for k, seg in enumerate(segments, 1):
+    for k, it in enumerate(items, 1):
         try:
-            w, T = seg
+            a, b = it
         except (TypeError, ValueError):
-            raise InvalidInput(f"segment {k} must be a pair (W, T): its velocity W then its "
-                               f"duration T, got {seg!r}", "history") from None
-        parts.append(f"{_number_text('history', w)}:{_number_text('history', T)}")
+            raise InvalidInput(f"{item} {k} must be a pair {pair}, got {it!r}", option) from None
+        parts.append(f"{_number_text(option, a)}:{_number_text(option, b)}")
     return ",".join(parts)
 
 
@@ -99,7 +106,7 @@ def _texts(kwargs, keywords, function):
                                f"case-sensitive: {names}), got {key}", key)
         if option in texts:
             raise InvalidInput("may be given only once", option)
-        texts[option] = _history_text(value) if option == "history" else \
+        texts[option] = _pairs_text(option, value) if option in ("history", "prony") else \
             _number_text(option, value)
     return texts
 
@@ -155,7 +162,9 @@ def simulate(**options):
 
 def stationary(**options):
     """The stationary state at velocity v (FN, Fx, mu, a2, and d, a1 under
-    load) of the case's parameters without a history: d or FN, R, tau, v, G.
+    load) of the case's parameters without a history: d or FN, R, tau, v, G,
+    and its spectrum (prony= as "G1:TAU1,..." or [(G1, TAU1), ...], or
+    prony_file=) and shift (aT=, or T= with wlf=).
     It is the state that events[0]["mu_ss_before"] of simulate describes."""
     texts = _texts(options, _STATIONARY_KEYWORDS, "stationary")
     if "v" in texts:

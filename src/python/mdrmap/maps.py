@@ -369,11 +369,14 @@ def _check_case_order(ds, axes, values, shape):
                 raise MapError(f"grid axis {a!r} names segment {k}, the map has {col.shape[1]}")
             have = col[:, k - 1]
             if over:
-                ref = np.asarray(ds["v" if kind == "w" else "tau"].values, dtype=float)
+                # TK_over_tau multiplies the case's time scale (/scales/time; tau in a
+                # map made before /scales)
+                time = "scale_time" if "scale_time" in ds.variables else "tau"
+                ref = np.asarray(ds["v" if kind == "w" else time].values, dtype=float)
                 with np.errstate(divide="ignore", invalid="ignore"):
                     have = np.where(ref != 0, have / ref, np.nan)
             have = have.reshape(shape)
-            ok = np.isfinite(have)  # Tk_over_tau at tau = 0: not a multiple of tau
+            ok = np.isfinite(have)  # Tk_over_tau where nothing relaxes: no time scale
             same = np.allclose(have[ok], want[ok], rtol=1e-12, atol=0)
         elif a not in ds.variables:
             continue
