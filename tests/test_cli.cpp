@@ -1097,6 +1097,36 @@ TEST(cli, SpectrumInputIsReadIntoTheRheology) {
   }
 }
 
+// A spectrum runs end to end, at fixed depth and under load: auto picks the
+// spectrum solver, whose stationary start is the closed form's (mu_ss_before)
+// within rtol, and the Kelvin solvers refuse it in one line naming prony.
+TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
+  for (const char* loading : {"--d", "--FN"}) {
+    SCOPED_TRACE(loading);
+    const std::vector<std::string> base = {
+        "simulate", loading,  "0.1", "--R", "10",        "--tau",         "0",
+        "--prony",  "9:1",    "--v", "0.1", "--history", "1:2,0:5,0.1:2", "--samples",
+        "5",        "--rtol", "1e-3"};
+    const Outcome r = run_mdrmap(base);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Parsed p = parse_output(r.out);
+    EXPECT_EQ(p.run.at("solver"), "spectrum");
+    ASSERT_EQ(p.events.size(), 3U);
+    const double mu = to_double(p.pre.at("mu")), ss = to_double(p.events[0].at("mu_ss_before"));
+    EXPECT_NEAR(mu, ss, 1e-3 * ss);
+    for (const char* kelvin : {"exact", "mdr", "baseline"}) {
+      if (std::string(loading) == "--FN" && std::string(kelvin) == "exact") continue;
+      auto args = base;
+      args.insert(args.end(), {"--solver", kelvin});
+      const Outcome refused = run_mdrmap(args);
+      EXPECT_EQ(refused.code, 2) << kelvin << ": " << refused.err;
+      EXPECT_TRUE(starts_with(refused.err, "mdrmap simulate: error: --prony: solver "))
+          << refused.err;
+      EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    }
+  }
+}
+
 TEST(cli, SpectrumFileEqualsTheOption) {
   TempDir dir;
   const fs::path f = dir.path() / "spectrum.csv";

@@ -1277,14 +1277,14 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
     EXPECT_NE(message.find(b.said), std::string::npos) << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
-  // no solver takes a spectrum under load yet: refused at the config, not case by case
-  const auto [option, message] = error_of([&] {
-    parse("[grid]\nFN = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n[history]\n"
-          "w1_over_v = 0.5\nT1 = 1\n");
-  });
+  // under load a spectrum takes auto or spectrum; mdr (the Kelvin load solver) is refused
+  const std::string load_spectrum = "[grid]\nFN = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n"
+                                    "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
+  for (const char* ok : {"auto", "spectrum"})
+    EXPECT_TRUE(parse(load_spectrum + ok + "\n").by_force()) << ok;
+  const auto [option, message] = error_of([&] { parse(load_spectrum + "mdr\n"); });
   EXPECT_EQ(option, "run.solver") << message;
-  EXPECT_NE(message.find("no solver takes a relaxation spectrum (G1, tau1) under load control"),
-            std::string::npos)
+  EXPECT_NE(message.find("solver mdr solves the Kelvin foundation only"), std::string::npos)
       << message;
   // 32 terms are allowed, a 33rd is no column
   std::string terms;

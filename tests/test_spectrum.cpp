@@ -293,8 +293,9 @@ TEST(SpectrumWindow, MemoryIsIndependentOfTravel) {
   EXPECT_LE(a.info.elements, 2 * 64 + 8);
 }
 
-// Done-criterion 4: inputs the solvers do not take.
-TEST(SpectrumInputs, LoadControlAndBadOptionsAreRefusedNamingTheOption) {
+// Done-criterion 4: inputs the solvers do not take (load control they take:
+// test_spectrum_load.cpp).
+TEST(SpectrumInputs, BadOptionsAreRefusedNamingTheOption) {
   Case c = spectrum_case(material(1.0, 0.0, {{3.0, 1.0}}), 1.0, {{0.1, 1.0}});
   auto option_of = [](auto&& f) {
     try {
@@ -304,11 +305,6 @@ TEST(SpectrumInputs, LoadControlAndBadOptionsAreRefusedNamingTheOption) {
     }
     return std::string("(none)");
   };
-  Case load = c;
-  load.loading.F0 = 1e-4;
-  load.loading.d = 0.0;
-  EXPECT_EQ(option_of([&] { run_spectrum(load, SpectrumOptions{}); }), "solver");
-  EXPECT_EQ(option_of([&] { run_spectrum_baseline(load, SpectrumBaselineOptions{}); }), "solver");
   SpectrumOptions o;
   o.sub_travel = 0.0;
   EXPECT_EQ(option_of([&] { run_spectrum(c, o); }), "sub-travel");

@@ -337,7 +337,7 @@ Other options:
                    mdr       discrete MDR element simulation with error control
                    baseline  the paper's brute-force method, for reference
                    spectrum  element row of any rheology (--prony), exact
-                             exponential updates, error control; fixed depth
+                             exponential updates, error control
                    auto      the cheapest solver that meets rtol (exact at
                              fixed depth, the load solver under --FN, spectrum
                              with --prony)

@@ -167,10 +167,6 @@ void check_solver_takes_spectrum(const StudyConfig& c, SolverKind kind) {
   for (const Axis& a : c.axes)
     if (a.column.spectrum()) terms += (terms.empty() ? "" : ", ") + a.name;
   if (terms.empty() || solver_handles(kind, ModelNeeds{c.by_force(), true})) return;
-  if (c.by_force())
-    throw ConfigError("run.solver", "no solver takes a relaxation spectrum (" + terms +
-                                        ") under load control yet; the spectrum solver takes "
-                                        "it at a fixed depth d");
   throw ConfigError("run.solver", std::string("solver ") + solver_name(kind) +
                                       " solves the Kelvin foundation only, and the study has a "
                                       "relaxation spectrum (" +

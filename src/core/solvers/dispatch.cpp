@@ -47,14 +47,14 @@ ModelNeeds model_needs(const Case& c) {
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
   switch (kind) {
   case SolverKind::Auto:
-    return !(needs.by_force && needs.spectrum); // no solver takes a spectrum under load yet
+    return true;
   case SolverKind::Exact:
     return !needs.by_force && !needs.spectrum;
   case SolverKind::Mdr:
   case SolverKind::Baseline:
     return !needs.spectrum;
   case SolverKind::Spectrum:
-    return !needs.by_force;
+    return true;
   }
   return false;
 }
@@ -94,9 +94,6 @@ namespace {
 void require_handled(SolverKind kind, const Case& c) {
   const ModelNeeds needs = model_needs(c);
   if (solver_handles(kind, needs)) return;
-  if (needs.spectrum && needs.by_force)
-    throw InvalidInput("prony", "no solver takes a relaxation spectrum under load control yet "
-                                "(--FN); the spectrum solver takes it at a fixed depth (--d)");
   if (needs.spectrum)
     throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
                                     " solves the Kelvin foundation only (no Maxwell branches); "

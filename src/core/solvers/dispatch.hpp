@@ -30,8 +30,8 @@ ModelNeeds model_needs(const Case& c);
 /// Whether run_case solves cases with these needs with `kind`. exact solves
 /// depth control only; exact, mdr and baseline (and the load solvers they
 /// dispatch to) the Kelvin foundation only; spectrum (the element row of any
-/// rheology) depth control only, with or without branches; auto whatever one
-/// of them solves. run_case refuses the others with InvalidInput naming
+/// rheology) every case, at fixed depth and under load, with or without
+/// branches; auto every case. run_case refuses the others with InvalidInput naming
 /// "solver" (the loading) or "prony" (the spectrum).
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);
 /// The same for a loading alone, on the Kelvin foundation.

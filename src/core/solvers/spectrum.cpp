@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include "core/metrics/error_metric.hpp"
+#include "core/metrics/spectrum_stationary.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
 
@@ -41,8 +46,218 @@ SingleRun run_once(const Case& c, const spectrum::Law& law, double cells, double
     double prev = 0.0;
     for (long j = 0; j < c.sampling.samples; ++j, ++i) {
       const double off = c.sampling.offset(j, seg.T);
+      row.renumber();
       row.advance(off - prev);
       prev = off;
+      out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
+    }
+  }
+  out.elements = static_cast<long>(row.capacity());
+  out.steps = row.steps();
+  out.updates = row.updates();
+  return out;
+}
+
+// ---- load control ---------------------------------------------------------
+// The depth is the unknown that balances F_N = F0 at every step's end. Within
+// a step it is linear in time (the branch updates exact for that path); the
+// parallel dashpot sees the depth rate of BDF2 over the last two steps (BE on
+// a segment's first step): L-stable, second order. Steps grow geometrically
+// from each velocity change (relative step eps = 1 / cells: the companion at
+// half the cells has twice the step, so its difference sees the time error),
+// at most 8 eps a1 / w while sliding.
+
+/// Root of an increasing f from x0: a secant step with the expected slope k
+/// (> 0) past the root, widened (times 4) until it brackets, then TOMS 748 to
+/// |b - a| <= tol; lo_limit bounds the search below. k receives the slope of
+/// the final bracket (the next call's guess).
+template <class F> double increasing_root(F f, double x0, double& k, double tol, double lo_limit) {
+  double a = x0, fa = f(x0);
+  if (fa == 0.0) return x0;
+  double step = -1.2 * fa / k, b = a, fb = fa;
+  for (int n = 0; fa * fb > 0.0; ++n) {
+    if (n > 60 || !std::isfinite(step))
+      throw CaseAbandoned("spectrum: the load balance has no root near " + format_number(x0));
+    a = b;
+    fa = fb;
+    b = std::max(a + step, 0.5 * (a + lo_limit));
+    fb = f(b);
+    step *= 4.0;
+  }
+  if (fb == 0.0) return b;
+  if (a > b) {
+    std::swap(a, b);
+    std::swap(fa, fb);
+  }
+  std::uintmax_t iters = 100;
+  const auto r = boost::math::tools::toms748_solve(
+      f, a, b, fa, fb, [tol](double l, double h) { return h - l <= tol; }, iters);
+  if (fb > fa) k = (fb - fa) / (b - a);
+  return 0.5 * (r.first + r.second);
+}
+
+// Relative time step per unit of dx / a_ref (measured: the time error then
+// stays below the space error at rtol 1e-3)
+constexpr double kStepFactor = 2.0;
+
+struct LoadGeometry {
+  double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
+};
+
+LoadGeometry load_geometry(const Case& c) {
+  LoadGeometry g;
+  g.d_pre = spectrum_stationary_depth(c, c.history.v0);
+  const double R = c.indenter.R;
+  g.a_ref = std::sqrt(R * g.d_pre);
+  double amax = std::max(c.a0(), g.a_ref);
+  g.t_min = g.a_ref / c.history.v0;
+  for (const auto& seg : c.history.segments) {
+    if (!(seg.w > 0.0)) continue;
+    const double a = std::sqrt(R * spectrum_stationary_depth(c, seg.w));
+    g.a_ref = std::min(g.a_ref, a);
+    amax = std::max(amax, a);
+    g.t_min = std::min(g.t_min, a / seg.w);
+  }
+  if (c.rheology.tau > 0.0) g.t_min = std::min(g.t_min, c.rheology.tau);
+  for (const Branch& b : c.rheology.branches)
+    g.t_min = std::min(g.t_min, b.tau);
+  g.a_win = 1.1 * amax;
+  return g;
+}
+
+class LoadRun {
+public:
+  LoadRun(const Case& c, spectrum::Row& row, double eps, double tol)
+      : c_(c), row_(row), eps_(eps), tol_(tol), ftol_(tol) {}
+
+  /// The depth rate just after a change to w (the dashpot's balance at the instant).
+  void change(double w) {
+    first_ = true;
+    if (!(c_.rheology.tau > 0.0)) {
+      row_.change_velocity(w, 0.0);
+      return;
+    }
+    row_.renumber();
+    row_.save(snap_);
+    const double F0 = c_.loading.F0, d = row_.depth_now();
+    auto f = [&](double dd) {
+      row_.restore(snap_);
+      row_.change_velocity(w, dd);
+      return row_.measure().FN - F0;
+    };
+    double k = 4.0 * c_.rheology.G * c_.rheology.tau * row_.a1_now(); // dF_N/dd, one interval
+    const double dd = increasing_root(f, row_.rate_now(), k, 1e-9 * d / c_.rheology.tau, -1e300);
+    row_.restore(snap_);
+    row_.change_velocity(w, dd);
+  }
+
+  /// Advance by T at velocity w, t_seg the time since the change before.
+  void advance(double T, double w, double& t_seg) {
+    double left = T;
+    while (left > 0.0) {
+      double h = std::max(eps_ * t_seg, 1e-2 * eps_ * t_min);
+      if (w > 0.0) h = std::min(h, 8.0 * eps_ * row_.a1_now() / w);
+      const double n = std::ceil(left / h);
+      h = n > 1.0 ? left / n : left;
+      step(h);
+      t_seg += h;
+      left = n > 1.0 ? left - h : 0.0;
+    }
+  }
+  double t_min = 0.0;
+
+private:
+  void step(double h) {
+    row_.renumber();
+    row_.save(snap_);
+    const double F0 = c_.loading.F0, d0 = row_.depth_now();
+    const double om = first_ ? 0.0 : h / h_prev_;
+    auto rate = [&](double d1) {
+      if (first_) return (d1 - d0) / h;
+      return ((1.0 + 2.0 * om) / (1.0 + om) * d1 - (1.0 + om) * d0 +
+              om * om / (1.0 + om) * d_prev_) /
+             h;
+    };
+    auto f = [&](double d1) {
+      row_.restore(snap_);
+      row_.advance(h, d1, rate(d1));
+      return row_.measure().FN - F0;
+    };
+    const double guess = std::max(0.5 * d0, d0 + h * row_.rate_now());
+    if (!(k_ > 0.0)) k_ = 2.0 * c_.loading.F0 / d0; // Hertz: F ~ d^1.5
+    // secant iterations from the extrapolated depth; the row is left at the
+    // accepted one (|F_N - F0| <= ftol), else a bracketed root
+    const double ftol = ftol_ * F0;
+    double x = guess, fx = f(x);
+    for (int n = 0; n < 6 && std::abs(fx) > ftol; ++n) {
+      const double xn = std::max(0.5 * x, x - fx / k_), fn = f(xn);
+      if (xn != x && (fn - fx) / (xn - x) > 0.0) k_ = (fn - fx) / (xn - x);
+      x = xn;
+      fx = fn;
+    }
+    if (std::abs(fx) > ftol) {
+      x = increasing_root(f, guess, k_, tol_ * d0, 0.0);
+      row_.restore(snap_);
+      row_.advance(h, x, rate(x));
+    }
+    d_prev_ = d0;
+    h_prev_ = h;
+    first_ = false;
+  }
+
+  const Case& c_;
+  spectrum::Row& row_;
+  double eps_, tol_, ftol_;
+  spectrum::Row::Snapshot snap_;
+  bool first_ = true;
+  double d_prev_ = 0.0, h_prev_ = 0.0, k_ = 0.0;
+};
+
+// The pre-state: stationary sliding at the depth where the row's F_N is F0
+// (the closed-form depth d_pre, corrected by the discretisation: secant steps).
+void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rtol) {
+  const double F0 = c.loading.F0;
+  double d = d_pre, slope = 1.5 * F0 / d;
+  row.start_stationary(c.history.v0, d);
+  double f = row.measure().FN - F0;
+  for (int n = 0; n < 8 && std::abs(f) > 1e-4 * rtol * F0; ++n) {
+    const double dn = d - f / slope;
+    row.start_stationary(c.history.v0, dn);
+    const double fn = row.measure().FN - F0;
+    if (fn != f) slope = (fn - f) / (dn - d);
+    d = dn;
+    f = fn;
+  }
+}
+
+SingleRun run_once_load(const Case& c, const spectrum::Law& law, double cells, double phase,
+                        const SpectrumOptions& o, const RunControl& control) {
+  const LoadGeometry geo = load_geometry(c);
+  const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
+  if (!(a_win / dx < 4.0 * kMaxCells))
+    throw CaseAbandoned("spectrum: the window under load would hold " +
+                        format_number(2.0 * a_win / dx) + " elements (at most 8e5)");
+  spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, 1e-2 * o.rtol, control,
+                    kName);
+  start_under_load(row, c, geo.d_pre, o.rtol);
+  LoadRun run(c, row, kStepFactor / cells, 1e-4 * o.rtol);
+  run.t_min = geo.t_min;
+  SingleRun out;
+  out.series.resize(c.total_samples());
+  out.series.pre = row.measure();
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double t0 = c.history.start(k);
+    run.change(seg.w);
+    double prev = 0.0, t_seg = 0.0;
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      run.advance(off - prev, seg.w, t_seg);
+      prev = off;
+      if (row.a1_now() > a_win - 2.0 * dx)
+        throw CaseAbandoned("spectrum: under load the contact grew past its window (a1 = " +
+                            format_number(row.a1_now()) + ")");
       out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
     }
   }
@@ -59,9 +274,6 @@ constexpr double kRoundingLevel = 1e-11;
 
 RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   validate(given);
-  if (given.loading.by_force())
-    throw InvalidInput("solver", "spectrum solves depth control only (--d); under load control "
-                                 "(--FN) use a Kelvin solver");
   const bool adaptive = !(o.cells_per_a1 > 0.0);
   if (adaptive) validate_rtol(o.rtol);
   if (!(o.sub_travel > 0.0) || !(o.sub_travel <= 2.0))
@@ -81,7 +293,11 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   const RunControl& control = o.control != nullptr ? *o.control : own;
   double prev_est = 0.0;
   for (int attempt = 0;; ++attempt) {
-    SingleRun fine = run_once(c, law, cells, o.phase, o, control);
+    const auto once = [&](double n, double ph) {
+      return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control)
+                                  : run_once(c, law, n, ph, o, control);
+    };
+    SingleRun fine = once(cells, o.phase);
     res.info.steps += fine.steps;
     res.info.element_updates += fine.updates;
     res.info.refinements = attempt + 1;
@@ -89,7 +305,7 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
     if (o.estimate_error || adaptive) {
       // second order: the difference to the half-resolution companion (other
       // element phase) is ~3 times the fine run's error; reported whole
-      SingleRun coarse = run_once(c, law, 0.5 * cells, companion_phase, o, control);
+      SingleRun coarse = once(0.5 * cells, companion_phase);
       res.info.steps += coarse.steps;
       res.info.element_updates += coarse.updates;
       est = case_error(coarse.series, fine.series, c, 1e-12).max() +

@@ -5,7 +5,8 @@
 // exponential per branch in contact, the free system in its modes), its
 // contact switches located in time; the window [-a1, a1] moves with the
 // indenter (memory independent of travel); the resolution a1/dx is refined
-// until a half-resolution companion run agrees within rtol. Runs N = 0
+// until a half-resolution companion run agrees within rtol. Under load control
+// the depth is the unknown of each step. Runs N = 0
 // (Kelvin) cases too, as a check of the specialised solvers. Expects a
 // shifted case (aT folded in; an unshifted one is shifted here).
 #include "core/model/case.hpp"
@@ -25,8 +26,11 @@ struct SpectrumOptions {
   const RunControl* control = nullptr;
 };
 
-/// Throws InvalidInput("solver") under load control (not supported yet),
-/// CaseAbandoned when the estimate stays above rtol or past the work budget.
+/// Under load control (c.loading.by_force()) the depth is free: each time step
+/// ends at the depth that balances F_N = F0 (spectrum.cpp, "load control"),
+/// the run starts from stationary sliding at v0 under F0, and Series d, a1
+/// are filled. Throws CaseAbandoned when the estimate stays above rtol or past
+/// the work budget.
 RunResult run_spectrum(const Case& c, const SpectrumOptions& o);
 
 } // namespace mdrmap

@@ -23,7 +23,9 @@ struct SpectrumBaselineOptions {
   const RunControl* control = nullptr;
 };
 
-/// Throws InvalidInput("solver") under load control.
+/// Under load control (c.loading.by_force()) each fixed step solves its end
+/// depth from F_N = F0 (the dashpot sees the backward difference of d), the
+/// spin-up starts at the stationary depth under load and balances the load too.
 RunResult run_spectrum_baseline(const Case& c, const SpectrumBaselineOptions& o);
 
 } // namespace mdrmap

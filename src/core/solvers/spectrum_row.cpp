@@ -46,9 +46,15 @@ double cubic_integral(const double* x, const double* f, double lo, double hi) {
 
 Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
          double edge_tol, const RunControl& control, const char* name)
-    : law_(law), control_(control), name_(name), a1_(c.a1()), R_(c.indenter.R), d_(c.loading.d),
-      dx_(a1_ / cells_per_a1), phase_(phase), sub_travel_(sub_travel) {
-  cap_ = static_cast<std::size_t>(std::floor(2.0 * cells_per_a1)) + 8;
+    : Row(c, law, c.loading.d, c.a1() / cells_per_a1, c.a1(), phase, sub_travel, edge_tol, control,
+          name) {}
+
+Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, double phase,
+         double sub_travel, double edge_tol, const RunControl& control, const char* name)
+    : law_(law), control_(control), name_(name), R_(c.indenter.R), d_(d), dx_(dx), aw_(a_win),
+      phase_(phase), sub_travel_(sub_travel) {
+  const double cells = aw_ / dx_;
+  cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8;
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
   y_.assign(cap_ * stride_, 0.0);
   mode_.assign(cap_, Mode::Fresh);
@@ -56,7 +62,31 @@ Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, doubl
   // tangency (p = 0 and h - u = 0 together) must not flip back and forth
   psi_tiny_ = 1e-13 * d_;
   p_tiny_ = law.G0() * psi_tiny_;
-  edge_tol_ = std::clamp(edge_tol, 1e-15, 1e-3 / cells_per_a1); // at least 1e-3 dx
+  edge_tol_ = std::clamp(edge_tol, 1e-15, 1e-3 * dx_ / a1_now()); // at least 1e-3 dx
+}
+
+void Row::save(Snapshot& s) const {
+  s.y = y_;
+  s.mode = mode_;
+  s.P = P_;
+  s.jlo = jlo_;
+  s.jhi = jhi_;
+  s.log = log_.size();
+  s.d = d_;
+  s.dd = dd_;
+  s.w = w_;
+}
+
+void Row::restore(const Snapshot& s) {
+  y_ = s.y;
+  mode_ = s.mode;
+  set_position(s.P);
+  jlo_ = s.jlo;
+  jhi_ = s.jhi;
+  log_.resize(s.log);
+  d_ = s.d;
+  dd_ = s.dd;
+  w_ = s.w;
 }
 
 void Row::set_position(long double P) {
@@ -64,51 +94,51 @@ void Row::set_position(long double P) {
   const long double fl = std::floor(P);
   m_ = static_cast<long long>(fl);
   theta_ = static_cast<double>(P - fl);
-  const double c = a1_ / dx_;
+  const double c = aw_ / dx_;
   jlo_ = static_cast<long long>(std::ceil(-c - theta_ - phase_)) - m_;
-  // two nodes past a1: the gap of the free material there locates an edge
+  // two nodes past the window: the gap of the free material there locates an edge
   jhi_ = static_cast<long long>(std::floor(c - theta_ - phase_)) - m_ + 2;
 }
 
 void Row::start_stationary(double v0) {
   w_ = v0;
+  dd_ = 0.0;
   log_.clear();
-  const double dt = (2.0 * a1_ + 6.0 * dx_) / v0;
+  const double dt = (a1_now() + aw_ + 6.0 * dx_) / v0;
   set_position(-static_cast<long double>(v0 * dt / dx_));
   jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
   advance(dt);
 }
 
-void Row::change_velocity(double w) {
+void Row::change_velocity(double w, double dd) {
   control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
   w_ = w;
-  log_.push_back(Entry{-1.0, w, P_, Grid{}});
+  dd_ = dd;
+  log_.push_back(Entry{-1.0, w, P_, Grid{}, d_, dd});
   for (long long j = jlo_; j <= jhi_; ++j)
-    change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w);
+    change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w, d_, dd);
 }
 
 // A contact element whose force at the new velocity is negative lets go.
-void Row::change_material(Mode& md, double* y, double x, double w) const {
-  if (md != Mode::Contact || !(law_.pressure(depth(x), -2.0 * x * w / R_, y) < 0.0)) return;
+void Row::change_material(Mode& md, double* y, double x, double w, double d, double dd) const {
+  if (md != Mode::Contact || !(law_.pressure(depth(x, d), dd - 2.0 * x * w / R_, y) < 0.0)) return;
   double q[kMaxBranches + 1];
   std::copy(y, y + law_.branches(), q);
-  law_.to_modal(depth(x), q, y);
+  law_.to_modal(depth(x, d), q, y);
   md = Mode::Free;
 }
 
 Row::Grid Row::grid(double dt, double w) const {
   Grid g;
   g.dt = dt;
-  g.D = w > 0.0 ? std::min(dt, sub_travel_ * a1_ / w) : dt;
+  g.D = w > 0.0 ? std::min(dt, sub_travel_ * a1_now() / w) : dt;
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
   return g;
 }
 
-void Row::advance(double dt) {
-  if (!(dt > 0.0)) return;
-  ++steps_;
+void Row::renumber() {
   // keep the travel counter small (renumbering by whole rings keeps every slot)
   const long long ring = static_cast<long long>(cap_);
   if (m_ > (1LL << 24) || m_ < -(1LL << 24)) {
@@ -120,27 +150,50 @@ void Row::advance(double dt) {
     for (Entry& e : log_)
       e.P -= static_cast<long double>(K);
   }
+}
+
+void Row::advance(double dt, double d1, double dd1) {
+  if (!(dt > 0.0)) return;
+  ++steps_;
+  const double d0 = d_, s = d1 > 0.0 ? (d1 - d0) / dt : 0.0;
   const long long lo0 = jlo_, hi0 = jhi_;
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
-  log_.push_back(Entry{dt, w_, P_, grid(dt, w_)});
+  Entry en{dt, w_, P_, grid(dt, w_), d0, s};
+  if (s != 0.0) { // sub-steps: the contact's travel at the smaller a1 of the step
+    const double amin = std::sqrt(R_ * std::min(d0, d1));
+    en.g.D = w_ > 0.0 ? std::min(dt, sub_travel_ * amin / w_) : dt;
+    en.g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / en.g.D)));
+    law_.coef(dt - static_cast<double>(en.g.K - 1) * en.g.D, en.g.first);
+    law_.coef(en.g.D, en.g.full);
+  }
+  log_.push_back(en);
   const Grid& g = log_.back().g;
   const long before = updates_;
   for (long long j = jlo_; j <= jhi_; ++j) {
-    const std::size_t s = slot(j);
-    if (j < lo0 || j > hi0) mode_[s] = Mode::Fresh; // entered during the step
-    step_material(mode_[s], &y_[s * stride_], xi(j), dt, w_, g);
+    const std::size_t sl = slot(j);
+    if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
+    step_material(mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, d0, s);
+  }
+  if (d1 > 0.0) {
+    d_ = d1;
+    dd_ = dd1;
   }
   control_.charge(static_cast<double>(updates_ - before), name_);
 }
 
 // One material point over a step of dt at w, from its state at 0 (or fresh)
-// to dt, at the end position xe; positions at time t are xe - w (dt - t).
-void Row::step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g) const {
+// to dt, at the end position xe; positions at time t are xe - w (dt - t), the
+// depth d0 + s t.
+void Row::step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
+                        double d0, double s) const {
   double t = 0.0;
-  if (md == Mode::Fresh) {
-    const double since = w > 0.0 ? (xe + a1_) / w : -1.0; // time since the entry at -a1
-    if (!(since > 0.0)) return;
-    t = std::max(0.0, dt - since);
+  if (md == Mode::Fresh) { // enters where the leading edge -a1(t) passes it
+    const double xs = xe - w * dt;
+    auto behind = [&](double tt) { // > 0 while ahead of the edge
+      return -(xs + w * tt) - std::sqrt(R_ * std::max(0.0, d0 + s * tt));
+    };
+    if (!(behind(dt) < 0.0)) return;
+    t = solve(behind, dt);
     md = Mode::Contact;
     std::fill(y, y + stride_, 0.0);
   }
@@ -160,7 +213,8 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
       law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
     }
     ++updates_;
-    const double done = substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents);
+    const double done =
+        substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents, d0 + s * t, s);
     if (done < h) {
       t += done;
       ++events;
@@ -170,36 +224,37 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
   }
 }
 
-// One sub-step of h from position x (coefficients c): the exact update, or,
-// where the element switches during it (if it still may), the update up to
-// the switch, located, and the switch. Returns the time advanced.
+// One sub-step of h from position x and depth dA (rate s; coefficients c):
+// the exact update, or, where the element switches during it (if it still
+// may), the update up to the switch, located, and the switch. Returns the time
+// advanced.
 double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                    bool may_switch) const {
+                    bool may_switch, double dA, double s) const {
   double tmp[kMaxBranches + 1];
   StepCoef at;
-  const double xn = x + w * h, h1 = -2.0 * x * w / R_, h2 = -w * w / R_;
+  const double xn = x + w * h, dn = dA + s * h, h1 = s - 2.0 * x * w / R_, h2 = -w * w / R_;
   if (md == Mode::Contact) {
     std::copy(y, y + law_.branches(), tmp);
-    law_.contact_step(tmp, depth(x), h1, h2, c);
-    if (!(may_switch && law_.pressure(depth(xn), -2.0 * xn * w / R_, tmp) < -p_tiny_)) {
+    law_.contact_step(tmp, depth(x, dA), h1, h2, c);
+    if (!(may_switch && law_.pressure(depth(xn, dn), s - 2.0 * xn * w / R_, tmp) < -p_tiny_)) {
       std::copy(tmp, tmp + law_.branches(), y);
       return h;
     }
-    const double tc = locate(true, y, x, h, w); // lets go
+    const double tc = locate(true, y, x, h, w, dA, s); // lets go
     std::copy(y, y + law_.branches(), tmp);
     law_.coef(tc, at, Part::Contact);
-    law_.contact_step(tmp, depth(x), h1, h2, at);
-    law_.to_modal(depth(x + w * tc), tmp, y);
+    law_.contact_step(tmp, depth(x, dA), h1, h2, at);
+    law_.to_modal(depth(x + w * tc, dA + s * tc), tmp, y);
     md = Mode::Free;
     return tc;
   }
   std::copy(y, y + law_.free_dim(), tmp);
   law_.free_step(tmp, c);
-  if (!(may_switch && depth(xn) - law_.free_u(tmp) > psi_tiny_ && std::abs(xn) <= a1_)) {
+  if (!(may_switch && depth(xn, dn) - law_.free_u(tmp) > psi_tiny_ && xn * xn <= R_ * dn)) {
     std::copy(tmp, tmp + law_.free_dim(), y);
     return h;
   }
-  const double tc = locate(false, y, x, h, w); // touches
+  const double tc = locate(false, y, x, h, w, dA, s); // touches
   law_.coef(tc, at, Part::Free);
   law_.free_step(y, at);
   std::copy(y, y + law_.free_dim(), tmp);
@@ -213,14 +268,20 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
 Row::Material Row::replay(long double J) const {
   Material mt;
   long done = 0;
-  for (const Entry& e : log_) {
+  // entries that end with the point ahead of the window: it was fresh (P grows)
+  const auto first = std::partition_point(log_.begin(), log_.end(), [&](const Entry& e) {
+    return (J + e.P + static_cast<long double>(phase_)) * static_cast<long double>(dx_) <=
+           -static_cast<long double>(aw_);
+  });
+  for (auto it = first; it != log_.end(); ++it) {
+    const Entry& e = *it;
     const double x = static_cast<double>((J + e.P + static_cast<long double>(phase_)) *
                                          static_cast<long double>(dx_));
     if (e.dt < 0.0) {
-      change_material(mt.mode, mt.y, x, e.w);
-    } else if (mt.mode != Mode::Fresh || (e.w > 0.0 && x > -a1_)) {
-      if (x > a1_ + 2.0 * dx_ && mt.mode != Mode::Contact) break; // never touches again
-      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g);
+      change_material(mt.mode, mt.y, x, e.w, e.d0, e.s);
+    } else if (mt.mode != Mode::Fresh || x > -std::sqrt(R_ * std::max(e.d0, e.d0 + e.s * e.dt))) {
+      if (x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact) break; // never touches again
+      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, e.d0, e.s);
       ++done;
     }
   }
@@ -230,7 +291,8 @@ Row::Material Row::replay(long double J) const {
 
 // Time within a sub-step of length h (from position x, state y) where a
 // contact element's force turns negative, or a free element touches.
-double Row::locate(bool contact, const double* y, double x, double h, double w) const {
+double Row::locate(bool contact, const double* y, double x, double h, double w, double dA,
+                   double s) const {
   StepCoef c;
   double tmp[kMaxBranches + 1];
   if (contact) {
@@ -238,9 +300,9 @@ double Row::locate(bool contact, const double* y, double x, double h, double w) 
         [&](double tau) {
           std::copy(y, y + law_.branches(), tmp);
           law_.coef(tau, c, Part::Contact);
-          law_.contact_step(tmp, depth(x), -2.0 * x * w / R_, -w * w / R_, c);
+          law_.contact_step(tmp, depth(x, dA), s - 2.0 * x * w / R_, -w * w / R_, c);
           const double xn = x + w * tau;
-          return law_.pressure(depth(xn), -2.0 * xn * w / R_, tmp);
+          return law_.pressure(depth(xn, dA + s * tau), s - 2.0 * xn * w / R_, tmp);
         },
         h);
   }
@@ -249,13 +311,13 @@ double Row::locate(bool contact, const double* y, double x, double h, double w) 
         std::copy(y, y + law_.free_dim(), tmp);
         law_.coef(tau, c, Part::Free);
         law_.free_step(tmp, c);
-        return law_.free_u(tmp) - depth(x + w * tau);
+        return law_.free_u(tmp) - depth(x + w * tau, dA + s * tau);
       },
       h);
 }
 
 double Row::pressure_at(const double* q, double x) const {
-  return law_.pressure(depth(x), -2.0 * x * w_ / R_, q);
+  return law_.pressure(depth(x), dd_ - 2.0 * x * w_ / R_, q);
 }
 
 double Row::node_p(long long j) const {
@@ -271,7 +333,8 @@ double Row::node_p(long long j) const {
 double Row::trailing_edge(long long jb, double& pe) const {
   const double xb = xi(jb);
   pe = node_p(jb);
-  if (jb + 1 > jhi_) return std::min(xb + 0.5 * dx_, a1_); // (contact past a1: never)
+  const double a1 = a1_now();
+  if (jb + 1 > jhi_) return std::min(xb + 0.5 * dx_, a1); // (contact past a1: never)
   double best = 0.0;
   auto s = [&](double frac) {
     const Material mt = replay(static_cast<long double>(jb) + static_cast<long double>(frac));
@@ -288,14 +351,14 @@ double Row::trailing_edge(long long jb, double& pe) const {
   };
   const double s1 = s(1.0);
 
-  if (!(s1 < 0.0)) return std::min(xb + dx_, a1_); // (the next node is in contact: never)
+  if (!(s1 < 0.0)) return std::min(xb + dx_, a1); // (the next node is in contact: never)
   std::uintmax_t iters = 200;
-  const double tol = edge_tol_ * a1_ / dx_;
+  const double tol = edge_tol_ * a1 / dx_;
   const auto r = boost::math::tools::toms748_solve(
-      s, 0.0, 1.0, node_p(jb) / law_.G0() + 1e-300, s1,
+      s, 0.0, 1.0, std::max(node_p(jb), 0.0) / law_.G0() + 1e-300, s1,
       [tol](double a, double b) { return b - a <= tol; }, iters);
   pe = std::max(0.0, pe);
-  return std::min(xb + r.first * dx_, a1_);
+  return std::min(xb + r.first * dx_, a1);
 }
 
 // Forces (per 4, as sums of p dx) of the contact run ja..jb: the 4th-order
@@ -307,8 +370,9 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
   const double xa = xi(ja), xb = xi(jb);
   auto fx = [&](double x, double p) { return p * (-2.0 * x / R_); };
   const bool leading = ja == jlo_ || mode_[slot(ja - 1)] == Mode::Fresh;
-  const double xl = leading ? -a1_ : xa - 0.5 * dx_;
-  const double pl = leading ? law_.tau() * law_.G() * w_ * 2.0 * a1_ / R_ : node_p(ja);
+  const double a1 = a1_now();
+  const double xl = leading ? -a1 : xa - 0.5 * dx_;
+  const double pl = leading ? law_.tau() * law_.G() * (dd_ + w_ * 2.0 * a1 / R_) : node_p(ja);
   double pe = 0.0;
   e = trailing_edge(jb, pe);
   if (n < 8) { // few nodes: trapezoid, linear end cells
@@ -354,8 +418,8 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 State Row::measure() const {
   control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
   State st;
-  st.a1 = a1_;
-  st.a2 = -a1_;
+  st.a1 = a1_now();
+  st.a2 = -st.a1;
   double FN = 0.0, Fx = 0.0;
   for (long long j = jlo_; j <= jhi_; ++j) {
     if (mode_[slot(j)] != Mode::Contact) continue;

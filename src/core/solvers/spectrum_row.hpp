@@ -17,6 +17,15 @@
 // at most `sub_travel` a1 of travel so that a switch and its reversal cannot
 // hide inside one.
 //
+// Load control. The depth d(t) may vary: within a step it is linear in time
+// (from the depth at the step's start to a given end depth), so in contact u
+// stays quadratic in t and the branch updates stay exact for that path; the
+// leading edge -a1(t) = -sqrt(R d(t)) moves, fresh material enters where it
+// crosses it (also at rest, when the indenter sinks). The window is a fixed
+// [-a_win, a_win] (the deepest contact the history can reach) and material is
+// kept until it leaves it. A caller finds the end depth that balances the
+// load by trial steps from a snapshot.
+//
 // Trailing edge. Because elements are independent, the state of any material
 // point is its history replayed from the log of steps (a few entries per
 // sample: memory independent of travel). The edge lies between the last
@@ -24,6 +33,7 @@
 // material points between them, each replayed: exact wherever the contact is one
 // interval near its end, whatever the free material's profile (thin tails,
 // tangencies after a drop, material let go at a rise).
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -38,18 +48,46 @@ enum class Mode : unsigned char { Fresh, Contact, Free };
 
 class Row {
 public:
+  /// Depth control: depth c.loading.d, dx = a1 / cells_per_a1, window [-a1, a1].
   /// edge_tol: the trailing edge is located to edge_tol a1 (at least 1e-3 dx).
   Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
       double edge_tol, const RunControl& control, const char* name);
+  /// Any depth: starting depth d, spacing dx, window half-width a_win (>= every a1).
+  Row(const Case& c, const Law& law, double d, double dx, double a_win, double phase,
+      double sub_travel, double edge_tol, const RunControl& control, const char* name);
+
+  /// What a trial step changes (restore() returns to it).
+  struct Snapshot {
+    std::vector<double> y;
+    std::vector<Mode> mode;
+    long double P = 0.0L;
+    long long jlo = 0, jhi = -1;
+    std::size_t log = 0;
+    double d = 0.0, dd = 0.0, w = 0.0;
+  };
+  void save(Snapshot& s) const;
+  void restore(const Snapshot& s);
 
   /// Stationary sliding at v0 with the indenter at s = 0: one step at v0 from
   /// an empty window long enough that every element in the window entered
   /// fresh at the leading edge during it (the stationary state, exactly).
   void start_stationary(double v0);
-  /// Velocity change to w: contact elements whose force turns negative let go.
-  void change_velocity(double w);
-  /// Advance by dt at the current velocity.
-  void advance(double dt);
+  /// The same at depth d (under load: the depth that balances the discrete F_N).
+  void start_stationary(double v0, double d) {
+    d_ = d;
+    start_stationary(v0);
+  }
+  /// Velocity change to w: contact elements whose force turns negative let go
+  /// (dd: the depth rate just after the change, for the parallel dashpot).
+  void change_velocity(double w, double dd = 0.0);
+  /// Advance by dt at the current velocity, the depth linear from now to d1
+  /// (d1 < 0: unchanged); dd1 the depth rate at the end (the dashpot's u').
+  void advance(double dt, double d1 = -1.0, double dd1 = 0.0);
+  /// Keeps the travel counter small (between steps, not inside a trial).
+  void renumber();
+  double depth_now() const { return d_; }
+  double rate_now() const { return dd_; }
+  double a1_now() const { return std::sqrt(R_ * d_); }
   /// Forces and trailing edge now.
   State measure() const;
 
@@ -71,6 +109,7 @@ private:
     double dt, w;
     long double P;
     Grid g;
+    double d0 = 0.0, s = 0.0; // depth at the start, its rate over the step (a change: d, dd)
   };
   struct Material { // one material point's state
     Mode mode = Mode::Fresh;
@@ -78,18 +117,21 @@ private:
   };
   void set_position(long double P);
   Grid grid(double dt, double w) const;
-  void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g) const;
+  void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g, double d0,
+                     double s) const;
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                 bool may_switch) const;
-  void change_material(Mode& md, double* y, double x, double w) const;
+                 bool may_switch, double dA, double s) const;
+  void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
   Material replay(long double J) const;
-  double locate(bool contact, const double* y, double x, double h, double w) const;
+  double locate(bool contact, const double* y, double x, double h, double w, double dA,
+                double s) const;
   double pressure_at(const double* q, double x) const;
   double node_p(long long j) const;
   double trailing_edge(long long jb, double& pe) const;
   void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const;
 
-  double depth(double x) const { return (a1_ - x) * (a1_ + x) / R_; }
+  double depth(double x) const { return depth(x, d_); }
+  double depth(double x, double d) const { return d - x * x / R_; }
   double xi(long long j) const { return (static_cast<double>(j + m_) + theta_ + phase_) * dx_; }
   std::size_t slot(long long j) const {
     const auto c = static_cast<long long>(cap_);
@@ -99,7 +141,8 @@ private:
   const Law& law_;
   const RunControl& control_;
   const char* name_;
-  double a1_, R_, d_, dx_, phase_, sub_travel_;
+  double R_, d_, dx_, aw_, phase_, sub_travel_;
+  double dd_ = 0.0; // depth rate now (load control)
   std::size_t cap_, stride_;
   std::vector<double> y_; // per slot: q (contact) or z (free), stride_ each
   std::vector<Mode> mode_;
