@@ -15,6 +15,7 @@
 
 #include "cases/case_set.hpp"
 #include "core/metrics/error_metric.hpp"
+#include "core/solvers/dispatch.hpp"
 #include "core/solvers/exact.hpp"
 #include "core/solvers/spectrum.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
@@ -385,6 +386,48 @@ TEST(DISABLED_SpectrumBench, MillisecondsPerCase) {
         sms, max_error(sr, ref, nc.c), bms / sms, err, bms * (berr / err) * (berr / err),
         bms * (berr / err) * (berr / err) / ms);
   }
+}
+
+/// The material of `c` shifted by aT, and the unshifted material's twin run at
+/// aT times every velocity for 1/aT of every duration (DESIGN: the response of
+/// the shifted material to w(t) is the unshifted one's to aT w(t / aT), at t / aT).
+std::pair<Case, Case> shifted_and_twin(const Case& c, double aT) {
+  Case shifted = c, twin = c;
+  shifted.rheology.aT = aT;
+  twin.history.v0 *= aT;
+  for (Segment& seg : twin.history.segments) {
+    seg.w *= aT;
+    seg.T /= aT;
+  }
+  return {shifted, twin};
+}
+
+// Time-temperature superposition holds for the transients too: for a shift
+// of 1e-6 and 1e4 (1e-2 and 1e2 under load, where a segment of 1e6 relaxation
+// times at slow sliding goes past the solver's work budget), every sample of
+// a spectrum history (at fixed depth and under load) and of a Kelvin one
+// (exact) equals its twin's within rtol.
+TEST(SpectrumShift, TheShiftedMaterialIsTheTwinAtScaledVelocities) {
+  const double rtol = 1e-3;
+  const auto set = spectrum_case_set();
+  std::vector<Case> cases = {set[1].c, set[6].c, testing::history_case(1.0, {{0.1, 2.0}}, 21)};
+  Case load = set[0].c;
+  load.loading.F0 = 16.0 / 3.0 * load.rheology.G * std::pow(load.a1(), 3) / load.indenter.R;
+  load.loading.d = 0.0;
+  cases.push_back(load);
+  for (const Case& c : cases)
+    for (const double aT :
+         c.loading.by_force() ? std::vector<double>{1e-2, 1e2} : std::vector<double>{1e-6, 1e4}) {
+      SCOPED_TRACE(std::to_string(c.rheology.branches.size()) + " terms, load " +
+                   std::to_string(c.loading.by_force()) + ", aT " + std::to_string(aT));
+      const auto [shifted, twin] = shifted_and_twin(c, aT);
+      const RunResult a = run_case(shifted, SolverKind::Auto, rtol);
+      const RunResult b = run_case(twin, SolverKind::Auto, rtol);
+      ASSERT_EQ(a.series.size(), b.series.size());
+      for (std::size_t k = 0; k < a.series.size(); ++k)
+        EXPECT_NEAR(a.series.t[k], b.series.t[k] * aT, 1e-12 * std::abs(a.series.t[k]));
+      EXPECT_LE(max_error(a, b, c), rtol);
+    }
 }
 
 } // namespace
