@@ -78,9 +78,13 @@ void fill_jump(Filler& f, const io::RowSlots& S, const Case& c, const State& aft
     f.fill(S.residuals_jump);
     return;
   }
-  Case shifted = c;
-  shifted.rheology = c.rheology.shifted();
-  const State jump = analytic::jump(shifted, c.history.v0, c.history.segments.front().w);
+  Case shifted; // a copy only where aT shifts (most studies have none)
+  if (c.rheology.aT != 1.0) {
+    shifted = c;
+    shifted.rheology = c.rheology.shifted();
+  }
+  const Case& k = c.rheology.aT != 1.0 ? shifted : c;
+  const State jump = analytic::jump(k, c.history.v0, c.history.segments.front().w);
   f.state(S.analytic_jump, jump);
   f.residuals(S.residuals_jump, after, jump);
 }
