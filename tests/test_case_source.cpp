@@ -248,7 +248,7 @@ TEST(CaseSource, HistoryGridRowsAsExpansion) {
 }
 
 TEST(CaseSource, CaseListWithHistoryColumnsByRange) {
-  std::string text = "w1,T1,w2,T2,FN,R,tau,v\n";
+  std::string text = "w1,T1,w2,T2,F0,R,tau,v\n";
   const std::size_t n = CaseListIndex::kStride + 5;
   for (std::size_t i = 0; i < n; ++i)
     text += "0," + std::to_string(1 + i) + ",0.5,3,1e-3,1,1,0.5\n";

@@ -207,12 +207,12 @@ struct Parsed {
 enum Col { kT = 0, kSegment = 1, kFN = 2, kFx = 3, kMu = 4, kA2 = 5, kD = 6, kA1 = 7 };
 
 /// The `# case` line as the parameter table makes it: every case parameter
-/// by name (of the loading group only the one given: FN under load, d at
+/// by name (of the loading group only the one given: F0 under load, d at
 /// fixed depth), the history, the spacing, the sampling parameters, a0 under
 /// load, zeta0.
 std::regex case_line_regex(bool load) {
   auto given = [&](const mdrmap::ParamSpec& p) {
-    return !p.one_of || (std::string(p.name) == "FN") == load;
+    return !p.one_of || (std::string(p.name) == "F0") == load;
   };
   std::string re = "^# case";
   for (const auto& p : mdrmap::case_parameters())
@@ -355,7 +355,7 @@ void expect_matches_series(const Parsed& p, const mdrmap::Series& ref, double to
 }
 
 const std::vector<std::string> kOptionNames{
-    "--d",       "--FN",          "--R",       "--tau",  "--v",      "--v1",     "--G",   "--t-end",
+    "--d",       "--F0",          "--R",       "--tau",  "--v",      "--v1",     "--G",   "--t-end",
     "--history", "--log-decades", "--spacing", "--rtol", "--solver", "--output", "--help"};
 
 /// The seed's one-step case as the command line gives it (--v1 shorthand).
@@ -897,13 +897,17 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       {"unknown solver", {{"solver", "fast"}}, {}, "solver"},
       {"unknown option", {}, {"--speed", "3"}, "speed"},
       {"wrong case option", {}, {"--g", "3"}, "g"},
+      {"F0 = 0", {{"d", kDrop}, {"F0", "0"}}, {}, "F0"},
+      {"F0 < 0", {{"d", kDrop}, {"F0", "-1"}}, {}, "F0"},
+      {"F0 = nan", {{"d", kDrop}, {"F0", "nan"}}, {}, "F0"},
+      {"F0 = inf", {{"d", kDrop}, {"F0", "inf"}}, {}, "F0"},
+      {"F0 not a number", {{"d", kDrop}, {"F0", "1N"}}, {}, "F0"},
+      {"d = 0 beside F0", {{"d", "0"}, {"F0", "1"}}, {}, "d"},
+      {"F0 = -1 beside d", {{"F0", "-1"}}, {}, "F0"},
+      {"F0 twice", {{"d", kDrop}, {"F0", "1"}}, {"--F0", "2"}, "F0"},
+      // the old spelling FN of F0: its errors name it as given
       {"FN = 0", {{"d", kDrop}, {"FN", "0"}}, {}, "FN"},
-      {"FN < 0", {{"d", kDrop}, {"FN", "-1"}}, {}, "FN"},
-      {"FN = nan", {{"d", kDrop}, {"FN", "nan"}}, {}, "FN"},
-      {"FN = inf", {{"d", kDrop}, {"FN", "inf"}}, {}, "FN"},
       {"FN not a number", {{"d", kDrop}, {"FN", "1N"}}, {}, "FN"},
-      {"d = 0 beside FN", {{"d", "0"}, {"FN", "1"}}, {}, "d"},
-      {"FN = -1 beside d", {{"FN", "-1"}}, {}, "FN"},
       {"FN twice", {{"d", kDrop}, {"FN", "1"}}, {"--FN", "2"}, "FN"},
       {"fn (case)", {}, {"--fn", "1"}, "fn"},
       {"missing --v1", {{"v1", kDrop}}, {}, "v1"},
@@ -933,7 +937,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        "history"},
       {"slip W T overflows", {{"v1", kDrop}}, {"--history", "1e300:1e300"}, "history"},
       {"under load a segment's W shrinks the contact below 1e-75",
-       {{"v1", kDrop}, {"d", kDrop}, {"FN", "5.333333333333333"}, {"R", "1"}},
+       {{"v1", kDrop}, {"d", kDrop}, {"F0", "5.333333333333333"}, {"R", "1"}},
        {"--history", "5e307:1"},
        "history"},
       {"output into a missing directory",
@@ -1101,7 +1105,7 @@ TEST(cli, SpectrumInputIsReadIntoTheRheology) {
 // spectrum solver, whose stationary start is the closed form's (mu_ss_before)
 // within rtol, and the Kelvin solvers refuse it in one line naming prony.
 TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
-  for (const char* loading : {"--d", "--FN"}) {
+  for (const char* loading : {"--d", "--F0"}) {
     SCOPED_TRACE(loading);
     const std::vector<std::string> base = {
         "simulate", loading,  "0.1", "--R", "10",        "--tau",         "0",
@@ -1115,7 +1119,7 @@ TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
     const double mu = to_double(p.pre.at("mu")), ss = to_double(p.events[0].at("mu_ss_before"));
     EXPECT_NEAR(mu, ss, 1e-3 * ss);
     for (const char* kelvin : {"exact", "mdr", "baseline"}) {
-      if (std::string(loading) == "--FN" && std::string(kelvin) == "exact") continue;
+      if (std::string(loading) == "--F0" && std::string(kelvin) == "exact") continue;
       auto args = base;
       args.insert(args.end(), {"--solver", kelvin});
       const Outcome refused = run_mdrmap(args);
@@ -1471,7 +1475,7 @@ TEST(cli, SimulateShorthandEqualsOneSegmentHistory) {
   }
 }
 
-// --- Load control (--FN) ----------------------------------------------------------
+// --- Load control (--F0) ----------------------------------------------------------
 
 /// The members of the table's loading group, as the help and messages spell them.
 std::vector<const mdrmap::ParamSpec*> loading_group() {
@@ -1481,7 +1485,7 @@ std::vector<const mdrmap::ParamSpec*> loading_group() {
   return g;
 }
 
-/// Neither or both of --d and --FN: exit 2, one line naming both (and saying
+/// Neither or both of --d and --F0: exit 2, one line naming both (and saying
 /// which were given), no output touched or created.
 TEST(cli, SimulateLoadingNeedsExactlyOneOfDepthAndForce) {
   const auto group = loading_group();
@@ -1496,8 +1500,9 @@ TEST(cli, SimulateLoadingNeedsExactlyOneOfDepthAndForce) {
   };
   for (const Row& row :
        {Row{"neither", {}, "got none"},
-        Row{"both", {"--d", "0.1", "--FN", "0.2"}, "got --d and --FN"},
-        Row{"both, FN first", {"--FN", "0.2", "--d", "0.1"}, "got --d and --FN"}}) {
+        Row{"both", {"--d", "0.1", "--F0", "0.2"}, "got --d and --F0"},
+        Row{"both, F0 first", {"--F0", "0.2", "--d", "0.1"}, "got --d and --F0"},
+        Row{"both, the old spelling FN", {"--FN", "0.2", "--d", "0.1"}, "got --d and --FN"}}) {
     SCOPED_TRACE(row.label);
     for (const bool with_output : {false, true}) {
       std::vector<std::string> args{"simulate"};
@@ -1526,7 +1531,7 @@ TEST(cli, SimulateLoadingNeedsExactlyOneOfDepthAndForce) {
   // An explicit value out of range is reported by its own range, even beside
   // the other member: the range first, then the group.
   for (const auto& [opt, value] :
-       std::vector<std::pair<std::string, std::string>>{{"d", "0"}, {"FN", "-1"}, {"FN", "0"}}) {
+       std::vector<std::pair<std::string, std::string>>{{"d", "0"}, {"F0", "-1"}, {"F0", "0"}}) {
     std::vector<std::string> args{"simulate", "--" + opt, value};
     args.insert(args.end(), scene.begin(), scene.end());
     const Outcome r = run_mdrmap(args);
@@ -1580,7 +1585,7 @@ mdrmap::Case held_at(mdrmap::Case c, double d) {
 // v0 = 1 (zeta0 = 1), a drop to 0.1 for 40 tau (long enough to settle), then
 // a rise back to 1 for 40 tau.
 constexpr double kF0 = 16.0 / 3.0 / 100.0;
-const std::vector<std::string> kLoadBase{"simulate", "--FN", num(kF0), "--R",    "100", "--tau",
+const std::vector<std::string> kLoadBase{"simulate", "--F0", num(kF0), "--R",    "100", "--tau",
                                          "1",        "--v",  "1",      "--rtol", "1e-3"};
 
 TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
@@ -1594,7 +1599,7 @@ TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
   ASSERT_TRUE(p.load) << p.header;
   EXPECT_FALSE(p.error_vs_exact.has_value()) << "the default solver: no reference line";
   EXPECT_EQ(p.case_line.count("d"), 0U) << "only the loading given";
-  EXPECT_EQ(to_double(p.case_line.at("FN")), kF0);
+  EXPECT_EQ(to_double(p.case_line.at("F0")), kF0);
   const double a0 = to_double(p.case_line.at("a0"));
   EXPECT_NEAR(a0, 1.0, 1e-15);                                 // 16/3 G a0^3 / R = F0
   EXPECT_NEAR(to_double(p.case_line.at("zeta0")), 1.0, 1e-15); // v tau / a0
@@ -1681,7 +1686,7 @@ TEST(cli, SimulateUnderLoadOtherSolvers) {
 /// tau = 0 under load: Hertz at once (d = d0 = a0^2/R, a1 = a2 = a0, mu = 0),
 /// and the default window of --v1 is 6 a0 / min(v, v1).
 TEST(cli, SimulateUnderLoadElasticIsHertz) {
-  const Outcome r = run_mdrmap({"simulate", "--FN", num(kF0), "--R", "100", "--tau", "0", "--v",
+  const Outcome r = run_mdrmap({"simulate", "--F0", num(kF0), "--R", "100", "--tau", "0", "--v",
                                 "2", "--v1", "0.5", "--samples", "5"});
   ASSERT_EQ(r.code, 0) << r.err;
   const Parsed p = parse_output(r.out);
@@ -1727,25 +1732,133 @@ TEST(cli, StudySetAddsTheSegmentOfAConfigWithoutHistory) {
 }
 
 // Every case parameter of the table is an override of mdrmap study, as of
-// simulate: --FN gives a config without a loading its load (issue 22).
+// simulate: --F0 gives a config without a loading its load (issue 22).
 TEST(cli, StudyTakesEveryCaseParameterOfTheTable) {
   TempDir dir;
   const fs::path ini = dir.path() / "no_loading.ini";
   write_file(ini, "[grid]\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n[run]\nsamples = 5\n");
   const fs::path map = dir.path() / "map.h5";
   const Outcome r = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
-                                map.string(), "--FN", "5.333333333333333,1"},
+                                map.string(), "--F0", "5.333333333333333,1"},
                                kNoHangSeconds);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("2 cases in " + map.string() + ": 2 done, 0 failed"), std::string::npos)
       << r.err;
   const fs::path other = dir.path() / "other.h5";
   const Outcome both = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
-                                   other.string(), "--FN", "1", "--d", "1e-3"},
+                                   other.string(), "--F0", "1", "--d", "1e-3"},
                                   kNoHangSeconds);
   EXPECT_EQ(both.code, 2) << both.err;
   EXPECT_EQ(std::count(both.err.begin(), both.err.end(), '\n'), 1) << both.err;
   EXPECT_FALSE(fs::exists(other));
+}
+
+// The prescribed load is F0 (--F0, `# case F0=`), the measured normal force
+// FN (the CSV's column FN, `# pre FN=`); --FN, the load's old spelling, gives
+// the same case, and both spellings at once are refused in one line, nothing
+// written (issue 22).
+TEST(cli, SimulateTakesFNAsTheOldSpellingOfF0) {
+  std::vector<std::string> args = kLoadBase;
+  args.insert(args.end(), {"--history", "0.1:5", "--samples", "5"});
+  ASSERT_EQ(args[1], "--F0");
+  const Outcome f0 = run_mdrmap(args);
+  ASSERT_EQ(f0.code, 0) << f0.err;
+  std::vector<std::string> old = args;
+  old[1] = "--FN";
+  const Outcome fn = run_mdrmap(old);
+  ASSERT_EQ(fn.code, 0) << fn.err;
+  const Parsed p = parse_output(f0.out), q = parse_output(fn.out);
+  EXPECT_EQ(p.case_line, q.case_line);
+  EXPECT_EQ(p.pre, q.pre);
+  EXPECT_EQ(p.events, q.events);
+  EXPECT_EQ(p.rows, q.rows);
+  // the case line names the load F0, never FN
+  EXPECT_NE(f0.out.find("\n# case F0=" + num(kF0) + " "), std::string::npos) << f0.out;
+  EXPECT_EQ(p.case_line.count("FN"), 0U);
+  EXPECT_EQ(to_double(p.case_line.at("F0")), kF0);
+  // FN is the measured force: the column FN of the rows and `# pre FN=`,
+  // which load control holds at F0 (within the run's rtol 1e-3)
+  EXPECT_EQ(p.header, "t,segment,FN,Fx,mu,a2,d,a1");
+  EXPECT_NEAR(to_double(p.pre.at("FN")), kF0, 1e-12 * kF0);
+  ASSERT_EQ(p.rows.size(), 5U);
+  for (const auto& row : p.rows) {
+    EXPECT_NEAR(row[kFN], kF0, 1e-3 * kF0);
+    EXPECT_NE(row[kD], 0.0) << "the depth follows the load";
+  }
+  // both spellings: refused in one line naming both
+  TempDir dir;
+  const fs::path out = dir.path() / "out.csv";
+  for (const auto& extra :
+       std::vector<std::vector<std::string>>{{"--FN", num(kF0)},
+                                             {"--FN", num(2 * kF0)},
+                                             {"--FN", num(kF0), "--output", out.string()}}) {
+    std::vector<std::string> both = args;
+    both.insert(both.end(), extra.begin(), extra.end());
+    const Outcome r = run_mdrmap(both);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "mdrmap simulate: error: --F0 and --FN are the same parameter (FN is the "
+                     "old spelling of F0); give only one\n");
+    EXPECT_FALSE(fs::exists(out));
+  }
+  // the help documents --F0 and names --FN as its old spelling
+  const Outcome help = run_mdrmap({"simulate", "--help"});
+  const std::size_t at = help.out.find("\n  --F0 F0 ");
+  ASSERT_NE(at, std::string::npos) << help.out;
+  const std::string entry = flattened(help.out.substr(at, help.out.find("\n  --", at + 1) - at));
+  EXPECT_NE(entry.find("prescribed normal load"), std::string::npos) << entry;
+  EXPECT_NE(entry.find("--FN is accepted as its old spelling"), std::string::npos) << entry;
+}
+
+// mdrmap study takes the prescribed load as --F0 and as its old spelling
+// --FN; both spellings at once (as options, as --set keys or as keys of the
+// config) are refused in one line, nothing written (issue 22). The maps'
+// /cases/F0 is checked by tests/python/test_old_names.py.
+TEST(cli, StudyTakesFNAsTheOldSpellingOfF0) {
+  TempDir dir;
+  const fs::path ini = dir.path() / "no_loading.ini";
+  write_file(ini, "[grid]\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n[run]\nsamples = 5\n");
+  for (const char* spelling : {"--F0", "--FN"}) {
+    SCOPED_TRACE(spelling);
+    const fs::path map = dir.path() / (std::string(spelling + 2) + ".h5");
+    const Outcome r = run_mdrmap({"study", "--quiet", "--config", ini.string(), "--output",
+                                  map.string(), spelling, "5.333333333333333,1"},
+                                 kNoHangSeconds);
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("2 cases in " + map.string() + ": 2 done, 0 failed"), std::string::npos)
+        << r.err;
+  }
+  const fs::path both_keys = dir.path() / "both_keys.ini";
+  write_file(both_keys, "[grid]\nF0 = 1\nFN = 1\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n");
+  struct Row {
+    const char* label;
+    std::vector<std::string> args;
+    const char* says;
+  };
+  for (const Row& row :
+       {Row{"--F0 and --FN",
+            {"--config", ini.string(), "--F0", "1", "--FN", "1"},
+            "mdrmap study: error: --FN: --F0 and --FN are the same parameter (FN is the old "
+            "spelling of F0); give only one\n"},
+        Row{"--set grid.F0 and grid.FN",
+            {"--config", ini.string(), "--set", "grid.F0=1", "--set", "grid.FN=1"},
+            "mdrmap study: error: grid.FN: command line: grid.F0 and grid.FN are the same "
+            "parameter (FN is the old spelling of F0); give only one\n"},
+        Row{"--FN and --d",
+            {"--config", ini.string(), "--FN", "1", "--d", "1e-3"},
+            "mdrmap study: error: --d: --d and --FN set the same thing (the loading); give "
+            "only one\n"},
+        Row{"keys F0 and FN", {"--config", both_keys.string()}, "both F0 (grid.F0) and FN"}}) {
+    SCOPED_TRACE(row.label);
+    const fs::path map = dir.path() / "refused.h5";
+    std::vector<std::string> args{"study", "--quiet", "--output", map.string()};
+    args.insert(args.end(), row.args.begin(), row.args.end());
+    const Outcome r = run_mdrmap(args, kNoHangSeconds);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(row.says), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(map));
+  }
 }
 
 // A spectrum's terms, the shift and the temperature are overrides of mdrmap

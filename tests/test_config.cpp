@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/model/case.hpp"
+#include "study/case_columns.hpp"
 #include "study/config.hpp"
 
 namespace fs = std::filesystem;
@@ -172,7 +173,7 @@ std::vector<BadConfig> bad_configs() {
       {"missing axis tau",
        base({{4, ""}}),
        "grid.tau",
-       {"t.ini:1:", "no tau", "d or FN, R, tau and v"}},
+       {"t.ini:1:", "no tau", "d or F0, R, tau and v"}},
       {"missing v1", base({{6, ""}}), "history.w1", {"t.ini:1:", "w1_over_v", "v1"}},
       {"both v1 and v1_over_v",
        base({{6, "v1_over_v = 0.5\nv1 = 1"}}),
@@ -496,9 +497,9 @@ TEST(StudyConfigGood, ParseAxisErrorsNameTheAxis) {
 
 TEST(StudyConfigGood, ParseColumnNames) {
   Column k;
-  ASSERT_TRUE(parse_column("FN", k));
+  ASSERT_TRUE(parse_column("F0", k));
   EXPECT_EQ(k.kind, Column::Kind::Param);
-  EXPECT_EQ(std::string(k.param->name), "FN");
+  EXPECT_EQ(std::string(k.param->name), "F0");
   ASSERT_TRUE(parse_column("w12_over_v", k));
   EXPECT_EQ(k.kind, Column::Kind::VelocityOverV);
   EXPECT_EQ(k.segment, 12u);
@@ -889,9 +890,9 @@ TEST(StudyHistory, ThreeSegmentsInAnyKeyOrder) {
 TEST(StudyHistory, CaseOrderIsColumnOrderWhateverTheFileOrder) {
   const StudyConfig c = parse("[history]\nT2 = 1, 2\nw2 = 0, 1\nT1 = 3, 4\nw1 = 5, 6\n"
                               "[grid]\nv = 7, 8\nG = 9, 10\ntau = 11, 12\nR = 13, 14\n"
-                              "FN = 1e-3, 2e-3\n");
+                              "F0 = 1e-3, 2e-3\n");
   EXPECT_EQ(names(c),
-            std::vector<std::string>({"FN", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
+            std::vector<std::string>({"F0", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
   const auto rows = expand_cases(c);
   ASSERT_EQ(rows.size(), 512u);
   // C order over the columns: the last (T2) fastest, the loading slowest
@@ -904,7 +905,7 @@ TEST(StudyHistory, CaseOrderIsColumnOrderWhateverTheFileOrder) {
   }
   EXPECT_EQ(rows[1][8], 2.0);    // T2
   EXPECT_EQ(rows[2][7], 1.0);    // w2
-  EXPECT_EQ(rows[256][0], 2e-3); // FN
+  EXPECT_EQ(rows[256][0], 2e-3); // F0
 }
 
 TEST(StudyHistory, MissingOrDuplicatedSegmentColumns) {
@@ -967,11 +968,11 @@ TEST(StudyHistory, MissingOrDuplicatedSegmentColumns) {
 }
 
 TEST(StudyLoading, ByForceAndByDepth) {
-  StudyConfig f = parse("[grid]\nFN = logspace:1e-4:1e-2:3\nR = 1\ntau = 1\nv = 0.1\n"
+  StudyConfig f = parse("[grid]\nF0 = logspace:1e-4:1e-2:3\nR = 1\ntau = 1\nv = 0.1\n"
                         "[history]\nw1_over_v = 10\nT1_over_tau = 10\n");
   EXPECT_TRUE(f.by_force());
-  EXPECT_EQ(names(f).front(), "FN");
-  EXPECT_EQ(f.axes[0].option(), "grid.FN");
+  EXPECT_EQ(names(f).front(), "F0");
+  EXPECT_EQ(f.axes[0].option(), "grid.F0");
   const auto cases = cases_of(f);
   ASSERT_EQ(cases.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
@@ -981,33 +982,112 @@ TEST(StudyLoading, ByForceAndByDepth) {
     EXPECT_EQ(cases[i].history.segments.at(0).w, 1.0);
   }
   EXPECT_FALSE(parse(base()).by_force());
-  EXPECT_NE(canonical(f).find("FN ="), std::string::npos);
+  EXPECT_NE(canonical(f).find("F0 ="), std::string::npos);
 
-  const auto both = error_of([] { parse(base({}, "[grid]\nFN = 1e-3\n")); });
+  const auto both = error_of([] { parse(base({}, "[grid]\nF0 = 1e-3\n")); });
   EXPECT_EQ(both.first, "config") << both.second; // [grid] twice
-  const auto d_and_fn = error_of([] { parse(base({{2, "d = 1e-3\nFN = 1e-3"}})); });
-  EXPECT_EQ(d_and_fn.first, "grid.FN") << d_and_fn.second;
-  EXPECT_NE(d_and_fn.second.find("both d (grid.d) and FN are given"), std::string::npos)
+  const auto d_and_fn = error_of([] { parse(base({{2, "d = 1e-3\nF0 = 1e-3"}})); });
+  EXPECT_EQ(d_and_fn.first, "grid.F0") << d_and_fn.second;
+  EXPECT_NE(d_and_fn.second.find("both d (grid.d) and F0 are given"), std::string::npos)
       << d_and_fn.second;
   EXPECT_EQ(d_and_fn.second.rfind("t.ini:3:", 0), 0u) << d_and_fn.second;
   const auto neither = error_of([] { parse(base({{2, ""}})); });
   EXPECT_EQ(neither.first, "grid.d") << neither.second;
-  EXPECT_NE(neither.second.find("no d or FN"), std::string::npos) << neither.second;
+  EXPECT_NE(neither.second.find("no d or F0"), std::string::npos) << neither.second;
   EXPECT_TRUE(one_line(neither.second));
-  const auto zero = error_of([] { parse(base({{2, "FN = 0"}})); });
-  EXPECT_EQ(zero.first, "grid.FN");
-  EXPECT_NE(zero.second.find("FN must be a finite number > 0, got 0"), std::string::npos)
+  const auto zero = error_of([] { parse(base({{2, "F0 = 0"}})); });
+  EXPECT_EQ(zero.first, "grid.F0");
+  EXPECT_NE(zero.second.find("F0 must be a finite number > 0, got 0"), std::string::npos)
       << zero.second;
   // an override of the loading replaces it, as grid.v1_over_v replaces v1
   StudyConfig c = parse(base());
-  apply_override(c, "grid.FN", "1e-3");
+  apply_override(c, "grid.F0", "1e-3");
   EXPECT_TRUE(c.by_force());
-  EXPECT_EQ(names(c).front(), "FN");
+  EXPECT_EQ(names(c).front(), "F0");
   EXPECT_EQ(cases_of(c).at(0).loading.F0, 1e-3);
   apply_override(c, "grid.d", "1e-3");
   EXPECT_FALSE(c.by_force());
-  apply_override(f, "grid.FN", "2e-3");
+  apply_override(f, "grid.F0", "2e-3");
   EXPECT_EQ(f.axes[0].values, std::vector<double>({2e-3}));
+}
+
+// FN, the prescribed load's old spelling, is read as F0 wherever a study
+// names it (a [grid] key, an override, a case list's column): the same
+// cases, the map's /cases/F0 and the same canonical text, so that either
+// spelling resumes the other's map; both spellings at once are refused in
+// one line naming both (issue 22).
+TEST(StudyLoading, FNIsTheOldSpellingOfF0) {
+  const auto grid = [](const std::string& key) {
+    return "[grid]\n" + key +
+           " = 1e-3, 2e-3\nR = 1\ntau = 1\nv = 0.1\n[history]\n"
+           "w1_over_v = 10\nT1_over_tau = 10\n";
+  };
+  const StudyConfig f0 = parse(grid("F0")), fn = parse(grid("FN"));
+  Column k;
+  ASSERT_TRUE(parse_column("FN", k));
+  EXPECT_EQ(std::string(k.param->name), "F0");
+  EXPECT_TRUE(fn.by_force());
+  EXPECT_EQ(fn.axes[0].option(), "grid.FN"); // located as written
+  EXPECT_EQ(canonical(fn), canonical(f0));
+  EXPECT_NE(canonical(fn).find("\nF0 = 0.001, 0.002\n"), std::string::npos) << canonical(fn);
+  EXPECT_EQ(canonical(fn).find("FN"), std::string::npos) << canonical(fn);
+  const auto load_of = [](const StudyConfig& c) {
+    std::vector<double> out;
+    for (const mdrmap::Case& x : cases_of(c))
+      out.push_back(x.loading.F0);
+    return out;
+  };
+  EXPECT_EQ(load_of(fn), load_of(f0));
+  EXPECT_EQ(load_of(fn), std::vector<double>({1e-3, 2e-3}));
+  // the map's /cases column of the load is F0, whatever the spelling
+  const auto cases_paths = [](const StudyConfig& c) {
+    std::vector<std::string> out;
+    for (const auto& info : case_parameter_info(c))
+      out.push_back(info.path);
+    return out;
+  };
+  const std::vector<std::string> want{"cases/F0", "cases/R", "cases/tau", "cases/G", "cases/v"};
+  EXPECT_EQ(cases_paths(fn), want);
+  EXPECT_EQ(cases_paths(f0), want);
+  EXPECT_NE(case_parameter_info(fn)[0].meaning.find("prescribed normal load"), std::string::npos);
+  // an override grid.FN, on a depth study and on a load study's F0
+  StudyConfig d = parse(base());
+  apply_override(d, "grid.FN", "3e-3");
+  EXPECT_TRUE(d.by_force());
+  EXPECT_EQ(cases_paths(d).front(), "cases/F0");
+  EXPECT_EQ(cases_of(d).at(0).loading.F0, 3e-3);
+  StudyConfig o = parse(grid("F0"));
+  apply_override(o, "grid.FN", "3e-3");
+  EXPECT_EQ(load_of(o), std::vector<double>({3e-3}));
+  const std::vector<std::string> keys = override_keys();
+  EXPECT_NE(std::find(keys.begin(), keys.end(), "grid.F0"), keys.end());
+  // a case list's column FN
+  const std::string old_list = tmp().write("fn_alias.csv", "FN,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
+  const std::string new_list = tmp().write("f0_alias.csv", "F0,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
+  const StudyConfig lo = list_config(old_list), ln = list_config(new_list);
+  EXPECT_TRUE(lo.by_force());
+  EXPECT_EQ(cases_paths(lo), want);
+  EXPECT_EQ(load_of(lo), load_of(ln));
+  EXPECT_NE(canonical(lo).find("\nF0 = (listed)\n"), std::string::npos) << canonical(lo);
+  EXPECT_EQ(canonical(lo), canonical(ln));
+  // both spellings: one line naming both
+  const auto two_keys = error_of([] { parse(base({{2, "F0 = 1e-3\nFN = 1e-3"}})); });
+  EXPECT_EQ(two_keys.first, "grid.FN") << two_keys.second;
+  EXPECT_NE(two_keys.second.find("both F0 (grid.F0) and FN are given"), std::string::npos)
+      << two_keys.second;
+  EXPECT_TRUE(one_line(two_keys.second)) << two_keys.second;
+  StudyConfig c = parse(base());
+  const auto overrides = error_of([&] {
+    apply_overrides(c, {{"grid.F0", "1e-3"}, {"grid.FN", "2e-3"}});
+  });
+  EXPECT_EQ(overrides.first, "grid.FN") << overrides.second;
+  EXPECT_EQ(overrides.second, "command line: grid.F0 and grid.FN are the same parameter (FN is "
+                              "the old spelling of F0); give only one");
+  const std::string both = tmp().write("both_alias.csv", "F0,FN,R,tau,v,w1,T1\n1,1,1,1,0.1,1,10\n");
+  const auto columns = error_of([&] { list_config(both); });
+  EXPECT_NE(columns.second.find("column 'FN' sets what column 'F0' sets"), std::string::npos)
+      << columns.second;
+  EXPECT_TRUE(one_line(columns.second)) << columns.second;
 }
 
 // The solver must solve the study's loading (the core's solver_handles):
@@ -1016,7 +1096,7 @@ TEST(StudyLoading, ByForceAndByDepth) {
 // fail every case, exit 0).
 TEST(StudyLoading, SolverMustSolveTheLoading) {
   const auto force = [](const std::string& solver) {
-    return "[grid]\nFN = 1e-3\nR = 1\ntau = 1\nv = 0.1\n[history]\nw1_over_v = 10\n"
+    return "[grid]\nF0 = 1e-3\nR = 1\ntau = 1\nv = 0.1\n[history]\nw1_over_v = 10\n"
            "T1_over_tau = 10\n[run]\nsolver = " +
            solver + "\n";
   };
@@ -1040,9 +1120,9 @@ TEST(StudyLoading, SolverMustSolveTheLoading) {
   // depth control takes every solver; switching it to a load refuses exact
   StudyConfig d = parse(base({}, "solver = exact\n"));
   EXPECT_FALSE(d.by_force());
-  EXPECT_EQ(error_of([&] { apply_override(d, "grid.FN", "1e-3"); }).first, "run.solver");
+  EXPECT_EQ(error_of([&] { apply_override(d, "grid.F0", "1e-3"); }).first, "run.solver");
   // a case list whose loading is a column of its CSV
-  const std::string csv = tmp().write("fn_list.csv", "FN,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
+  const std::string csv = tmp().write("fn_list.csv", "F0,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
   EXPECT_EQ(error_of([&] { list_config(csv, "[run]\nsolver = exact\n"); }).first, "run.solver");
   EXPECT_TRUE(list_config(csv, "[run]\nsolver = mdr\n").by_force());
 }
@@ -1114,8 +1194,8 @@ TEST(StudyHistory, DurationOverTauWithTauZero) {
   EXPECT_DOUBLE_EQ(k.history.segments[0].T, 6.0 * 0.1 / 1.0); // min(v, w1) = 1
   EXPECT_DOUBLE_EQ(k.history.segments[1].T, 6.0 * 0.1 / 1.0); // a hold after w1 = 1
   EXPECT_DOUBLE_EQ(k.history.segments[2].T, 6.0 * 0.1 / 4.0); // after a hold: w3
-  // under load: the Hertz radius a0 (FN = 16/3 G a0^3 / R with a0 = 0.1)
-  const StudyConfig f = parse("[grid]\nFN = 5.3333333333333e-3\nR = 1\ntau = 0\nv = 2\n"
+  // under load: the Hertz radius a0 (F0 = 16/3 G a0^3 / R with a0 = 0.1)
+  const StudyConfig f = parse("[grid]\nF0 = 5.3333333333333e-3\nR = 1\ntau = 0\nv = 2\n"
                               "[history]\nw1 = 8\nT1_over_tau = 1\n");
   const mdrmap::Case kf = cases_of(f).at(0);
   EXPECT_NEAR(kf.a0(), 0.1, 1e-12);
@@ -1278,7 +1358,7 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
     EXPECT_TRUE(one_line(message)) << message;
   }
   // under load a spectrum takes auto or spectrum; mdr (the Kelvin load solver) is refused
-  const std::string load_spectrum = "[grid]\nFN = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n"
+  const std::string load_spectrum = "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n"
                                     "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
   for (const char* ok : {"auto", "spectrum"})
     EXPECT_TRUE(parse(load_spectrum + ok + "\n").by_force()) << ok;
@@ -1305,14 +1385,14 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
 }
 
 TEST(StudyCases, HistoryColumnsInTheCsv) {
-  const std::string p = tmp().write("hist.csv", "T2,w2,FN,R,tau,v,w1,T1,G\n"
+  const std::string p = tmp().write("hist.csv", "T2,w2,F0,R,tau,v,w1,T1,G\n"
                                                 "5,0.1,1e-3,1,1,0.1,0,2,1\n"
                                                 "6,1,2e-3,1,0,0.2,0.3,4,3\n");
   const StudyConfig c = list_config(p);
   EXPECT_TRUE(c.by_force());
   EXPECT_EQ(c.segments(), 2u);
   EXPECT_EQ(names(c),
-            std::vector<std::string>({"FN", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
+            std::vector<std::string>({"F0", "R", "tau", "G", "v", "w1", "T1", "w2", "T2"}));
   const auto cases = cases_of(c);
   ASSERT_EQ(cases.size(), 2u);
   EXPECT_EQ(cases[0].loading.F0, 1e-3);
@@ -1402,25 +1482,25 @@ TEST(StudyOverride, HistoryKeys) {
   EXPECT_EQ(error_of([&] { apply_override(c, "history.T1_over_tau", "0"); }).first,
             "history.T1_over_tau");
   const auto keys = override_keys();
-  for (const char* k : {"history.w1", "history.T1_over_tau", "history.w9_over_v", "grid.FN",
+  for (const char* k : {"history.w1", "history.T1_over_tau", "history.w9_over_v", "grid.F0",
                         "grid.G", "run.G", "run.t_end_over_tau", "run.spacing"})
     EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
 }
 
 TEST(StudyCanonical, EveryColumnValueCountsAndKeyOrderDoesNot) {
-  const std::string text = "[grid]\nFN = 1e-3, 2e-3\nR = 1\ntau = 1\nG = 1\nv = 0.1\n"
+  const std::string text = "[grid]\nF0 = 1e-3, 2e-3\nR = 1\ntau = 1\nG = 1\nv = 0.1\n"
                            "[history]\nw1_over_v = 0\nT1_over_tau = 1, 10\nw2 = 0.1\nT2 = 20\n";
   const std::string ref = canonical(parse(text));
   const std::string reordered = "[history]\nT2 = 20\nw2 = 0.1\nT1_over_tau = 1,10\n"
                                 "w1_over_v = 0\n[grid]\nv = 0.1\nG = 1\ntau = 1\nR = 1\n"
-                                "FN = 1e-3,2e-3\n";
+                                "F0 = 1e-3,2e-3\n";
   EXPECT_EQ(canonical(parse(reordered)), ref);
   // G = 1 is the default: leaving it out is the same study
   std::string no_g = text;
   no_g.erase(no_g.find("G = 1\n"), 6);
   EXPECT_EQ(canonical(parse(no_g)), ref);
   const std::vector<std::pair<std::string, std::string>> changes = {
-      {"FN = 1e-3, 2e-3", "FN = 1e-3, 3e-3"},
+      {"F0 = 1e-3, 2e-3", "F0 = 1e-3, 3e-3"},
       {"R = 1", "R = 2"},
       {"tau = 1", "tau = 3"},
       {"G = 1", "G = 2"},
@@ -1801,7 +1881,7 @@ const std::vector<std::string>& fuzz_tokens() {
                                   "10000001",
                                   "d,R,tau,v,v1",
                                   "[history]",
-                                  "FN",
+                                  "F0",
                                   "w1",
                                   "T1",
                                   "w1_over_v",
@@ -2025,7 +2105,7 @@ TEST(StudyFuzz, ShippedConfigsMutated) {
                                          "run.timeseries",
                                          "run.t_end_over_tau",
                                          "cases.file",
-                                         "grid.FN",
+                                         "grid.F0",
                                          "grid.G",
                                          "run.spacing",
                                          "run.decades",

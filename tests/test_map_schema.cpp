@@ -337,6 +337,8 @@ TEST_F(MapSchema, LayoutAndSizeBound) {
   EXPECT_LE(bound - size, 256u * 1024u);
 }
 
+// The prescribed load is /cases/F0 and the grid axis F0 (its old spelling FN
+// in the config, as here, included: issue 22); the measured force is FN.
 TEST(MapFile, LoadControlMap) {
   io::silence_hdf5_errors();
   const MadeMap m = make_map("load", "[grid]\nFN = 1e-3, 2e-3\nR = 1\ntau = 1\nv = 0.1\n"
@@ -345,8 +347,12 @@ TEST(MapFile, LoadControlMap) {
   Handle file = io::make_file(H5Fopen(m.path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "opening");
   const hid_t f = file.id();
   EXPECT_EQ(io::read_string_attr(f, "loading"), "force");
-  EXPECT_EQ(members(f, "cases"), std::vector<std::string>({"FN", "G", "R", "T", "tau", "v", "w"}));
-  EXPECT_EQ(attr(f, "schema/cases/FN", "unit"), "force");
+  EXPECT_EQ(members(f, "cases"), std::vector<std::string>({"F0", "G", "R", "T", "tau", "v", "w"}));
+  EXPECT_EQ(attr(f, "schema/cases/F0", "unit"), "force");
+  EXPECT_EQ(attr(f, "schema/cases/F0", "meaning").rfind("prescribed normal load", 0), 0U);
+  EXPECT_TRUE(io::has_link(f, "grid/F0"));
+  EXPECT_FALSE(io::has_link(f, "grid/FN"));
+  EXPECT_TRUE(io::has_link(f, "results/FN_pre"));
   EXPECT_TRUE(io::has_link(f, "analytic/d_ss"));
   EXPECT_TRUE(io::has_link(f, "events/a1_end"));
   EXPECT_FALSE(io::has_link(f, "analytic/mu_jump")); // depth control only

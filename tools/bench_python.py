@@ -7,7 +7,7 @@ own time, and the speed-up of a thread pool over load-controlled cases.
      --calls times; per call: the whole call, the solver's own time (info
      wall_seconds, as the CLI's header gives it) and their difference; also
      the extension's call alone (_core.simulate on prepared texts).
-  2. threads: --cases load-controlled steps (FN, v and the step spread over
+  2. threads: --cases load-controlled steps (F0, v and the step spread over
      decades), run by a ThreadPoolExecutor of 1 and of --threads workers;
      prints both wall times, the speed-up, the process's CPU time over the
      wall time (how many cores it kept busy) and the load average.
@@ -52,10 +52,10 @@ def load_cases(n):
     rng = np.random.default_rng(7)
     cases = []
     for _ in range(n):
-        FN = 10 ** rng.uniform(-4, -2)
+        F0 = 10 ** rng.uniform(-4, -2)
         v = 10 ** rng.uniform(-2.5, 0)  # zeta0 = v tau / a0 from about 0.03 to 40 (tau = 1)
         w = v * 10 ** rng.choice([-1.0, 1.0])
-        cases.append(dict(FN=FN, R=1, tau=1, v=v, history=[(w, 5.0)], samples=101))
+        cases.append(dict(F0=F0, R=1, tau=1, v=v, history=[(w, 5.0)], samples=101))
     return cases
 
 

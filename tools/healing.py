@@ -18,8 +18,8 @@ against slip/a0 during the reslide for each hold (right, the middle zeta0
 of the list).
 
 Usage:
-    tools/pyrun tools/healing.py --FN 0.0533 --R 100 --mdrmap build/src/mdrmap -o healing.png
-    tools/pyrun tools/healing.py --FN 0.0533 --holds 0.1,1,10 --zeta0 1 -o h.png
+    tools/pyrun tools/healing.py --F0 0.0533 --R 100 --mdrmap build/src/mdrmap -o healing.png
+    tools/pyrun tools/healing.py --F0 0.0533 --holds 0.1,1,10 --zeta0 1 -o h.png
 
 Exit codes: 0 success, 2 bad input or a failing mdrmap run (one line on stderr).
 """
@@ -122,7 +122,7 @@ def main():
                                "--samples", str(a.samples), "--spacing", "log", "--log-decades",
                                "6", "--rtol", repr(a.rtol)]
                 runs[(z, h)] = simcsv.obtain(a, exe, workdir, f"shs_{z:g}_{h:.6g}.csv", args, np, sc)
-    load = a.FN is not None
+    load = a.F0 is not None
     unit = "a0/R" if load else "a1/R"
     print(f"# dmu_peak in units of {unit}, slip_peak of {'a0' if load else 'a1'}; "
           f"per_decade = change of dmu_peak from the previous hold / decades between them")

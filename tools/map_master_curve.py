@@ -26,11 +26,11 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from maplib import (UserError, add_figure_options, add_select_option, fmt,  # noqa: E402
-                    map_tool_parser, open_map2, parse_map_tool_args, read_masked, run_tool,
+                    maps, map_tool_parser, open_map2, parse_map_tool_args, read_masked, run_tool,
                     save_figure, select_cases)
 
 PROG = "map_master_curve"
-MATERIAL = ("d", "FN", "R", "tau", "G")
+MATERIAL = ("d", "F0", "R", "tau", "G")
 
 
 def read(path, sel, np):
@@ -43,7 +43,8 @@ def read(path, sel, np):
                 raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
         c = f["cases"]
         n = c["v"].shape[0]
-        out = {k: c[k][()] for k in c if c[k].ndim == 1}
+        # under today's names: an old map's prescribed load /cases/FN as F0
+        out = {maps.case_name(k): c[k][()] for k in c if c[k].ndim == 1}
         out["aT"] = out.get("aT", np.ones(n))
         out["mu"] = read_masked(f["results/mu_pre"])
         out["mu_an"] = read_masked(f["analytic/mu_pre"])
@@ -58,8 +59,8 @@ def read(path, sel, np):
 def reference_options(cases, i):
     """mdrmap.stationary's keywords of case i's material at aT = 1 (its spectrum
     as (G, tau) pairs), without the velocity."""
-    kw = {k: float(cases[k][i]) for k in MATERIAL  # the loading given (d or FN) only
-          if k in cases and (k not in ("d", "FN") or cases[k][i] != 0)}
+    kw = {k: float(cases[k][i]) for k in MATERIAL  # the loading given (d or F0) only
+          if k in cases and (k not in ("d", "F0") or cases[k][i] != 0)}
     terms, k = [], 1
     while f"G{k}" in cases:
         terms.append((float(cases[f"G{k}"][i]), float(cases[f"tau{k}"][i])))

@@ -24,7 +24,7 @@ Prints a table per panel: how many cells are defined, undefined and not done,
 and the minimum, median and maximum of the defined ones.
 
 Usage:
-    tools/pyrun tools/map_rate_state.py load_sweep.h5 --x v --y FN -o rate_state.png
+    tools/pyrun tools/map_rate_state.py load_sweep.h5 --x v --y F0 -o rate_state.png
     tools/pyrun tools/map_rate_state.py velocity_steps.h5 --event 1 --x v -o rs.png
     tools/pyrun tools/map_rate_state.py seed_step.h5 --x v --y w1_over_v --select tau=2 -o rs.png
 

@@ -21,7 +21,7 @@ into a hold (w_after = 0) has no slip: those cases are skipped.
 
 Cases: every done case (default), `--cases 0,3,5` (0-based rows of the map),
 or `--select AXIS=VALUE` (repeatable; the grid value nearest to VALUE of a
-grid axis such as v, FN, w1_over_v, T1_over_tau; the tool says which).
+grid axis such as v, F0, w1_over_v, T1_over_tau; the tool says which).
 Prints one row per plotted case: its zeta0 = v tau / a0 (zeta = v tau / a1 at
 depth), w_after / w_before, the stationary levels and mu just after the change
 in units of a/R, the normalised response just after the change and at the

@@ -174,7 +174,7 @@ def provenance(m, p):
     p(f"  MPI size      {get('mpi_size')}")
     p(f"  units         {get('units')}")
     p(f"  loading       {get('loading', m['loading'])}"
-      f" ({'FN given, depth solved' if m['loading'] == 'force' else 'depth d given'})")
+      f" ({'load F0 given, depth solved' if m['loading'] == 'force' else 'depth d given'})")
     p(f"  segments      {m['K']}; samples {get('samples')} per segment; time series "
       f"{'stored (/timeseries)' if m['timeseries'] else 'not stored'}")
 

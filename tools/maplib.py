@@ -112,8 +112,8 @@ def case_columns(f, described=None):
 
 
 def read_grid(f, n, path):
-    """/grid of an open map as {"axes", "shape", "log", "values"}, or None for a
-    [cases] map; UserError when it is malformed or does not fit the n cases."""
+    """/grid of an open map as {"axes" (F0 for an old map's FN), "shape", "log",
+    "values"}, or None for a [cases] map; UserError when it is malformed or does not fit the n cases."""
     import numpy as np
 
     if "grid" not in f:
@@ -122,6 +122,7 @@ def read_grid(f, n, path):
     try:
         axes = [a.strip() for a in text(g.attrs["axes"]).split(",") if a.strip()]
         values = [np.asarray(g[a][()], dtype=float) for a in axes]
+        axes = [maps.case_name(a) for a in axes]  # an old map's FN: F0
         shape = [int(k) for k in np.ravel(g.attrs["shape"])] if "shape" in g.attrs \
             else [len(v) for v in values]
         log = [bool(k) for k in np.ravel(g.attrs["log"])] if "log" in g.attrs \
@@ -158,7 +159,7 @@ def axis_values_per_case(m, axis, np):
 
 def load_cases(f, path, np):
     """The case description of an open map (open_map): {"n", "K", "status",
-    "cols" (the 1-D /cases columns /schema lists), "w", "T" ([N, K]), "loading"
+    "cols" (the 1-D /cases columns /schema lists, F0 for an old map's FN), "w", "T" ([N, K]), "loading"
     (the root attribute: "force" or "depth"), "schema" (schema(f)), "scales"
     ({name: values [N]} of /scales: length, depth, force, friction, time),
     "a" (/scales/length: a0 under load, a1 at depth), "a_name" ("a0" or "a1"),
@@ -168,7 +169,9 @@ def load_cases(f, path, np):
     n = int(f["results/status"].shape[0])
     m = {"path": path, "n": n, "status": f["results/status"][()].astype(int)}
     m["schema"] = schema(f)
-    m["cols"] = {c: f[f"cases/{c}"][()].astype(float) for c in case_columns(f, m["schema"])}
+    # under today's names: an old map's prescribed load /cases/FN as F0
+    m["cols"] = {maps.case_name(c): f[f"cases/{c}"][()].astype(float)
+                 for c in case_columns(f, m["schema"])}
     m["w"] = np.asarray(f["cases/w"][()], dtype=float).reshape(n, -1)
     m["T"] = np.asarray(f["cases/T"][()], dtype=float).reshape(n, -1)
     m["K"] = int(m["w"].shape[1])
@@ -230,10 +233,13 @@ def scale_symbol(m, scale):
 
 
 def resolve_axis(name, axes):
-    """The grid axis `name` means: itself, or its history alias (v1_over_v is
-    w1_over_v, v1 is w1, and back); None when there is none."""
+    """The grid axis `name` means: itself, the prescribed load F0 for its old
+    name FN, or its history alias (v1_over_v is w1_over_v, v1 is w1, and
+    back); None when there is none."""
     if name in axes:
         return name
+    if maps.case_name(name) in axes:
+        return maps.case_name(name)
     seg = segment_axis(name)
     if seg is None:
         return None

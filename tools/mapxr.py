@@ -12,7 +12,7 @@ open_map(path) merges the map's groups into one Dataset with dimension
 `case` (and `event` for per-event values, `sample` for the time series). It
 reads both layouts (the root attribute mdrmap_schema):
 
-  - /cases columns as coordinates along `case` (mdrmap-map/2: d or FN, R, tau,
+  - /cases columns as coordinates along `case` (mdrmap-map/2: d or F0, R, tau,
     G, v, and w and T over (case, event); mdrmap-map/1: d, R, tau, v, v1, G);
   - /results under their bare names (FN_pre, error_estimate, wall_seconds,
     status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a

@@ -31,7 +31,7 @@ arrow with its value when it is off the axis.
 
 Cases: `--case I` (repeatable, 0-based row of the map, or `all` for every done
 case), `--select d=1e-3,w1_over_v=1e-4` (repeatable; the done case nearest in
-those parameters: the /cases columns (d or FN, R, tau, G, v), w1, T1, ...,
+those parameters: the /cases columns (d or F0, R, tau, G, v), w1, T1, ...,
 w1_over_v, T1_over_tau, ... (v1, v1_over_v: the seed's names of w1,
 w1_over_v) and zeta, zeta1; log distance for positive values), default the
 first done case. Cases that are pending or failed are skipped, and the tool

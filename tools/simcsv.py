@@ -20,8 +20,17 @@ import subprocess
 
 from maplib import UserError
 
-LOAD_HEADER = "t,segment,FN,Fx,mu,a2,d,a1"
+LOAD_HEADER = "t,segment,FN,Fx,mu,a2,d,a1"  # FN: the measured normal force
 DEPTH_HEADER = "t,segment,FN,Fx,mu,a2"
+# the old names of case parameters -> today's: the prescribed load F0 was FN
+# in the `# case` line of an earlier mdrmap (and in the tools' scales.txt)
+CASE_ALIASES = {"FN": "F0"}
+
+
+def case_names(d):
+    """A `# case` line's dict under today's names (F0 for an old CSV's FN)."""
+    return {CASE_ALIASES.get(k, k) if CASE_ALIASES.get(k, k) not in d else k: v
+            for k, v in d.items()}
 
 
 def fields(line):
@@ -85,7 +94,7 @@ def read_csv(path, np):
     pre_lines = [ln for ln in comments if ln.startswith("# pre ")]
     if len(case_lines) != 1 or len(pre_lines) != 1:
         raise UserError(f"{path}: needs one '# case' and one '# pre' line")
-    case_text = fields(case_lines[0])
+    case_text = case_names(fields(case_lines[0]))
     case = {k: number(v, f"{path}: {k}") for k, v in case_text.items()
             if k not in ("history", "spacing")}
     pre = {k: number(v, f"{path}: pre {k}") for k, v in fields(pre_lines[0]).items()}
@@ -127,16 +136,16 @@ def simulate(exe, args, output):
 
 
 def loading_args(a):
-    """The loading options of the tools' common arguments (--FN or --d)."""
-    if (a.FN is None) == (a.d is None):
-        raise UserError("give exactly one of --FN F0 (load control) or --d D (depth control)")
-    for name in ("FN", "d", "R", "tau", "G"):
+    """The loading options of the tools' common arguments (--F0 or --d)."""
+    if (a.F0 is None) == (a.d is None):
+        raise UserError("give exactly one of --F0 F0 (load control) or --d D (depth control)")
+    for name in ("F0", "d", "R", "tau", "G"):
         x = getattr(a, name)
         if x is not None and not (math.isfinite(x) and (x > 0 or (name == "tau" and x == 0))):
             raise UserError(f"--{name}: must be a finite number > 0, got {x:g}")
     if a.tau == 0:
         raise UserError("--tau: must be > 0 here (tau = 0 has no transients to show)")
-    load = ["--FN", repr(a.FN)] if a.FN is not None else ["--d", repr(a.d)]
+    load = ["--F0", repr(a.F0)] if a.F0 is not None else ["--d", repr(a.d)]
     return load + ["--R", repr(a.R), "--tau", repr(a.tau), "--G", repr(a.G)]
 
 
@@ -163,7 +172,7 @@ def case_scales(a, exe, workdir):
     is missing or is another case's."""
     path = os.path.join(workdir, SCALES)
     want = {"R": a.R, "tau": a.tau, "G": a.G}
-    want.update({"FN": a.FN} if a.FN is not None else {"d": a.d})
+    want.update({"F0": a.F0} if a.F0 is not None else {"d": a.d})
     if not a.from_csv:
         scales = probe_scales(exe, a, workdir)
         with open(path, "w") as f:
@@ -172,7 +181,8 @@ def case_scales(a, exe, workdir):
         raise UserError(f"no such file: {path} (the case's scales, which a run without "
                         f"--from-csv writes there)")
     with open(path) as f:
-        got = {k: number(v, f"{path}: {k}") for k, v in fields("# " + f.read()).items()}
+        got = {k: number(v, f"{path}: {k}")
+               for k, v in case_names(fields("# " + f.read())).items()}
     for k, v in want.items():
         if k not in got or not math.isclose(got[k], v, rel_tol=1e-12):
             raise UserError(f"{path}: {k}={got.get(k)}, but {k}={v:g} asked for (rerun without "
@@ -182,8 +192,10 @@ def case_scales(a, exe, workdir):
 
 def add_common(p):
     """Options shared by the tools: the case, mdrmap, CSVs, figure."""
-    p.add_argument("--FN", type=float, help="prescribed normal force F0 (load control)")
-    p.add_argument("--d", type=float, help="indentation depth (depth control, instead of --FN)")
+    load = p.add_mutually_exclusive_group()
+    load.add_argument("--F0", type=float, help="prescribed normal load F0 (load control)")
+    load.add_argument("--FN", type=float, dest="F0", help="the old spelling of --F0")
+    p.add_argument("--d", type=float, help="indentation depth (depth control, instead of --F0)")
     p.add_argument("--R", type=float, default=100.0, help="indenter radius (default 100)")
     p.add_argument("--tau", type=float, default=1.0, help="relaxation time (default 1)")
     p.add_argument("--G", type=float, default=1.0, help="shear modulus (default 1)")
@@ -225,7 +237,7 @@ def obtain(a, exe, workdir, name, args, np, scales):
 def expect_case(run, a):
     """A CSV read with --from-csv must be the case asked for (loading, R, tau, G)."""
     want = {"R": a.R, "tau": a.tau, "G": a.G}
-    want.update({"FN": a.FN} if a.FN is not None else {"d": a.d})
+    want.update({"F0": a.F0} if a.F0 is not None else {"d": a.d})
     for k, v in want.items():
         got = run.case.get(k)
         if got is None or not math.isclose(got, v, rel_tol=1e-12):

@@ -25,8 +25,8 @@ since the step (log scale), step up left, step down right, one colour per
 zeta0; the dotted lines are the levels before the step.
 
 Usage:
-    tools/pyrun tools/steps.py --FN 0.0533 --R 100 --mdrmap build/src/mdrmap -o steps.png
-    tools/pyrun tools/steps.py --FN 0.0533 --csv-dir runs --from-csv -o steps.png
+    tools/pyrun tools/steps.py --F0 0.0533 --R 100 --mdrmap build/src/mdrmap -o steps.png
+    tools/pyrun tools/steps.py --F0 0.0533 --csv-dir runs --from-csv -o steps.png
 
 Exit codes: 0 success, 2 bad input or a failing mdrmap run (one line on stderr).
 """
@@ -157,7 +157,7 @@ def main():
                                "--rtol", repr(a.rtol)]
                 runs[(z, direction)] = simcsv.obtain(a, exe, workdir, f"step_{direction}_{z:g}.csv",
                                                      args, np, sc)
-    load = a.FN is not None
+    load = a.F0 is not None
     unit = "a0/R" if load else "a1/R"
     cols = ["mu_pre", "jump", "mu_end", "D_c", "a", "a-b", "b", "d_end", "settle"]
     print(f"# mu-like columns in units of {unit}, D_c in units of {'a0' if load else 'a1'}, "

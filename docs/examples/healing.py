@@ -2,7 +2,7 @@
 table of tools/healing.py (dmu_peak against the hold time) in a few lines.
 
     PYTHONPATH=build/python python3 docs/examples/healing.py
-    (the same as: tools/pyrun tools/healing.py --FN 0.0533 --holds 0.1,1,10,100)
+    (the same as: tools/pyrun tools/healing.py --F0 0.0533 --holds 0.1,1,10,100)
 """
 import math
 
@@ -10,17 +10,17 @@ import numpy as np
 
 import mdrmap
 
-FN, R, TAU, G, ZETA0 = 0.0533, 100.0, 1.0, 1.0, 1.0
+F0, R, TAU, G, ZETA0 = 0.0533, 100.0, 1.0, 1.0, 1.0
 HOLDS = [0.1, 1.0, 10.0, 100.0]  # in units of tau
 
-a0 = (3.0 * FN * R / (16.0 * G)) ** (1.0 / 3.0)  # Hertz radius of FN
+a0 = (3.0 * F0 * R / (16.0 * G)) ** (1.0 / 3.0)  # Hertz radius of F0
 v0 = ZETA0 * a0 / TAU
 T = max(20.0 * TAU, 20.0 * a0 / v0)  # the reslide
 
 
 def peak(hold):
     """(dmu_peak / (a0/R), slip of the peak / a0) of the reslide after a hold."""
-    r = mdrmap.simulate(FN=FN, R=R, tau=TAU, G=G, v=v0, history=[(0.0, hold * TAU), (v0, T)],
+    r = mdrmap.simulate(F0=F0, R=R, tau=TAU, G=G, v=v0, history=[(0.0, hold * TAU), (v0, T)],
                         samples=121, spacing="log", log_decades=6, rtol=1e-4)
     a = r.case["a0"]
     mu, t = r.mu[r.segment == 1], r.t[r.segment == 1]

@@ -21,15 +21,23 @@ constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
-/// The option texts with the questions the checks ask of them.
+/// The option texts with the questions the checks ask of them; `spelled`
+/// the old spelling (FN) an option of the table's name (F0) was given as.
 class Texts {
 public:
-  explicit Texts(const OptionTexts& t) : t_(t) {}
+  Texts(const OptionTexts& t, const std::map<std::string, std::string>& spelled)
+      : t_(t), spelled_(spelled) {}
   bool has(const std::string& name) const { return t_.count(name) != 0; }
   const std::string& operator[](const std::string& name) const { return t_.at(name); }
+  /// The option `name` as the user spelled it.
+  std::string as_given(const std::string& name) const {
+    const auto it = spelled_.find(name);
+    return it == spelled_.end() ? name : it->second;
+  }
 
 private:
   const OptionTexts& t_;
+  const std::map<std::string, std::string>& spelled_;
 };
 
 // --- Numbers -------------------------------------------------------------------
@@ -176,7 +184,7 @@ void read_case_parameters(const Texts& o, Case& c) {
   }
 }
 
-/// Exactly one option of each one_of group (e.g. --d or --FN, the loading)
+/// Exactly one option of each one_of group (e.g. --d or --F0, the loading)
 /// is given; otherwise one line naming the whole group. Raw message: no single
 /// option is at fault.
 void require_one_of_each_group(const Texts& o) {
@@ -187,7 +195,7 @@ void require_one_of_each_group(const Texts& o) {
     int n = 0;
     for (const ParamSpec* q : members) {
       if (!o.has(q->name)) continue;
-      given += (n++ ? " and --" : "--") + std::string(q->name);
+      given += (n++ ? " and --" : "--") + o.as_given(q->name);
     }
     if (n == 1) continue;
     std::string what;
@@ -314,8 +322,25 @@ std::vector<std::string> case_option_names() {
   return names;
 }
 
-CaseInput read_case_input(const OptionTexts& texts) {
-  const Texts o(texts);
+namespace {
+
+/// The texts under the table's names: an alias's text (--FN) moved to its
+/// parameter (--F0); both spellings given is refused. `spelled` gets the
+/// alias each moved text was given under, by the table's name.
+OptionTexts canonical_texts(const OptionTexts& texts, std::map<std::string, std::string>& spelled) {
+  OptionTexts out = texts;
+  for (const ParamAlias& a : parameter_aliases()) {
+    const auto it = out.find(a.alias);
+    if (it == out.end()) continue;
+    if (out.count(a.name)) throw InvalidInput("", two_spellings(a, "--"));
+    out.emplace(a.name, it->second);
+    out.erase(it);
+    spelled.emplace(a.name, a.alias);
+  }
+  return out;
+}
+
+CaseInput read_canonical(const Texts& o) {
   require_options(o);
   CaseInput in;
   read_case_parameters(o, in.c);
@@ -332,6 +357,27 @@ CaseInput read_case_input(const OptionTexts& texts) {
   if (o.has("solver")) in.solver = parse_solver(o["solver"]);
   validate_rtol(in.rtol);
   return in;
+}
+
+} // namespace
+
+CaseInput read_case_input(const OptionTexts& texts) {
+  std::map<std::string, std::string> spelled;
+  const OptionTexts canonical = canonical_texts(texts, spelled);
+  try {
+    return read_canonical(Texts(canonical, spelled));
+  } catch (const InvalidInput& e) { // blame the option as the user spelled it
+    const auto it = spelled.find(e.option());
+    if (it == spelled.end()) throw;
+    throw InvalidInput(it->second, e.what());
+  }
+}
+
+std::vector<std::string> case_option_spellings() {
+  std::vector<std::string> names = case_option_names();
+  for (const ParamAlias& a : parameter_aliases())
+    names.emplace_back(a.alias);
+  return names;
 }
 
 std::vector<const ParamSpec*> group_members(const std::string& group) {
@@ -366,6 +412,8 @@ std::string parameter_help_text(const ParamSpec& p) {
             group_usage(group_members(p.one_of), ", ", " or ");
   else
     text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
+  if (const ParamAlias* a = alias_of(p.name))
+    text += ". --" + std::string(a->alias) + " is accepted as its old spelling";
   return text;
 }
 

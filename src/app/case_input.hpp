@@ -6,7 +6,8 @@
 // so that both accept, refuse and build the same cases with the same
 // messages: a value that is not allowed throws InvalidInput naming the option
 // as the CLI spells it (without dashes), or an empty option where no single
-// option is at fault (e.g. neither or both of --d and --FN).
+// option is at fault (e.g. neither or both of --d and --F0). The old
+// spellings of the table's parameters (--FN for --F0) are read as theirs.
 #include <map>
 #include <optional>
 #include <string>
@@ -44,14 +45,20 @@ struct CaseInput {
 /// rtol, solver.
 std::vector<std::string> case_option_names();
 
+/// case_option_names() and the old spellings of the table's parameters
+/// (parameter_aliases(): FN), which read_case_input takes as theirs.
+std::vector<std::string> case_option_spellings();
+
 /// Builds and checks a case from the texts of its options, in the CLI's
-/// order of checks. Throws InvalidInput.
+/// order of checks; an alias's text (FN) is its parameter's (F0), and an
+/// error about it names the option as spelled. Both spellings of one
+/// parameter are refused (option ""). Throws InvalidInput.
 CaseInput read_case_input(const OptionTexts& texts);
 
 /// The members of the table's one_of group `group`, in the table's order.
 std::vector<const ParamSpec*> group_members(const std::string& group);
 
-/// "--d D or --FN F0": the members with their symbols, `sep` between all
+/// "--d D or --F0 F0": the members with their symbols, `sep` between all
 /// but the last two, `last_sep` between those.
 std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
                         const char* last_sep);

@@ -7,7 +7,7 @@
 //   # case d=... R=... tau=... G=... [aT=...] v=... [prony=G1:TAU1,...]
 //     [T=... wlf=C1:C2:TREF] history=W1:T1,W2:T2,... spacing=linear|log
 //     samples=... log-decades=... zeta0=...                   (one line; under load
-//     FN=... in place of d=..., and a0=... before zeta0)
+//     F0=... (the prescribed load) in place of d=..., and a0=... before zeta0)
 //   # scales length=... depth=... force=... friction=... time=...
 //                                         (the case's Scales, core/model/scales.hpp)
 //   # error_vs_exact=...                  (fixed depth, a solver other than exact)
@@ -16,14 +16,15 @@
 //   # event k=... t=... w_before=... w_after=... mu_before=... mu_after=... mu_peak=...
 //     t_peak=... slip_peak=... mu_end=... mu_ss_before=... mu_ss_after=... D_c=... a=...
 //     a_minus_b=... b=...                 (one line per segment k = 0, 1, ...)
-//   # pre FN=... Fx=... mu=... a2=...     (always the last comment line; under
-//                                          load d=... a1=... follow)
+//   # pre FN=... Fx=... mu=... a2=...     (always the last comment line; FN the
+//                                          measured normal force; under load
+//                                          d=... a1=... follow)
 //   t,segment,FN,Fx,mu,a2                 (under load t,segment,FN,Fx,mu,a2,d,a1)
 //   <samples rows per segment, segment after segment>
 //
 // The `# case` line gives every parameter of the table (core/model/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the
-// history; of a one_of group (the loading: d or FN) only the member given;
+// history; of a one_of group (the loading: d or F0) only the member given;
 // the shift aT only where it is not 1. The spectrum's terms (prony=) follow
 // the table's parameters where there are terms, then the temperature and
 // its WLF constants where --T gave aT: a Kelvin case prints what it always has.

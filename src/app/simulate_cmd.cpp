@@ -23,9 +23,9 @@ namespace {
 constexpr const char* kPrefix = "mdrmap simulate: error: ";
 
 /// Every option, in the order of the help text: those of a case
-/// (app/case_input.hpp), then --output.
+/// (app/case_input.hpp, with the old spellings it takes), then --output.
 std::vector<std::string> option_names() {
-  std::vector<std::string> names = case_option_names();
+  std::vector<std::string> names = case_option_spellings();
   names.emplace_back("output");
   return names;
 }
@@ -115,7 +115,7 @@ po::variables_map option_texts(const std::vector<std::string>& args) {
 SimulateArgs parse_args(const std::vector<std::string>& args) {
   const po::variables_map vm = option_texts(args);
   OptionTexts texts;
-  for (const auto& name : case_option_names())
+  for (const auto& name : case_option_spellings())
     if (vm.count(name)) texts.emplace(name, vm[name].as<std::string>());
   SimulateArgs a;
   a.in = read_case_input(texts);
@@ -175,7 +175,7 @@ std::string parameter_help(bool sampling) {
 }
 
 /// The required options of the table, as the usage line gives them: each
-/// one_of group as "(--d D | --FN F0)" where its first member stands.
+/// one_of group as "(--d D | --F0 F0)" where its first member stands.
 std::string required_usage() {
   std::string s;
   for (const auto& p : case_parameters()) {
@@ -222,7 +222,7 @@ std::string history_help() {
                                      ". Default: 6 tau (with a spectrum: 6 times the longest "
                                      "shifted time aT max(tau, tauk)); for a purely elastic "
                                      "foundation, 6 a1/min(V0,V1) (6 a1/V0 if V1 = 0), a0 in "
-                                     "place of a1 under --FN") +
+                                     "place of a1 under --F0") +
          help_entry("--history W1:T1,W2:T2,...",
                     "segments one after another from t = 0: sliding velocity Wk (" +
                         std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
@@ -251,7 +251,7 @@ std::string output_help() {
   # case d=... R=... tau=... G=... v=... history=W1:T1,... spacing=linear
       samples=N log-decades=D zeta0=...           (all on one line: every
                                                    case parameter given, the
-                                                   history; under --FN: FN=...
+                                                   history; under --F0: F0=...
                                                    in place of d=..., and
                                                    a0=... before zeta0; aT=...
                                                    after G where it is not 1,
@@ -262,7 +262,7 @@ std::string output_help() {
   # error_vs_exact=...     (solvers other than exact only: the case error
                             against the continuum solution)
   # error_vs_reference=... reference=NAME reference_rtol=...
-                           (under --FN, solvers other than auto only: the
+                           (under --F0, solvers other than auto only: the
                             case error against the load solver at a 1000x
                             tighter rtol, at least 1e-9)
   # event k=K t=... w_before=... w_after=... mu_before=... mu_after=...
@@ -271,11 +271,11 @@ std::string output_help() {
                            (one line per segment K = 0, 1, ...: the change at
                             its start, see below)
   # pre FN=... Fx=... mu=... a2=...   (stationary state at V0 before t = 0;
-                                       under --FN also d=... a1=...)
-  t,segment,FN,Fx,mu,a2               (under --FN: t,segment,FN,Fx,mu,a2,d,a1)
+                                       under --F0 also d=... a1=...)
+  t,segment,FN,Fx,mu,a2               (under --F0: t,segment,FN,Fx,mu,a2,d,a1)
   ... N rows per segment, segment after segment; segment is 0-based, t is
       measured from the first change (t = 0 is the instant just after it) ...
-zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0; under --FN
+zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0; under --F0
 zeta0 = V0 tau / a0, a0 the Hertz contact radius of F0 (F0 = 16/3 G a0^3/R),
 and the columns d and a1 give the depth and the leading edge, a1 = sqrt(R d).
 The stationary states of the events are then those under the load F0.
@@ -291,7 +291,7 @@ ln(w_after/w_before) and b = a - a_minus_b. Where a value is undefined (a
 velocity of 0 or equal velocities in the log, no 1/e decay within the segment,
 a hold) it is printed as nan.
 The case error is the largest of max_k |q_k - q_ref,k| / max_k |q_ref,k| for
-q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. Under --FN: max_k |FN_k - F0|
+q = FN, Fx, mu and max_k |a2_k - a2_ref,k| / a1. Under --F0: max_k |FN_k - F0|
 / F0, d, Fx and mu by their largest magnitude, a1 and a2 by a0.
 error_estimate is the solver's own bound on it. Numbers have 17 significant
 digits, so they read back to the same double.
@@ -308,18 +308,19 @@ std::string simulate_help() {
 Computes the response of a viscoelastic contact to changes of the sliding
 velocity, in the method of dimensionality reduction (MDR). A rigid parabolic
 indenter (MDR profile x^2/R) is held at indentation depth d (--d, depth
-control) or pressed with the normal force F0 (--FN, load control: the depth
-follows) on a Kelvin foundation (shear modulus G, relaxation time tau =
-eta/G) or a material with a relaxation spectrum (--prony), its times
-shifted by aT (--aT, or --T with --wlf). It slides steadily at velocity V0 until t = 0, then follows a
+control) or pressed with the prescribed normal load F0 (--F0, load control:
+the depth follows; --FN is accepted as its old spelling) on a Kelvin
+foundation (shear modulus G, relaxation time tau = eta/G) or a material with
+a relaxation spectrum (--prony), its times shifted by aT (--aT, or --T with
+--wlf). It slides steadily at velocity V0 until t = 0, then follows a
 velocity history: one step to V1 (--v1), or segments of constant velocity,
 holds included (--history). The command prints the stationary state before
 t = 0, event metrics of every velocity change and, at N instants per segment,
-the normal force FN, the tangential (friction) force Fx, positive when it
-resists the motion, the friction coefficient mu = Fx/FN, and the trailing
-edge a2 of the contact. In the frame of the indenter the contact occupies
-[-a1, a2], a1 = sqrt(R d); at fixed depth the leading edge stays at -a1,
-under load the depth d and a1 are printed too.
+the measured normal force FN, the tangential (friction) force Fx, positive
+when it resists the motion, the friction coefficient mu = Fx/FN, and the
+trailing edge a2 of the contact. In the frame of the indenter the contact
+occupies [-a1, a2], a1 = sqrt(R d); at fixed depth the leading edge stays at
+-a1, under load the depth d and a1 are printed too.
 
 Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
 times, velocities length/time; forces come out in units of G * length^2.
@@ -339,7 +340,7 @@ Other options:
                    spectrum  element row of any rheology (--prony), exact
                              exponential updates, error control
                    auto      the cheapest solver that meets rtol (exact at
-                             fixed depth, the load solver under --FN, spectrum
+                             fixed depth, the load solver under --F0, spectrum
                              with --prony)
   --output FILE  write to FILE instead of stdout. A regular file (or the
                  file a symbolic link points to) is replaced at once when
@@ -354,7 +355,7 @@ Examples:
   mdrmap simulate --d 0.1 --R 10 --tau 1 --v 2 --v1 0.5 --output step.csv
   mdrmap simulate --d 0.1 --R 10 --tau 1 --v 1 --history 1:2,0:1000,1:5 \
       --samples 101 --spacing log       (slide-hold-slide: a hold of 1000 tau)
-  mdrmap simulate --FN 0.1 --R 10 --tau 1 --v 1 --history 0.1:20,1:20
+  mdrmap simulate --F0 0.1 --R 10 --tau 1 --v 1 --history 0.1:20,1:20
                                         (load control: a step down and up)
 
 Exit codes:

@@ -140,8 +140,9 @@ const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
 
 /// The override options and the keys they set: the run's, the seed's step,
 /// the temperature and its WLF constants, every case parameter of the core's
-/// table as a grid column (--d, --FN, --R, --tau, --aT, --v, ...; G stays the
-/// seed's [run] G) and a spectrum's terms (--G1, --tau1, ..., --G32, --tau32).
+/// table as a grid column (--d, --F0, --R, --tau, --aT, --v, ...; G stays the
+/// seed's [run] G; an old spelling, --FN, sets grid.FN, which the config reads
+/// as its parameter) and a spectrum's terms (--G1, --tau1, ..., --G32, --tau32).
 const std::vector<std::pair<std::string, std::string>>& overrides() {
   static const auto all = [] {
     std::vector<std::pair<std::string, std::string>> o;
@@ -150,6 +151,8 @@ const std::vector<std::pair<std::string, std::string>>& overrides() {
     for (const ParamSpec& p : case_parameters())
       if (p.part != Part::Sampling && std::string(p.name) != "G")
         o.emplace_back(p.name, std::string("grid.") + p.name);
+    for (const ParamAlias& a : parameter_aliases())
+      o.emplace_back(a.alias, std::string("grid.") + a.alias);
     for (const ParamSpec* p : {&branch_modulus_spec(), &branch_time_spec()})
       for (std::size_t k = 1; k <= kMaxBranches; ++k) // a spectrum's terms: --G1 .. --tau32
         o.emplace_back(p->name + std::to_string(k), "grid." + (p->name + std::to_string(k)));
@@ -158,15 +161,25 @@ const std::vector<std::pair<std::string, std::string>>& overrides() {
   return all;
 }
 
-/// Two options of one group of the table (--d and --FN: the loading) set
-/// the same thing: refused, as simulate refuses them.
+/// Two options of one group of the table (--d and --F0: the loading), or
+/// both spellings of one parameter (--F0 and --FN), set the same thing:
+/// refused, as simulate refuses them.
 void refuse_two_of_a_group(const po::variables_map& vm) {
+  for (const ParamAlias& a : parameter_aliases())
+    if (vm.count(a.name) && vm.count(a.alias)) throw InvalidInput(a.alias, two_spellings(a, "--"));
+  // the option a parameter was given as (its name or its old spelling), or ""
+  const auto given = [&vm](const ParamSpec& p) -> std::string {
+    if (vm.count(p.name)) return p.name;
+    const ParamAlias* a = alias_of(p.name);
+    return a && vm.count(a->alias) ? a->alias : "";
+  };
   for (const ParamSpec& p : case_parameters()) {
-    if (p.one_of == nullptr || !vm.count(p.name)) continue;
+    if (p.one_of == nullptr || given(p).empty()) continue;
     for (const ParamSpec& q : case_parameters())
-      if (&q != &p && q.one_of != nullptr && std::string(q.one_of) == p.one_of && vm.count(q.name))
-        throw InvalidInput(p.name, "--" + std::string(p.name) + " and --" + q.name +
-                                       " set the same thing (the " + p.one_of + "); give only one");
+      if (&q != &p && q.one_of != nullptr && std::string(q.one_of) == p.one_of && !given(q).empty())
+        throw InvalidInput(given(p), "--" + given(p) + " and --" + given(q) +
+                                         " set the same thing (the " + p.one_of +
+                                         "); give only one");
   }
 }
 
@@ -264,15 +277,15 @@ std::string study_help() {
                  [--quiet] [overrides...]
 
 Runs a parameter study: every case of the config (a grid over the case
-parameters d or FN, R, tau, G, v, optionally a relaxation spectrum's terms
+parameters d or F0, R, tau, G, v, optionally a relaxation spectrum's terms
 Gk, tauk and the shift aT or the temperature, and the history's segment
-velocities and durations, or a CSV list of cases) is one velocity history under a fixed
-depth or a fixed normal load, solved as by 'mdrmap simulate'. Rank 0 hands
-out cases in chunks on request and computes too; every rank writes its
-results into one HDF5 friction map (schema mdrmap-map/2, docs/map-schema.md):
-the event metrics of every velocity change (a, b, D_c, peaks), the
-closed-form stationary states and the residuals between the two. Works with
-P = 1.
+velocities and durations, or a CSV list of cases) is one velocity history
+under a fixed depth d or a prescribed normal load F0, solved as by 'mdrmap
+simulate'. Rank 0 hands out cases in chunks on request and computes too;
+every rank writes its results into one HDF5 friction map (schema
+mdrmap-map/2, docs/map-schema.md): the event metrics of every velocity
+change (a, b, D_c, peaks), the closed-form stationary states and the
+residuals between the two. Works with P = 1.
 
 Options:
   --config FILE     the study (INI: [grid] or [cases], [history], [run]; see
@@ -295,9 +308,11 @@ Options:
 Overrides (win over the config file; values as in the INI; all are applied,
 then the study is checked: a new history segment takes its two keys):
   --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
-                            --set grid.FN=1e-3 --set run.spacing=log (repeatable)
+                            --set grid.F0=1e-3 --set run.spacing=log (repeatable)
   --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
-  --G G  --d SPEC  --FN SPEC  --R SPEC  --tau SPEC  --aT SPEC  --v SPEC
+  --G G  --d SPEC  --F0 SPEC  --R SPEC  --tau SPEC  --aT SPEC  --v SPEC
+                            (--FN, grid.FN, a key or column FN: the old
+                            spelling of F0, the prescribed normal load)
   --v1 SPEC  --v1-over-v SPEC
   --Gk SPEC  --tauk SPEC    a relaxation spectrum's term k = 1..32 (grid.Gk, grid.tauk)
   --temperature SPEC  --wlf C1:C2:TREF   the temperature, shifting the times by

@@ -118,7 +118,7 @@ const std::vector<double>& RowLayout::samples(const Series& x, std::size_t s) co
 }
 
 std::string RowLayout::stationary() const {
-  return by_force_ ? "in stationary sliding under the load FN at " : "in stationary sliding at ";
+  return by_force_ ? "in stationary sliding under the load F0 at " : "in stationary sliding at ";
 }
 
 void RowLayout::add_results() {
@@ -188,13 +188,13 @@ void RowLayout::add_closed_forms() {
 
 void RowLayout::add_scales() {
   add("scales/length", "length",
-      by_force_ ? "reference length: the Hertz radius a0 of the load FN with the long-term "
+      by_force_ ? "reference length: the Hertz radius a0 of the load F0 with the long-term "
                   "modulus G (F0 = 16/3 G a0^3 / R)"
                 : "reference length: the leading edge a1 of the contact at the depth d");
   add("scales/depth", "length", "indentation depth of the reference contact (d, or a0^2 / R)");
   add("scales/force", "force",
       "elastic normal force of the reference contact with the long-term modulus G "
-      "(16/3 G a^3 / R; FN under load)");
+      "(16/3 G a^3 / R; the prescribed load F0 under load)");
   add("scales/friction", "number",
       "friction scale: the profile's slope at the reference length "
       "over two (a / R for the parabola)");

@@ -4,7 +4,7 @@
 //
 // Layout: schema "mdrmap-map/2", described dataset by dataset in
 // docs/map-schema.md (N cases, K segments, S samples per segment):
-//   /cases/{d|FN,R,tau,G,v} [N], /cases/{w,T} [N, K]   the cases as run
+//   /cases/{d|F0,R,tau,G,v} [N], /cases/{w,T} [N, K]   the cases as run
 //   /results, /events, /analytic, /residuals           io::RowLayout: float64 [N] or [N, K]
 //   /results/status                         int8 [N]   0 pending, 1 done, -1 failed
 //   /timeseries/<q> [N, K S], /timeseries/segment [K S]  with timeseries = true
@@ -74,7 +74,7 @@ struct MapSpec {
   long samples = 0;         ///< S, per segment
   bool by_force = false;
   bool timeseries = false;
-  /// /cases/<name> [N]: the study's case parameters (e.g. FN, R, tau, G, v;
+  /// /cases/<name> [N]: the study's case parameters (e.g. F0, R, tau, G, v;
   /// a spectrum's G1, tau1, ..., aT, temperature), in column order: their
   /// paths "cases/<name>", units and meanings
   std::vector<FieldInfo> case_params;

@@ -37,7 +37,7 @@ class InvalidInput(ValueError):
     the same message, as `mdrmap simulate` gives on the command line.
 
     option   the option as the CLI spells it ("d", "t-end", "log-decades"),
-             "" where no single option is at fault (e.g. neither d nor FN)
+             "" where no single option is at fault (e.g. neither d nor F0)
     keyword  the keyword argument ("d", "t_end", "log_decades")
     message  the CLI's message after "--OPTION: "
     """
@@ -186,6 +186,14 @@ py::dict stationary(const py::dict& options) {
   return fields(app::state_fields(st, in.c.loading.by_force()));
 }
 
+/// The old spellings the options take: {alias: the table's name}.
+py::dict alias_table() {
+  py::dict d;
+  for (const ParamAlias& a : mdrmap::parameter_aliases())
+    d[a.alias] = a.name;
+  return d;
+}
+
 py::list parameter_table() {
   py::list out;
   for (const auto& p : case_parameters()) {
@@ -234,4 +242,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("stationary", &stationary, py::arg("options"),
         "The stationary state at v of a case given as {option: text}.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
+  m.def("parameter_aliases", &alias_table,
+        "The old spellings of the table's parameters, {alias: name} (FN: F0).");
 }

@@ -158,7 +158,7 @@ Axis parse_axis(const std::string& section, const std::string& name, const std::
   Axis a;
   if (!parse_column(name, a.column))
     throw ConfigError(option, "unknown column " + shown(name) +
-                                  "; the columns are d or FN, R, tau, G, v, optionally a "
+                                  "; the columns are d or F0, R, tau, G, v, optionally a "
                                   "spectrum's Gk, tauk (k = 1..32) and aT or temperature, and "
                                   "the history's wK, wK_over_v, TK, TK_over_tau");
   a.name = name;

@@ -12,7 +12,7 @@
 namespace mdrmap::study {
 
 /// The /cases datasets of the study's case parameters, in column order
-/// (path "cases/<name>", unit, meaning): d or FN, R, tau, G, [G1, tau1, ...],
+/// (path "cases/<name>", unit, meaning): d or F0, R, tau, G, [G1, tau1, ...],
 /// [aT | temperature, aT], v.
 std::vector<io::FieldInfo> case_parameter_info(const StudyConfig& c);
 

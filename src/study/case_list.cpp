@@ -18,8 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kAllColumns =
-    "d or FN, R, tau, v, optionally G, a spectrum's G1, tau1, G2, tau2, ... and aT or "
-    "temperature, and the history: w1, T1, w2, T2, ... or the seed's v1";
+    "d or F0 (or its old spelling FN), R, tau, v, optionally G, a spectrum's G1, tau1, G2, "
+    "tau2, ... and aT or temperature, and the history: w1, T1, w2, T2, ... or the seed's v1";
 
 [[noreturn]] void cannot_read(const std::string& path, const std::string& why) {
   throw ConfigError("cases.file", "cannot read " + shown_path(path) + ": " + why);

@@ -107,8 +107,9 @@ bool segment_number(const std::string& s, std::size_t& k) {
 
 bool parse_column(const std::string& name, Column& out) {
   out = Column{};
+  const std::string canonical = canonical_parameter_name(name); // FN: F0
   for (const ParamSpec* p : study_parameters())
-    if (name == p->name) {
+    if (canonical == p->name) {
       out.param = p;
       return true;
     }
@@ -174,6 +175,10 @@ std::string column_name(const Column& col) {
                                                                               : 3];
 }
 
+std::string stored_name(const Axis& a) {
+  return a.column.kind == Column::Kind::Param ? column_name(a.column) : a.name;
+}
+
 std::string column_meaning(const Column& col) {
   const std::string meaning = column_spec(col).meaning;
   if (col.history()) return "segment " + std::to_string(col.segment) + ": " + meaning;
@@ -206,10 +211,10 @@ const ParamSpec& column_spec(const Column& col) {
 namespace {
 
 /// The case parameters' slots in column order: the members of a one-of group
-/// (the loading: d or FN) share one.
+/// (the loading: d or F0) share one.
 struct Slot {
   std::vector<const ParamSpec*> params;
-  std::string names() const { // "d or FN"
+  std::string names() const { // "d or F0"
     std::string s;
     for (const ParamSpec* p : params)
       s += (s.empty() ? "" : " or ") + std::string(p->name);
@@ -233,7 +238,7 @@ const std::vector<Slot>& slots() {
   return out;
 }
 
-/// "a study needs d or FN, R, tau and v"
+/// "a study needs d or F0, R, tau and v"
 std::string needed() {
   std::vector<std::string> n;
   for (const Slot& s : slots())

@@ -10,7 +10,7 @@
 
 namespace mdrmap::study::detail {
 
-/// The table's case parameters a study sets (not the sampling): d, FN, R,
+/// The table's case parameters a study sets (not the sampling): d, F0, R,
 /// tau, G, aT, v, in the table's order.
 const std::vector<const ParamSpec*>& study_parameters();
 
@@ -24,6 +24,11 @@ bool only_where_given(const ParamSpec& p);
 /// temperature, wK, wK_over_v, TK, TK_over_tau): its /cases dataset.
 std::string column_name(const Column& col);
 
+/// The name a column has in the map (/cases, /grid) and in the canonical
+/// text a resume compares: a table parameter's own name (F0 where the key
+/// is its old spelling FN), any other column's as written (the seed's v1).
+std::string stored_name(const Axis& a);
+
 /// The meaning of a column (its range entry's), "segment k: " or "term k: "
 /// before it for a history segment's or a spectrum term's.
 std::string column_meaning(const Column& col);
@@ -33,7 +38,7 @@ std::string column_meaning(const Column& col);
 const ParamSpec& column_spec(const Column& col);
 
 /// Position of a column in column order: the case parameters in the table's
-/// order (a one-of group, the loading d or FN, in one place; temperature in
+/// order (a one-of group, the loading d or F0, in one place; temperature in
 /// aT's place): the loading 0, R 1, tau 2, G 3, then the spectrum's terms G1
 /// 4, tau1 5, ..., G32 66, tau32 67, then aT (or temperature) 68, v 69; then
 /// P + 2 (k - 1) for wk and P + 1 + 2 (k - 1) for Tk, P = 70 the number of
@@ -51,7 +56,7 @@ std::vector<std::string> history_names(std::size_t k);
 /// a message. Throws ConfigError naming the column.
 void order_columns(std::vector<Axis>& axes, const std::string& where);
 
-/// The shape text "FN 3 x R 1 x ..." of a grid.
+/// The shape text "F0 3 x R 1 x ..." of a grid.
 std::string grid_shape(const StudyConfig& c);
 
 } // namespace mdrmap::study::detail

@@ -193,14 +193,15 @@ void check_solver(const StudyConfig& c) {
     if (solver_handles(k, force)) takes += std::string(takes.empty() ? "" : ", ") + solver_name(k);
   throw ConfigError("run.solver",
                     std::string("solver ") + solver_name(kind) + " does not solve " +
-                        (force ? "load control (the study prescribes the normal force FN)"
+                        (force ? "load control (the study prescribes the normal load F0)"
                                : "depth control (the study prescribes the depth d)") +
                         "; solver must be one of " + takes);
 }
 
 std::string canonical_values(const Axis& a) {
-  if (a.listed) return a.name + " = (listed)\n";
-  std::string out = a.name + " =";
+  const std::string name = stored_name(a); // FN and F0: one study
+  if (a.listed) return name + " = (listed)\n";
+  std::string out = name + " =";
   for (std::size_t i = 0; i < a.values.size(); ++i)
     out += (i == 0 ? " " : ", ") + format_number(a.values[i]);
   return out + "\n";

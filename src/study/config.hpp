@@ -4,7 +4,7 @@
 // HDF5, no printing. The syntax is documented in docs/map-schema.md:
 //
 //   [grid]                  ; the case parameters of the core's table
-//   FN  = 1e-3              ; d (depth control) or FN (load control), one of them
+//   F0  = 1e-3              ; d (depth control) or F0 (load control), one of them
 //   R   = 1, 2, 5           ; a number, a comma list,
 //   tau = linspace:0.5:2:4  ; n evenly spaced values from lo to hi (inclusive),
 //   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values (values, not exponents)
@@ -19,7 +19,7 @@
 //   T1_over_tau = 1, 10     ; duration: Tk, or Tk_over_tau (times tau)
 //
 //   [cases]                 ; instead of [grid]
-//   file = cases.csv        ; columns d|FN, R, tau, v, [G], w1, T1, ... (or the seed's v1)
+//   file = cases.csv        ; columns d|F0, R, tau, v, [G], w1, T1, ... (or the seed's v1)
 //
 //   [run]
 //   samples = 201           ; per segment
@@ -39,6 +39,9 @@
 // by aT, aT max(tau, tauk) (tau for a Kelvin material at aT = 1). The seed's one-step form is still
 // read: [grid] v1 or v1_over_v is the column w1 or w1_over_v, [run] t_end_over_tau the column
 // T1_over_tau and [run] G the column G.
+//
+// FN, the old spelling of F0 (the prescribed normal load), is read as F0 as a
+// key, an override or a case list's column; giving both is an error.
 //
 // Comments start with ';' or '#'. Keys are case-sensitive.
 #include <cstddef>
@@ -87,7 +90,7 @@ struct Column {
 /// One column of a study: its values (a grid axis), or, in a case list, the
 /// values of a CSV column (`listed`) or the one value the config gives it.
 struct Axis {
-  std::string name;    ///< the key as written: d, FN, R, tau, G, v, w1, T1_over_tau, v1_over_v ...
+  std::string name;    ///< the key as written: d, F0 (or FN), R, tau, G, v, w1, T1_over_tau, ...
   std::string section; ///< where it is set: grid, history or run (the seed's G, t_end_over_tau)
   std::string spec;    ///< as written
   std::vector<double> values;
@@ -126,7 +129,7 @@ struct StudyConfig {
 
   /// Number of history segments K.
   std::size_t segments() const;
-  /// Load control (an FN column) or depth control (d).
+  /// Load control (an F0 column) or depth control (d).
   bool by_force() const;
 };
 
@@ -147,7 +150,7 @@ StudyConfig load_config(const std::string& path,
                         const std::vector<std::pair<std::string, std::string>>& overrides);
 
 /// Overrides one setting, as from the command line: key is "section.key"
-/// (e.g. "run.samples", "grid.FN", "history.T1_over_tau") and value as in the
+/// (e.g. "run.samples", "grid.F0", "history.T1_over_tau") and value as in the
 /// INI. A [grid] or [history] key the config does not have adds the column.
 void apply_override(StudyConfig& c, const std::string& key, const std::string& value);
 
@@ -190,7 +193,7 @@ Case case_for(const StudyConfig& c, const Row& r);
 /// The same, marked as checked: what the solvers take without checking again.
 CheckedCase checked_case_for(const StudyConfig& c, const Row& r);
 
-/// "FN = 0.001, R = 1, ...": a row for a message.
+/// "F0 = 0.001, R = 1, ...": a row for a message.
 std::string describe(const StudyConfig& c, const Row& r);
 
 /// Canonical text of everything that determines the results (columns and

@@ -170,6 +170,30 @@ void check_space(const std::string& out, std::uint64_t bytes) {
   }
 }
 
+// The canonical text of a map of an earlier mdrmap under today's names: a
+// [columns] line of an old spelling ("FN = ...", the prescribed load before
+// it was named F0) as the table's name, so that the map resumes as the same
+// study (its /cases and /grid keep the names it was written with).
+std::string with_current_names(const std::string& stored) {
+  std::string out;
+  bool columns = false;
+  std::size_t start = 0;
+  while (start < stored.size()) {
+    std::size_t end = stored.find('\n', start);
+    end = end == std::string::npos ? stored.size() : end + 1;
+    std::string line = stored.substr(start, end - start);
+    start = end;
+    if (!line.empty() && line[0] == '[')
+      columns = line.compare(0, 9, "[columns]") == 0;
+    else if (columns) {
+      const std::string key = line.substr(0, line.find(" ="));
+      line = canonical_parameter_name(key) + line.substr(key.size());
+    }
+    out += line;
+  }
+  return out;
+}
+
 // Compares the study in an existing map with the requested one (rank 0,
 // read-only, before the file is opened for writing).
 void check_resume_matches(const StudyRequest& req, const std::string& canon) {
@@ -183,6 +207,7 @@ void check_resume_matches(const StudyRequest& req, const std::string& canon) {
   } catch (const io::H5Error&) {
     throw InvalidInput("resume", "'" + req.output + "' has no readable study definition");
   }
+  stored = with_current_names(stored);
   if (stored != canon)
     throw InvalidInput("config", "differs from the study stored in '" + req.output + "' (" +
                                      first_difference(stored, canon) +
@@ -205,7 +230,7 @@ int ranks_on_this_node(MPI_Comm comm) {
 // Unit and meaning of a grid axis: its column's range entry (the core's
 // table, a segment's velocity or duration, or a ratio).
 io::FieldInfo axis_info(const Axis& a) {
-  return {"grid/" + a.name, dim_name(column_spec(a.column).dim), column_meaning(a.column)};
+  return {"grid/" + stored_name(a), dim_name(column_spec(a.column).dim), column_meaning(a.column)};
 }
 
 // The map a study needs: its size, and the axes of a grid.
@@ -219,7 +244,7 @@ io::MapSpec map_spec(const StudyConfig& cfg, std::size_t n_cases) {
   spec.case_params = case_parameter_info(cfg);
   if (cfg.kind == StudyConfig::Kind::Grid) {
     for (const auto& ax : cfg.axes) {
-      spec.grid.names.push_back(ax.name);
+      spec.grid.names.push_back(stored_name(ax));
       spec.grid.values.push_back(ax.values);
       spec.grid.logarithmic.push_back(ax.logarithmic ? 1 : 0);
       spec.grid.info.push_back(axis_info(ax));

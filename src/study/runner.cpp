@@ -174,7 +174,7 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
   prov.created_utc = bcast_from_root(comm, utc_now());
   prov.command_line = bcast_from_root(comm, req.command_line);
   prov.units = "consistent user units: d, R, a1, a2 lengths; tau, T, t times; v, w "
-               "length/time; G force/length^2; FN, Fx force = G * length^2; mu dimensionless";
+               "length/time; G force/length^2; F0, FN, Fx force = G * length^2; mu dimensionless";
   prov.config_text = req.config.source_text;
   prov.config_canonical = plan.canon;
   prov.mpi_size = size;

@@ -42,6 +42,13 @@ bool is_spectrum_key(const std::string& key) {
   return parse_column(key, col) && col.spectrum();
 }
 
+/// An old spelling of a table parameter (FN for F0): a key of [grid] beside
+/// the table's names, read as the parameter it names.
+bool is_alias_key(const std::string& key) {
+  Column col;
+  return canonical_parameter_name(key) != key && parse_column(key, col);
+}
+
 const IniSchema& study_schema() {
   static const IniSchema s{{"grid", "history", "cases", "run"},
                            {grid_keys(),
@@ -53,7 +60,8 @@ const IniSchema& study_schema() {
                            "[grid] or [cases], [history] and [run]",
                            [](const std::string& section, const std::string& key) {
                              return (section == "history" && is_history_key(key)) ||
-                                    (section == "grid" && is_spectrum_key(key));
+                                    (section == "grid" &&
+                                     (is_spectrum_key(key) || is_alias_key(key)));
                            }};
   return s;
 }
@@ -77,7 +85,8 @@ namespace {
 /// An override's key is known: a listed one or any history column.
 bool known_override(const std::string& key) {
   if (contains(override_keys(), key)) return true;
-  if (starts_with(key, "grid.") && is_spectrum_key(key.substr(5))) return true;
+  if (starts_with(key, "grid.") && (is_spectrum_key(key.substr(5)) || is_alias_key(key.substr(5))))
+    return true;
   return starts_with(key, "history.") && is_history_key(key.substr(8));
 }
 
@@ -399,10 +408,25 @@ void finish(StudyConfig& c, const WhereFn& where) {
   check_study(c, where);
 }
 
+/// Both spellings of one parameter (grid.F0 and grid.FN) are refused: each
+/// would replace the other.
+void refuse_two_spellings(const std::vector<std::pair<std::string, std::string>>& settings,
+                          const Where& cl) {
+  const auto given = [&settings](const std::string& key) {
+    for (const auto& kv : settings)
+      if (kv.first == key) return true;
+    return false;
+  };
+  for (const ParamAlias& a : parameter_aliases())
+    if (given(std::string("grid.") + a.name) && given(std::string("grid.") + a.alias))
+      throw ConfigError(std::string("grid.") + a.alias, cl.prefix() + two_spellings(a, "grid."));
+}
+
 /// Sets each override in turn (each key's own checks), without finishing.
 void set_overrides(StudyConfig& n,
                    const std::vector<std::pair<std::string, std::string>>& settings) {
   const Where cl{"command line", 0};
+  refuse_two_spellings(settings, cl);
   for (const auto& [key, value_text] : settings) {
     if (!known_override(key)) {
       const std::string near = nearest(key, override_keys());

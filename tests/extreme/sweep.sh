@@ -2,7 +2,7 @@
 # sweep.sh MDRMAP [WORKDIR]: mdrmap simulate over extreme histories (issue 23,
 # "no input runs unbounded"): holds from 1e-300 to 1e300 tau, velocities from
 # 1e-300 to 1e300, zeta0 = v tau / a from 1e-12 to 1e12, at fixed depth (--d)
-# and under load (--FN), each under a fixed timeout. Every case must end in one
+# and under load (--F0), each under a fixed timeout. Every case must end in one
 # of three ways:
 #   exit 0  finite output (no inf/nan in the rows or the pre line), stderr empty;
 #   exit 2  one stderr line naming an option ("mdrmap simulate: error: --OPT: ..."),
@@ -24,7 +24,7 @@ mkdir -p "$WORK"
 out="$WORK/sweep.out" err="$WORK/sweep.err"
 
 DEPTH="--d 1e-3 --R 1 --v 1" # a1 = sqrt(R d) = 0.0316
-LOAD="--FN 5.333333333333333 --R 1 --v 1" # a0 = 1 (G = 1)
+LOAD="--F0 5.333333333333333 --R 1 --v 1" # a0 = 1 (G = 1)
 
 # label | expected (any, or CODE[:option]) | arguments after "simulate"
 CASES=()
@@ -60,7 +60,7 @@ add "load hold 1e12 tau" any "$LOAD --tau 1 --history 0:1e12,1:1 --samples 11"
 add "load hold 1e18 tau" any "$LOAD --tau 1 --history 0:1e18,1:1 --samples 11"
 add "load hold 3e10 tau" any "$LOAD --tau 1 --history 0:3e10,1:1 --samples 11"
 add "load v 1e6 log 6 decades" any \
-  "--FN 5.333333333333333 --R 1 --tau 1 --v 1e6 --history 0:1e4,1e6:1 --spacing log --log-decades 6 --rtol 1e-3"
+  "--F0 5.333333333333333 --R 1 --tau 1 --v 1e6 --history 0:1e4,1e6:1 --spacing log --log-decades 6 --rtol 1e-3"
 add "load shs zeta0 1e8" any "$LOAD --tau 1e8 --history 0:1e9,1:1e9 --samples 11"
 
 declare -A count=()

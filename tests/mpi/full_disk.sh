@@ -29,7 +29,7 @@ cat >"$dir/cases.py" <<'EOF'
 # pyrun-needs: numpy
 import sys
 with open(sys.argv[1], "w") as f:
-    f.write("FN,R,tau,v,w1,T1\n")
+    f.write("F0,R,tau,v,w1,T1\n")
     for i in range(200):
         w1 = "1e100" if i % 2 else repr(0.5 + 0.01 * i)
         f.write(f"5.333333333333333,1,1,1,{w1},1\n")

@@ -52,13 +52,17 @@ ROWS = [
     ("unknown solver", {"solver": "fast"}, [], "solver"),
     ("unknown option", {}, ["--speed", "3"], "speed"),
     ("wrong case option", {}, ["--g", "3"], "g"),
+    ("F0 = 0", {"d": DROP, "F0": "0"}, [], "F0"),
+    ("F0 < 0", {"d": DROP, "F0": "-1"}, [], "F0"),
+    ("F0 = nan", {"d": DROP, "F0": "nan"}, [], "F0"),
+    ("F0 = inf", {"d": DROP, "F0": "inf"}, [], "F0"),
+    ("F0 not a number", {"d": DROP, "F0": "1N"}, [], "F0"),
+    ("d = 0 beside F0", {"d": "0", "F0": "1"}, [], "d"),
+    ("F0 = -1 beside d", {"F0": "-1"}, [], "F0"),
+    ("F0 twice", {"d": DROP, "F0": "1"}, ["--F0", "2"], "F0"),
+    # FN, the old spelling of F0: its errors name it as given
     ("FN = 0", {"d": DROP, "FN": "0"}, [], "FN"),
-    ("FN < 0", {"d": DROP, "FN": "-1"}, [], "FN"),
-    ("FN = nan", {"d": DROP, "FN": "nan"}, [], "FN"),
-    ("FN = inf", {"d": DROP, "FN": "inf"}, [], "FN"),
     ("FN not a number", {"d": DROP, "FN": "1N"}, [], "FN"),
-    ("d = 0 beside FN", {"d": "0", "FN": "1"}, [], "d"),
-    ("FN = -1 beside d", {"FN": "-1"}, [], "FN"),
     ("FN twice", {"d": DROP, "FN": "1"}, ["--FN", "2"], "FN"),
     ("fn (case)", {}, ["--fn", "1"], "fn"),
     ("missing --v1", {"v1": DROP}, [], "v1"),
@@ -148,7 +152,7 @@ OUTPUT_ROWS = {"output into a missing directory", "output into a read-only direc
 # Rows that give an option twice: a keyword argument cannot be repeated in a call
 # (Python's own TypeError); the module's own check covers a keyword given in both
 # spellings (t_end and t-end).
-TWICE_ROWS = {"FN twice", "--d twice", "--history twice"}
+TWICE_ROWS = {"F0 twice", "FN twice", "--d twice", "--history twice"}
 # Rows whose message is the module's own (keywords, not options): the option matches.
 OWN_MESSAGE_ROWS = {"unknown option", "wrong case option", "fn (case)", "--d without value"}
 
@@ -271,7 +275,8 @@ def test_numbers_are_refused_as_their_texts():
              ({"d": True}, "d", "must be a number, got True"),
              ({"d": [1, 2]}, "d", "must be a number"),
              ({"d": None}, "d", "needs a value"),
-             ({"FN": 1}, "", "give exactly one of --d D or --FN F0"),
+             ({"F0": 1}, "", "give exactly one of --d D or --F0 F0"),
+             ({"FN": 1}, "", "give exactly one of --d D or --F0 F0"),
              ({"v1": None, "history": [(1, 2, 3)]}, "history", "segment 1 must be a pair"),
              ({"v1": None, "history": 5}, "history", "must be a list of segments"),
              ({"v1": None, "history": []}, "history", "got an empty string"),
@@ -286,7 +291,7 @@ def test_numbers_are_refused_as_their_texts():
 
 
 def test_a_solver_refusing_the_loading_is_bad_input(exe):
-    kw = dict(FN="0.1", R="10", tau="1", v="1", v1="2", solver="exact")
+    kw = dict(F0="0.1", R="10", tau="1", v="1", v1="2", solver="exact")
     with pytest.raises(mdrmap.InvalidInput) as e:  # refused by the solver, the GIL released
         mdrmap.simulate(**kw)
     assert e.value.option == "solver"

@@ -21,7 +21,7 @@ def test_fit_recovers_tau_and_d(srcdir):
 
 def test_healing_through_the_module_equals_the_tool(srcdir, exe):
     mine = run([sys.executable, f"{srcdir}/docs/examples/healing.py"])
-    theirs = run([f"{srcdir}/tools/pyrun", f"{srcdir}/tools/healing.py", "--FN", "0.0533",
+    theirs = run([f"{srcdir}/tools/pyrun", f"{srcdir}/tools/healing.py", "--F0", "0.0533",
                   "--holds", "0.1,1,10,100", "--mdrmap", exe], env=dict(os.environ))
     assert mine == theirs
     assert "slope" in mine and len(mine.splitlines()) == 8

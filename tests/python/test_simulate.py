@@ -112,7 +112,7 @@ def test_case_sets_equal_the_cli_bit_for_bit(exe, which):
     dict(d=0.1, R=10, tau=1, v=2, v1=0.5, t_end=3, samples=9, solver="mdr", rtol=1e-3),
     dict(d=0.1, R=10, tau=1, v=1, history=[(1, 2), (0, 1000), (1, 5)], samples=31,
          spacing="log", log_decades=6, G=2.5),
-    dict(FN=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="mdr"),
+    dict(F0=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="mdr"),
 ])
 def test_examples_of_the_help_equal_the_cli(exe, kw):
     check_equal(exe, kw)
@@ -128,7 +128,7 @@ def test_texts_are_taken_as_the_cli_takes_them():
 
 
 def test_arrays_are_views_of_the_result_without_a_copy():
-    r = mdrmap.simulate(FN=0.1, R=10, tau=1, v=1, v1=2, samples=11)
+    r = mdrmap.simulate(F0=0.1, R=10, tau=1, v=1, v1=2, samples=11)
     for name in ("t", "segment", "FN", "Fx", "mu", "a2", "d", "a1"):
         arr = getattr(r, name)
         assert not arr.flags.owndata and arr.base is not None, name
@@ -141,7 +141,7 @@ def test_arrays_are_views_of_the_result_without_a_copy():
 
 @pytest.mark.parametrize("load", [False, True])
 def test_stationary_is_the_events_stationary_state(load):
-    base = dict(FN=0.05, R=3, tau=2, v=0.7, G=1.5) if load else dict(d=0.02, R=3, tau=2, v=0.7)
+    base = dict(F0=0.05, R=3, tau=2, v=0.7, G=1.5) if load else dict(d=0.02, R=3, tau=2, v=0.7)
     st = mdrmap.stationary(**base)
     r = mdrmap.simulate(**base, v1=0.07, samples=5)
     assert st["mu"] == r.events[0]["mu_ss_before"]
@@ -158,7 +158,7 @@ def test_parameters_are_the_table_of_the_help(exe):
     assert code == 0
     flat = " ".join(out.split())
     names = [p["name"] for p in table]
-    assert names[:2] == ["d", "FN"] and "tau" in names and "log-decades" in names
+    assert names[:2] == ["d", "F0"] and "tau" in names and "log-decades" in names
     for p in table:
         assert " ".join(p["help"].split()) in flat, p["name"]
         assert f"--{p['name']} {p['symbol']}" in out

@@ -31,7 +31,7 @@ def test_other_threads_run_while_the_solver_runs():
     # drop by 1e-6): while it runs, this thread (pure Python, it needs the GIL)
     # keeps ticking; were the GIL held through the solver, no tick could fall
     # inside the call's middle
-    kw = dict(FN=0.004, R=2, tau=1, v=114471.4242553332, samples=11,
+    kw = dict(F0=0.004, R=2, tau=1, v=114471.4242553332, samples=11,
               history=[(0.1144714242553332, 3.0), (114.4714242553332, 2.0)])
     times = {}
 

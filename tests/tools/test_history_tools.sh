@@ -11,7 +11,7 @@
 #     a step down has b < 0, and a reslide after a hold of any length has no
 #     peak (dmu_peak = 0 for every hold);
 #   - the tools' a and a-b equal mdrmap's own event metrics of the same CSVs;
-#   - under load (--FN): every run's F_N is F0, the runs have settled, and the
+#   - under load (--F0): every run's F_N is F0, the runs have settled, and the
 #     tools' a, a-b equal the event metrics (whose stationary states must then
 #     be those under load); mu just after a reslide from a 1000 tau hold equals
 #     its closed form (reslide out of the Hertz contact, d continuous);
@@ -108,7 +108,7 @@ ok "fixed depth: no peak after a hold of 0.1, 10 or 1000 tau"
 # ------------------------------------------------------------ load control
 # F0 = 16/3 G a0^3 / R with a0 = 1, R = 100
 F0=0.053333333333333333
-run steps_load py "$ST" --FN $F0 --R 100 --samples 41 --rtol 1e-3 --mdrmap "$MDRMAP" \
+run steps_load py "$ST" --F0 $F0 --R 100 --samples 41 --rtol 1e-3 --mdrmap "$MDRMAP" \
   --csv-dir "$W/steps_load" -o "$W/steps_load.png"
 png "$W/steps_load.png"
 for f in "$W"/steps_load/step_*.csv; do
@@ -121,6 +121,7 @@ awk '$1 ~ /^[0-9.]+$/ && NF > 5 { if ($NF + 0 > 1e-3) bad = 1 } END { exit bad }
 ok "load control: every step run settles"
 event_check "$W/steps_load" "$W/steps_load.out"
 
+# (--FN: the old spelling of --F0, still taken)
 run healing_load py "$HE" --FN $F0 --R 100 --samples 31 --rtol 1e-3 --holds 0.1,10,1000 \
   --zeta0 0.1,1,10 --mdrmap "$MDRMAP" --csv-dir "$W/healing_load" -o "$W/healing_load.png"
 png "$W/healing_load.png"
@@ -162,25 +163,26 @@ ok "load control: mu just after the reslide from a 1000 tau hold matches the clo
 
 # ------------------------------------------------------------ bad input
 fake="$W/fake_mdrmap"
-printf '#!/bin/sh\necho "mdrmap simulate: error: --FN: broken on purpose" >&2\nexit 2\n' >"$fake"
+printf '#!/bin/sh\necho "mdrmap simulate: error: --F0: broken on purpose" >&2\nexit 2\n' >"$fake"
 chmod +x "$fake"
 base=(--R 100 --mdrmap "$MDRMAP")
-bad neither "exactly one of --FN" py "$ST" "${base[@]}"
-bad both "exactly one of --FN" py "$HE" --FN 1 --d 0.1 "${base[@]}"
-bad FN_negative "--FN: must be" py "$ST" --FN -1 "${base[@]}"
-bad FN_nan "--FN: must be" py "$HE" --FN nan "${base[@]}"
-bad tau_zero "--tau" py "$ST" --FN 1 --tau 0 "${base[@]}"
-bad zeta_text "--zeta0" py "$ST" --FN 1 --zeta0 1,abc "${base[@]}"
-bad zeta_zero "--zeta0" py "$HE" --FN 1 --zeta0 0 "${base[@]}"
-bad ratio_one "--ratio" py "$ST" --FN 1 --ratio 1 "${base[@]}"
-bad holds_order "--holds" py "$HE" --FN 1 --holds 10,1 "${base[@]}"
-bad samples "--samples" py "$HE" --FN 1 --samples 2 "${base[@]}"
-bad unknown_option "unrecognized arguments" py "$ST" --FN 1 --speed 3 "${base[@]}"
-bad from_csv_no_dir "--csv-dir" py "$ST" --FN 1 --from-csv "${base[@]}"
-bad from_csv_missing "no such file" py "$HE" --FN 1 --from-csv --csv-dir "$W/nothing" "${base[@]}"
+bad neither "exactly one of --F0" py "$ST" "${base[@]}"
+bad both "exactly one of --F0" py "$HE" --F0 1 --d 0.1 "${base[@]}"
+bad both_spellings "argument --FN: not allowed with argument --F0" py "$ST" --F0 1 --FN 1 "${base[@]}"
+bad F0_negative "--F0: must be" py "$ST" --F0 -1 "${base[@]}"
+bad F0_nan "--F0: must be" py "$HE" --F0 nan "${base[@]}"
+bad tau_zero "--tau" py "$ST" --F0 1 --tau 0 "${base[@]}"
+bad zeta_text "--zeta0" py "$ST" --F0 1 --zeta0 1,abc "${base[@]}"
+bad zeta_zero "--zeta0" py "$HE" --F0 1 --zeta0 0 "${base[@]}"
+bad ratio_one "--ratio" py "$ST" --F0 1 --ratio 1 "${base[@]}"
+bad holds_order "--holds" py "$HE" --F0 1 --holds 10,1 "${base[@]}"
+bad samples "--samples" py "$HE" --F0 1 --samples 2 "${base[@]}"
+bad unknown_option "unrecognized arguments" py "$ST" --F0 1 --speed 3 "${base[@]}"
+bad from_csv_no_dir "--csv-dir" py "$ST" --F0 1 --from-csv "${base[@]}"
+bad from_csv_missing "no such file" py "$HE" --F0 1 --from-csv --csv-dir "$W/nothing" "${base[@]}"
 bad from_csv_other_case "rerun without --from-csv" py "$ST" --d 0.02 --R 100 --samples 41 \
   --csv-dir "$W/steps_depth" --from-csv
-bad no_mdrmap "not an executable" py "$ST" --FN 1 --mdrmap "$W/none"
-bad mdrmap_fails "broken on purpose" py "$HE" --FN 1 --mdrmap "$fake"
+bad no_mdrmap "not an executable" py "$ST" --F0 1 --mdrmap "$W/none"
+bad mdrmap_fails "broken on purpose" py "$HE" --F0 1 --mdrmap "$fake"
 
 echo "all $checks checks passed"

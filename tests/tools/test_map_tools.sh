@@ -21,7 +21,7 @@
 #   - map_steps: after the step up (event 0) every response has reached the
 #     new stationary state (normalised response 1 at the end of 10 tau);
 #     --select and --cases pick the cases they say;
-#   - map_rate_state: over (v, FN) of load_sweep every a, b, a - b is defined
+#   - map_rate_state: over (v, F0) of load_sweep every a, b, a - b is defined
 #     and the direct effect a > 0; over (v, w1_over_v) of seed_step the stop
 #     (w1 = 0) gives 5 undefined cells of a per panel;
 #   - map_friction_velocity: under load the maximum of the stationary friction,
@@ -157,15 +157,15 @@ expect_in steps_cases "$W/steps_cases.out" "event 0: 3 case(s); mu in units of a
 ok "map_steps: --event 1 --select v=0.1 (one case), --cases 1,2,3 of a fixed-depth map"
 
 # ---------------------------------------------------------------- map_rate_state
-run rs_sweep py "$RS" "$W/load_sweep.h5" --x v --y FN -o "$W/rs_sweep.png"
+run rs_sweep py "$RS" "$W/load_sweep.h5" --x v --y F0 -o "$W/rs_sweep.png"
 cat "$W/rs_sweep.out"
 png "$W/rs_sweep.png" 1380 1032
-expect_in rs_sweep "$W/rs_sweep.out" "event 0 over v (25 values, log) x FN (3 values, log)"
+expect_in rs_sweep "$W/rs_sweep.out" "event 0 over v (25 values, log) x F0 (3 values, log)"
 awk '$1 == "a" || $1 == "b" || $1 == "a_minus_b" { n++; if ($3 != 75 || $4 != 0) bad = 1 }
      $1 == "a" && !($6 > 0) { print "a min " $6; bad = 1 }
      END { exit (bad || n != 3) }' "$W/rs_sweep.out" ||
   fail "map_rate_state: a, b, a-b not all defined over load_sweep, or a <= 0"
-ok "map_rate_state: over (v, FN) every a, b, a - b is defined, and a > 0"
+ok "map_rate_state: over (v, F0) every a, b, a - b is defined, and a > 0"
 run rs_seed py "$RS" "$W/seed_step.h5" --x v --y w1_over_v --select tau=1.9 -o "$W/rs_seed.png"
 expect_in rs_seed "$W/rs_seed.out" "--select tau=1.9 -> tau=2 (value 2 of 2)"
 awk '$1 == "a" { exit !($4 == 5) }' "$W/rs_seed.out" || fail "map_rate_state: the stop is not undefined"
@@ -178,7 +178,7 @@ ok "map_rate_state: one varying axis gives line plots (velocity_steps, event 1)"
 run fv py "$FV" "$W/load_sweep.h5" -o "$W/fv.png"
 cat "$W/fv.out"
 png "$W/fv.png" 960 648
-# "maximum of FN=...: zeta0 = X (...), mu = Y (...); analytic: zeta0 = XA (...), mu = YA (...)"
+# "maximum of F0=...: zeta0 = X (...), mu = Y (...); analytic: zeta0 = XA (...), mu = YA (...)"
 awk -v zs=1.397964867 -v ms=0.886274212 '
   function rel(x, r) { x = x / r - 1; return x < 0 ? -x : x }
   /^maximum of / { n++

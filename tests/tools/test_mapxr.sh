@@ -52,6 +52,7 @@ EOF
 printf '[cases]\nfile = cases.csv\n[run]\nsamples = 5\n' >"$W/cases.ini"
 # under load, the second of three cases fails (w1 = 1e100): /failures holds it
 cat >"$W/failing.csv" <<'EOF'
+# FN: the old spelling of the load F0, read as F0
 FN,R,tau,v,w1,T1
 5.333333333333333,1,1,1,0.5,1
 5.333333333333333,1,1,1,1e100,1

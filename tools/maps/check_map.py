@@ -56,8 +56,10 @@ SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/map-s
 
 
 def expected_datasets2(n, k, s, load, timeseries):
+    """`load`: the name of the prescribed load's /cases column (F0, or FN in a
+    map written before it was named F0), or None at fixed depth."""
     q = ["FN", "Fx", "mu", "a2"] + (["d", "a1"] if load else [])
-    d = {f"cases/{c}": ((n,), "f8") for c in ["FN" if load else "d", "R", "tau", "G", "v"]}
+    d = {f"cases/{c}": ((n,), "f8") for c in [load or "d", "R", "tau", "G", "v"]}
     d["cases/w"] = ((n, k), "f8")
     d["cases/T"] = ((n, k), "f8")
     d["results/status"] = ((n,), "i1")
@@ -146,12 +148,13 @@ def check2(f, complete, expect_failed):
     if problems:
         return problems, {}
     n, k, s = (int(f.attrs[a]) for a in ("n_cases", "segments", "samples"))
-    load = "cases/FN" in f
+    # the prescribed load: /cases/F0 (/cases/FN in a map of an earlier mdrmap)
+    load = next((c for c in ("F0", "FN") if f"cases/{c}" in f), None)
     loading = f.attrs["loading"]
     loading = loading.decode() if isinstance(loading, bytes) else str(loading)
     if loading != ("force" if load else "depth"):
         problems.append(f"root attribute loading is {loading!r} but /cases has "
-                        f"{'FN' if load else 'd'}")
+                        f"{load or 'd'}")
     check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f), problems)
     status = check_grid_status(f, n, problems)
     done = status == 1

@@ -135,7 +135,7 @@ void check_velocities(const Case& c, double a) {
 // forces; see contact_problem).
 void check_scales(const Case& c) {
   const bool load = c.loading.by_force();
-  const char* opt = load ? "FN" : "d";
+  const char* opt = load ? "F0" : "d";
   const double a = c.edge_scale();
   if (!(a > 0.0) || !std::isfinite(a))
     throw InvalidInput(opt, std::string(load ? "with R and G gives a Hertz radius a0 = "
@@ -161,7 +161,7 @@ void check_scales(const Case& c) {
   check_velocities(c, a);
 }
 
-/// Exactly one parameter of each group (e.g. d or FN) is given (non-zero).
+/// Exactly one parameter of each group (e.g. d or F0) is given (non-zero).
 /// (No strings unless it fails: every case of a study passes here.)
 void check_groups(const Case& c) {
   const auto same_group = [](const ParamSpec& p, const ParamSpec& q) {
@@ -249,7 +249,7 @@ void require_depth_control(const Case& c, const char* solver) {
   if (c.loading.by_force())
     throw InvalidInput("solver", std::string(solver) +
                                      " solves depth control only (--d); this case prescribes the "
-                                     "normal force (--FN)");
+                                     "normal load (--F0)");
 }
 
 void require_kelvin(const Case& c, const char* solver) {

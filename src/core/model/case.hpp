@@ -164,7 +164,7 @@ Case step_case(double d, double R, double tau, double v, double v1, double G = 1
 /// half-widths at the slower speed.
 double default_step_duration(double d, double R, double tau, double v, double v1);
 
-/// Throws InvalidInput("FN") unless the case is depth-controlled: the fixed-
+/// Throws InvalidInput("solver") unless the case is depth-controlled: the fixed-
 /// depth solvers' guard (`solver` names the caller in the message).
 void require_depth_control(const Case& c, const char* solver);
 

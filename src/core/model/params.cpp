@@ -108,8 +108,8 @@ const std::vector<ParamSpec>& case_parameters() {
   static const std::vector<ParamSpec> table = {
       {"d", "D", Part::Loading, Dim::Length, 0.0, false, kInf, false, "loading", 0.0,
        "indentation depth (depth control)", get_d, set_d},
-      {"FN", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
-       "prescribed normal force (load control: the depth follows it)", get_F0, set_F0},
+      {"F0", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
+       "prescribed normal load (load control: the depth follows it)", get_F0, set_F0},
       {"R", "R", Part::Indenter, Dim::Length, 0.0, false, kInf, true, nullptr, 0.0,
        "radius of curvature of the parabolic indenter", get_R, set_R},
       {"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, nullptr, 0.0,
@@ -192,9 +192,34 @@ const ParamSpec& branch_time_spec() {
   return s;
 }
 
+const std::vector<ParamAlias>& parameter_aliases() {
+  // FN: the prescribed load's name before it was told apart from the
+  // measured normal force FN of the results
+  static const std::vector<ParamAlias> aliases = {{"FN", "F0"}};
+  return aliases;
+}
+
+std::string canonical_parameter_name(const std::string& name) {
+  for (const auto& a : parameter_aliases())
+    if (name == a.alias) return a.name;
+  return name;
+}
+
+const ParamAlias* alias_of(const std::string& name) {
+  for (const auto& a : parameter_aliases())
+    if (name == a.name) return &a;
+  return nullptr;
+}
+
+std::string two_spellings(const ParamAlias& a, const std::string& prefix) {
+  return prefix + a.name + " and " + prefix + a.alias + " are the same parameter (" + a.alias +
+         " is the old spelling of " + a.name + "); give only one";
+}
+
 const ParamSpec* find_parameter(const std::string& name) {
+  const std::string canonical = canonical_parameter_name(name);
   for (const auto& p : case_parameters())
-    if (name == p.name) return &p;
+    if (canonical == p.name) return &p;
   return nullptr;
 }
 

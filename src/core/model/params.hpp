@@ -67,7 +67,29 @@ const ParamSpec& segment_duration_spec();
 const ParamSpec& branch_modulus_spec();
 const ParamSpec& branch_time_spec();
 
-/// The entry named `name`, or nullptr.
+/// An old spelling a parameter of the table is still read under, wherever a
+/// user names a case parameter (options, config keys, case-list columns,
+/// Python keywords); outputs use the table's name only.
+struct ParamAlias {
+  const char* alias; ///< the old spelling, e.g. "FN"
+  const char* name;  ///< the table's name, e.g. "F0" (the prescribed load)
+};
+
+/// Every alias of the table: FN for F0.
+const std::vector<ParamAlias>& parameter_aliases();
+
+/// The table's name of `name`: the name an alias stands for ("FN" -> "F0"),
+/// any other name as it is.
+std::string canonical_parameter_name(const std::string& name);
+
+/// The alias of the table's parameter `name`, or nullptr.
+const ParamAlias* alias_of(const std::string& name);
+
+/// The refusal of both spellings: "<prefix>F0 and <prefix>FN are the same
+/// parameter (FN is the old spelling of F0); give only one".
+std::string two_spellings(const ParamAlias& a, const std::string& prefix);
+
+/// The entry named `name` (or an alias of it), or nullptr.
 const ParamSpec* find_parameter(const std::string& name);
 
 } // namespace mdrmap

@@ -307,7 +307,7 @@ void merge(LoadChecks& a, const LoadChecks& b) {
 RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   validate(c);
   if (!c.loading.by_force())
-    throw InvalidInput("solver", "the load solver needs a prescribed normal force (--FN)");
+    throw InvalidInput("solver", "the load solver needs a prescribed normal load (--F0)");
   require_kelvin(c, "the load solver");
   validate_rtol(opt.rtol);
   RunResult res;

@@ -345,7 +345,7 @@ RunResult run_once(const Case& c, const LoadBaselineOptions& opt, const RunContr
 RunResult run_load_baseline(const Case& c, const LoadBaselineOptions& opt) {
   validate(c);
   if (!c.loading.by_force())
-    throw InvalidInput("solver", "the load-control baseline solves load control only (--FN); "
+    throw InvalidInput("solver", "the load-control baseline solves load control only (--F0); "
                                  "this case prescribes the depth (--d)");
   require_kelvin(c, "the load-control baseline");
   const RunControl own;

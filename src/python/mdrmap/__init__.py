@@ -2,17 +2,19 @@
 
     import mdrmap
     r = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5)          # one step
-    r = mdrmap.simulate(FN=0.1, R=10, tau=1, v=1,                  # load control
+    r = mdrmap.simulate(F0=0.1, R=10, tau=1, v=1,                  # load control
                         history=[(0.1, 20), (1, 20)], samples=101)
     r.t, r.mu, r.FN, r.Fx, r.a2        # numpy arrays (r.d, r.a1 under load)
+                                       # (FN: the measured normal force)
     r.events[0]["a_minus_b"], r.pre["mu"], r.info["error_estimate"]
 
 The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
-lists the table's: d or FN, R, tau, G, v, samples, log_decades), with '_' for
+lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
 '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
 numbers (or as the text the command line takes); the history as a list of
-(w, T) pairs (or "W1:T1,W2:T2"). The results equal the command line's bit
+(w, T) pairs (or "W1:T1,W2:T2"). FN= is accepted as the old spelling of the
+prescribed load F0= (not both). The results equal the command line's bit
 for bit; the solver runs without the GIL, so a thread pool over cases uses
 every core.
 """
@@ -30,6 +32,8 @@ __all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Resul
 # the options as the command line spells them -> the keyword of each
 _OPTIONS = _core.option_names()
 _TABLE = _core.parameter_table()
+# the old spellings the options take, {alias: option}: FN for F0
+_ALIASES = _core.parameter_aliases()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
 # the case's parameters without history and sampling, and its spectrum and temperature
 _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
@@ -37,9 +41,12 @@ _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
 
 
 def _keywords(options):
-    """keyword -> option: each option under its Python name (and as spelled)."""
+    """keyword -> option: each option under its Python name (and as spelled),
+    and the old spelling of a parameter (FN) as itself (the core reads it as
+    its parameter's and refuses both)."""
     out = {o.replace("-", "_"): o for o in options}
     out.update({o: o for o in options})
+    out.update({alias: alias for alias, name in _ALIASES.items() if name in options})
     return out
 
 
@@ -116,7 +123,7 @@ class Result:
 
     t, segment, FN, Fx, mu, a2   numpy arrays, one value per sample (segment
                                  after segment; t since the first change);
-                                 under load (FN=) also d and a1
+                                 under load (F0=) also d and a1
     events   one dict per velocity change k (the CSV's `# event` line): k, t,
              w_before, w_after, mu_before, mu_after, mu_peak, t_peak,
              slip_peak, mu_end, mu_ss_before, mu_ss_after, D_c, a,
@@ -139,8 +146,8 @@ class Result:
 
     @property
     def load(self):
-        """Whether the case is load-controlled (FN given)."""
-        return "FN" in self.case
+        """Whether the case is load-controlled (F0 given)."""
+        return "F0" in self.case
 
     def __repr__(self):
         return (f"<mdrmap.Result {self.t.size} samples, {len(self.events)} events, "
@@ -150,7 +157,8 @@ class Result:
 def simulate(**options):
     """Runs one case as `mdrmap simulate` does and returns a Result.
 
-    Keywords: d (depth control) or FN (load control), R, tau, v, and G,
+    Keywords: d (depth control) or F0 (load control; FN, its old spelling,
+    is accepted), R, tau, v, and G,
     the history: v1 (one step, with t_end) or history=[(w1, T1), ...],
     the sampling: samples, spacing ("linear", "log"), log_decades,
     the run: rtol, solver ("auto", "exact", "mdr", "baseline", "spectrum").
@@ -162,7 +170,7 @@ def simulate(**options):
 
 def stationary(**options):
     """The stationary state at velocity v (FN, Fx, mu, a2, and d, a1 under
-    load) of the case's parameters without a history: d or FN, R, tau, v, G,
+    load) of the case's parameters without a history: d or F0, R, tau, v, G,
     and its spectrum (prony= as "G1:TAU1,..." or [(G1, TAU1), ...], or
     prony_file=) and shift (aT=, or T= with wlf=).
     It is the state that events[0]["mu_ss_before"] of simulate describes."""

@@ -4,8 +4,10 @@ open_map(path) merges the map's groups into one Dataset with dimension
 `case` (and `event` for per-event values, `sample` for the time series). It
 reads both layouts (the root attribute mdrmap_schema):
 
-  - /cases columns as coordinates along `case` (mdrmap-map/2: d or FN, R, tau,
+  - /cases columns as coordinates along `case` (mdrmap-map/2: d or F0, R, tau,
     G, v, and w and T over (case, event); mdrmap-map/1: d, R, tau, v, v1, G);
+    the prescribed load of a map written before it was named F0 (/cases/FN,
+    a grid axis FN) is read as F0 too (CASE_ALIASES);
   - /results under their bare names (FN_pre, error_estimate, wall_seconds,
     status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a
     case failed ('' otherwise; mdrmap-map/2: from /failures/{case,message});
@@ -49,6 +51,15 @@ SCHEMA2 = "mdrmap-map/2"
 SCHEMAS = {SCHEMA1: 1, SCHEMA2: 2}
 # /cases columns a schema-1 map must have
 _CASE_COLS1 = ["d", "R", "tau", "v", "v1"]
+# the old names of /cases columns and grid axes -> today's: FN, the prescribed
+# normal load in maps written before it was named F0 (apart from the measured
+# normal force FN of /results and /timeseries)
+CASE_ALIASES = {"FN": "F0"}
+
+
+def case_name(name):
+    """Today's name of a /cases column or grid axis (F0 for an old map's FN)."""
+    return CASE_ALIASES.get(name, name)
 
 
 class MapError(ValueError):
@@ -247,7 +258,9 @@ def _read_h5(path):
             if math.prod(len(v) for v in values) != n:
                 raise MapError(f"{path}: /grid axes {axes} of shape "
                                 f"{[len(v) for v in values]} do not fit {n} cases")
-            grid = {"axes": axes, "values": values, "log": log, "described": described}
+            renamed = [case_name(a) for a in axes]  # an old map's FN: F0
+            described = {case_name(a): d for a, d in described.items()}
+            grid = {"axes": renamed, "values": values, "log": log, "described": described}
         scaled = "case" in f and f["case"].attrs.get("CLASS") == b"DIMENSION_SCALE"
         version = schema_version(f)
         messages = failure_messages(f, n) if version == 2 else None
@@ -283,6 +296,8 @@ def _open_group(path, group, prefix, n, scaled, version):
         ds[name].attrs["map_path"] = f"{group}/{name}"
     ds = ds.rename({k: prefix + k for k in ds.data_vars}) if prefix else ds
     if group == "cases":
+        ds = ds.rename({k: case_name(k) for k in ds.data_vars
+                        if case_name(k) != k and case_name(k) not in ds.data_vars})
         ds = ds.set_coords(list(ds.data_vars))
     ds.attrs = {}
     return ds
