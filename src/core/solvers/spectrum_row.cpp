@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
 namespace mdrmap::spectrum {
 namespace {
 
-constexpr int kMaxEvents = 8; // contact switches of one element within one step
+constexpr int kMaxEvents = 8;           // contact switches of one element within one step
+constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
 
 // Root of f on [0, hi] with f(0) > 0 > f(hi); the end itself when the sign
 // condition fails there (rounding at a tangency).
@@ -75,6 +78,7 @@ void Row::save(Snapshot& s) const {
   s.d = d_;
   s.dd = dd_;
   s.w = w_;
+  stable_ = log_.size();
 }
 
 void Row::restore(const Snapshot& s) {
@@ -84,6 +88,9 @@ void Row::restore(const Snapshot& s) {
   jlo_ = s.jlo;
   jhi_ = s.jhi;
   log_.resize(s.log);
+  tracers_.erase(std::remove_if(tracers_.begin(), tracers_.end(),
+                                [&](const Tracer& t) { return t.n > s.log; }),
+                 tracers_.end());
   d_ = s.d;
   dd_ = s.dd;
   w_ = s.w;
@@ -104,6 +111,7 @@ void Row::start_stationary(double v0) {
   w_ = v0;
   dd_ = 0.0;
   log_.clear();
+  tracers_.clear();
   const double dt = (a1_now() + aw_ + 6.0 * dx_) / v0;
   set_position(-static_cast<long double>(v0 * dt / dx_));
   jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
@@ -149,6 +157,8 @@ void Row::renumber() {
     jhi_ += K;
     for (Entry& e : log_)
       e.P -= static_cast<long double>(K);
+    for (Tracer& t : tracers_)
+      t.J += static_cast<long double>(K);
   }
 }
 
@@ -263,28 +273,66 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
   return tc;
 }
 
-// The state now of the material point at J (node numbering: node j is J = j),
-// replayed from the log: fresh until it enters at -a1.
-Row::Material Row::replay(long double J) const {
-  Material mt;
+// Carries material point J, in state mt after the first `from` log entries,
+// through entries [from, to) (node numbering: node j is J = j): fresh until it
+// enters at -a1; gone once past the window and free (it never touches again).
+// Returns the element updates.
+long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const {
+  auto it = log_.begin() + static_cast<std::ptrdiff_t>(from);
+  const auto end = log_.begin() + static_cast<std::ptrdiff_t>(to);
+  if (mt.mode == Mode::Fresh) // entries that end with the point ahead of the window (P grows)
+    it = std::partition_point(it, end, [&](const Entry& e) {
+      return (J + e.P + static_cast<long double>(phase_)) * static_cast<long double>(dx_) <=
+             -static_cast<long double>(aw_);
+    });
   long done = 0;
-  // entries that end with the point ahead of the window: it was fresh (P grows)
-  const auto first = std::partition_point(log_.begin(), log_.end(), [&](const Entry& e) {
-    return (J + e.P + static_cast<long double>(phase_)) * static_cast<long double>(dx_) <=
-           -static_cast<long double>(aw_);
-  });
-  for (auto it = first; it != log_.end(); ++it) {
+  for (; it != end && !gone; ++it) {
     const Entry& e = *it;
     const double x = static_cast<double>((J + e.P + static_cast<long double>(phase_)) *
                                          static_cast<long double>(dx_));
     if (e.dt < 0.0) {
       change_material(mt.mode, mt.y, x, e.w, e.d0, e.s);
     } else if (mt.mode != Mode::Fresh || x > -std::sqrt(R_ * std::max(e.d0, e.d0 + e.s * e.dt))) {
-      if (x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact) break; // never touches again
+      gone = x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact;
+      if (gone) break;
       step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, e.d0, e.s);
       ++done;
     }
   }
+  return done;
+}
+
+// The cached tracer at J (a new one, fresh before the log, in the place of the
+// least recently used where the cache is full).
+Row::Tracer& Row::tracer(long double J) const {
+  for (Tracer& t : tracers_)
+    if (t.J == J && t.n <= log_.size()) return t;
+  Tracer fresh;
+  fresh.J = J;
+  if (tracers_.size() < kMaxTracers) {
+    tracers_.push_back(fresh);
+    return tracers_.back();
+  }
+  Tracer& old = *std::min_element(tracers_.begin(), tracers_.end(),
+                                  [](const Tracer& a, const Tracer& b) { return a.used < b.used; });
+  old = fresh;
+  return old;
+}
+
+// The state now of the material point at J: its tracer carried to the part of
+// the log no restore drops (and kept), then through the rest (not kept).
+Row::Material Row::replay(long double J) const {
+  Tracer& t = tracer(J);
+  t.used = measures_;
+  const std::size_t keep = std::min(stable_, log_.size());
+  long done = 0;
+  if (t.n < keep) {
+    done += carry(t.m, t.gone, J, t.n, keep);
+    t.n = keep;
+  }
+  Material mt = t.m;
+  bool gone = t.gone;
+  done += carry(mt, gone, J, t.n, log_.size());
   control_.charge(static_cast<double>(done), name_);
   return mt;
 }
@@ -324,39 +372,88 @@ double Row::node_p(long long j) const {
   return pressure_at(&y_[slot(j) * stride_], xi(j));
 }
 
+// What the edge search sees of material in mode md, state y, at x: s = p/G0
+// in contact (> 0), the gap h - u free (< 0; fresh: h).
+double Row::edge_sign(Mode md, const double* y, double x) const {
+  if (md == Mode::Contact) return std::max(pressure_at(y, x), 0.0) / law_.G0() + 1e-300;
+  return std::min(md == Mode::Fresh ? depth(x) : depth(x) - law_.free_u(y), -1e-300);
+}
+
+// The edge after node jb predicted from one side: the zero in (0, 1) of the
+// cubic through four nodes, jb-3..jb in contact (their forces) or jb+1..jb+4
+// free (their gaps), else NaN. The force of material in contact is smooth up
+// to an edge where it lets go, the gap of free material up to an edge where it
+// touches again once its fast branches have relaxed (layers as thin as
+// v tau_k trail a point that has just let go): each predicts its own kind to
+// O(dx^4).
+double Row::predicted_edge(long long jb, bool contact) const {
+  const long long j0 = contact ? jb - 3 : jb + 1;
+  if (j0 < jlo_ || j0 + 3 > jhi_) return std::nan("");
+  double f[4];
+  for (int i = 0; i < 4; ++i) {
+    const std::size_t sl = slot(j0 + i);
+    if (mode_[sl] != (contact ? Mode::Contact : Mode::Free)) return std::nan("");
+    const double x = xi(j0 + i);
+    f[i] = contact ? pressure_at(&y_[sl * stride_], x) : depth(x) - law_.free_u(&y_[sl * stride_]);
+  }
+  const double t0 = static_cast<double>(j0 - jb);
+  auto cubic = [&](double t) { // Lagrange on t0 .. t0 + 3
+    const double u = t - t0;
+    return (-f[0] * (u - 1) * (u - 2) * (u - 3) + 3 * f[1] * u * (u - 2) * (u - 3) -
+            3 * f[2] * u * (u - 1) * (u - 3) + f[3] * u * (u - 1) * (u - 2)) /
+           6.0;
+  };
+  double lo = 0.0, hi = 1.0;
+  if (!(cubic(lo) >= 0.0 && cubic(hi) < 0.0)) return std::nan("");
+  for (int it = 0; it < 50; ++it)
+    (cubic(0.5 * (lo + hi)) >= 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
 // The trailing edge of a contact run ending at node jb: the end of the
 // contact among the material points between node jb and the next one, each
-// replayed: the root of s = p/G0 on material in contact (>= 0; with tau = 0
-// the gap of its free projection) and s = h - u on free material (< 0), to
-// edge_tol (TOMS 748: bisection where s jumps, superlinear where it is
-// smooth); pe the force of the outermost point found in contact.
+// replayed: the root of s (edge_sign) to edge_tol. Each side's prediction is
+// tried by two replayed points tol apart around it (on a lattice of spacing tol: the
+// points recur from trial to trial and step to step while the edge stays
+// near, and their replays continue from the cache); else TOMS 748 on the
+// bracket left (bisection where s jumps, superlinear where it is smooth). pe:
+// the force of the outermost point found in contact.
 double Row::trailing_edge(long long jb, double& pe) const {
-  const double xb = xi(jb);
+  const double xb = xi(jb), a1 = a1_now();
   pe = node_p(jb);
-  const double a1 = a1_now();
   if (jb + 1 > jhi_) return std::min(xb + 0.5 * dx_, a1); // (contact past a1: never)
+  const std::size_t next = slot(jb + 1);
+  const double s1 = edge_sign(mode_[next], &y_[next * stride_], xb + dx_);
+  if (!(s1 < 0.0)) return std::min(xb + dx_, a1); // (the next node is in contact: never)
   double best = 0.0;
   auto s = [&](double frac) {
     const Material mt = replay(static_cast<long double>(jb) + static_cast<long double>(frac));
-    const double x = xb + frac * dx_;
-    if (mt.mode == Mode::Contact) {
-      const double p = pressure_at(mt.y, x);
-      if (frac >= best) {
-        best = frac;
-        pe = p;
-      }
-      return std::max(p, 0.0) / law_.G0() + 1e-300; // (> 0: in contact)
+    const double x = xb + frac * dx_, v = edge_sign(mt.mode, mt.y, x);
+    if (v > 0.0 && frac >= best) {
+      best = frac;
+      pe = pressure_at(mt.y, x);
     }
-    return std::min(mt.mode == Mode::Fresh ? depth(x) : depth(x) - law_.free_u(mt.y), -1e-300);
+    return v;
   };
-  const double s1 = s(1.0);
-
-  if (!(s1 < 0.0)) return std::min(xb + dx_, a1); // (the next node is in contact: never)
-  std::uintmax_t iters = 200;
   const double tol = edge_tol_ * a1 / dx_;
+  double lo = 0.0, hi = 1.0, slo = std::max(node_p(jb), 0.0) / law_.G0() + 1e-300, shi = s1;
+  for (const bool contact : {true, false}) {
+    const double tc = predicted_edge(jb, contact);
+    const double a = std::floor(tc / tol) * tol, b = a + tol;
+    if (!(a >= lo && b <= hi)) continue; // (also NaN)
+    const double sa = a > lo ? s(a) : slo, sb = b < hi ? s(b) : shi;
+    if (sa > 0.0 && sb < 0.0) { // (a <= tc < b)
+      if (contact) pe = 0.0;    // where the cubic of the forces vanishes (else at a)
+      return std::min(xb + tc * dx_, a1);
+    }
+    if (sa < 0.0)
+      std::tie(hi, shi) = std::make_pair(a, sa);
+    else
+      std::tie(lo, slo) = std::make_pair(b, sb);
+  }
+  std::uintmax_t iters = 200;
   const auto r = boost::math::tools::toms748_solve(
-      s, 0.0, 1.0, std::max(node_p(jb), 0.0) / law_.G0() + 1e-300, s1,
-      [tol](double a, double b) { return b - a <= tol; }, iters);
+      s, lo, hi, slo, shi, [tol](double l, double h) { return h - l <= tol; }, iters);
   pe = std::max(0.0, pe);
   return std::min(xb + r.first * dx_, a1);
 }
@@ -417,6 +514,7 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 
 State Row::measure() const {
   control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  ++measures_;
   State st;
   st.a1 = a1_now();
   st.a2 = -st.a1;

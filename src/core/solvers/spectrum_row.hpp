@@ -32,9 +32,16 @@
 // contact node and the next node; it is found by a root search over the
 // material points between them, each replayed: exact wherever the contact is one
 // interval near its end, whatever the free material's profile (thin tails,
-// tangencies after a drop, material let go at a rise).
+// tangencies after a drop, material let go at a rise). Cubics through the
+// forces of the last four contact nodes, or the gaps of the next four free
+// ones, predict it, two replayed points confirm a prediction (else the search
+// runs); the points lie on a lattice of the tolerance and their replays are
+// cached at the last saved log entry, so a point that recurs, over the trials
+// of a step under load and over the steps of a hold, continues from there
+// instead of from its entry.
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/model/case.hpp"
@@ -65,6 +72,8 @@ public:
     std::size_t log = 0;
     double d = 0.0, dd = 0.0, w = 0.0;
   };
+  /// Saves the state (the log up to here is kept by every restore: replayed
+  /// points are cached there).
   void save(Snapshot& s) const;
   void restore(const Snapshot& s);
 
@@ -115,6 +124,15 @@ private:
     Mode mode = Mode::Fresh;
     double y[kMaxBranches + 1] = {};
   };
+  /// Material point J replayed through the first n log entries (gone: past
+  /// the window and free, never to touch again); used: the last measure.
+  struct Tracer {
+    long double J = 0.0L;
+    std::size_t n = 0;
+    bool gone = false;
+    long used = 0;
+    Material m;
+  };
   void set_position(long double P);
   Grid grid(double dt, double w) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g, double d0,
@@ -122,11 +140,15 @@ private:
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
                  bool may_switch, double dA, double s) const;
   void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
+  long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
   Material replay(long double J) const;
+  Tracer& tracer(long double J) const;
   double locate(bool contact, const double* y, double x, double h, double w, double dA,
                 double s) const;
   double pressure_at(const double* q, double x) const;
   double node_p(long long j) const;
+  double edge_sign(Mode md, const double* y, double x) const;
+  double predicted_edge(long long jb, bool contact) const;
   double trailing_edge(long long jb, double& pe) const;
   void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const;
 
@@ -154,7 +176,10 @@ private:
   double w_ = 0.0;
   mutable long updates_ = 0;
   long steps_ = 0;
-  double edge_tol_ = 1e-9;               // the trailing edge's tolerance, in a1
+  double edge_tol_ = 1e-9;                // the trailing edge's tolerance, in a1
+  mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
+  mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
+  mutable long measures_ = 0;
   double psi_tiny_ = 0.0, p_tiny_ = 0.0; // gap and force below rounding
 };
 
