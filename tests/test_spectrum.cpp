@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cases/case_set.hpp"
+#include "cases/spectrum_case_set.hpp"
 #include "core/metrics/error_metric.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/exact.hpp"
@@ -33,15 +34,6 @@ Case spectrum_case(const Rheology& r, double zeta0, const Segs& segs, long sampl
   Case c = testing::history_case(zeta0, segs, samples); // Kelvin, tau = 1 = t_ref
   c.rheology = r;
   return c;
-}
-
-Rheology material(double G, double tau, const std::vector<std::pair<double, double>>& terms) {
-  Rheology r;
-  r.G = G;
-  r.tau = tau;
-  for (const auto& [Gk, tk] : terms)
-    r.branches.push_back(Branch{Gk, tk});
-  return r;
 }
 
 /// Equal-weight terms `per_decade` per decade from 10^lo to 10^hi.

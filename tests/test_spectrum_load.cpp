@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cases/load_case_set.hpp"
+#include "cases/spectrum_case_set.hpp"
 #include "core/metrics/creep.hpp"
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
@@ -27,15 +28,6 @@ namespace mdrmap {
 namespace {
 
 using Segs = std::vector<std::pair<double, double>>;
-
-Rheology material(double G, double tau, const Segs& terms) {
-  Rheology r;
-  r.G = G;
-  r.tau = tau;
-  for (const auto& [Gk, tk] : terms)
-    r.branches.push_back(Branch{Gk, tk});
-  return r;
-}
 
 Rheology six_terms() { // tau = 0, six equal terms a decade apart, 1e-3 .. 1e2
   Segs t;
