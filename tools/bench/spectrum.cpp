@@ -5,14 +5,19 @@
 //
 //   mdrmap_bench_spectrum [--quick] [--out DIR]
 //
-// Scenes at fixed depth, three-segment history (a tenfold step up, a hold of
-// 100 tau_ref, a reslide at v0): a 6-term spectrum (tau = 0, equal G_k a
-// decade apart), the standard linear solid (tau = 0, G1 = 9 G) and the Kelvin
-// foundation. For each: the case error against the solver at rtol 1e-7, the
-// estimate, and the median wall time at rtol 1e-3 and 1e-4; the brute-force
-// solver at the resolution where its error first falls to the spectrum
-// solver's error at rtol 1e-3 (a1/dx doubled from 32), and the ratio of their
-// times; for the Kelvin scene also mdr and exact. Prints the table and writes
+// Scenes with a three-segment history (a tenfold step up, a hold of 100
+// tau_ref, a reslide at v0): a 6-term spectrum (tau = 0, equal G_k a decade
+// apart), the standard linear solid (tau = 0, G1 = 9 G) and the Kelvin
+// foundation, each at fixed depth and under the load of its stationary
+// sliding at v0 at that depth. For each: the case error against the solver at
+// rtol 1e-7 (under load 1e-6; --quick: 1e-5), the estimate, and the median
+// wall time at rtol 1e-3 and 1e-4; the brute-force solver at a1/dx 64, 128
+// and 256 (fixed depth; under load 16, 32, 64), its observed order p and cost
+// exponent q over them, the resolution where its error would equal the
+// spectrum solver's at rtol 1e-3 and its time there, N^q extrapolated (it is
+// not run there: at fixed depth a1/dx of several thousand, tens of minutes),
+// and the ratio of that time to the spectrum solver's; for the Kelvin scenes
+// also mdr and exact (depth) or the load solver. Prints the table and writes
 // DIR/spectrum.md. Medians and ratios come from this one run.
 #include <chrono>
 #include <cmath>
@@ -24,7 +29,9 @@
 #include <vector>
 
 #include "core/metrics/error_metric.hpp"
+#include "core/metrics/spectrum_stationary.hpp"
 #include "core/solvers/exact.hpp"
+#include "core/solvers/load.hpp"
 #include "core/solvers/mdr.hpp"
 #include "core/solvers/spectrum.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
@@ -54,13 +61,24 @@ Case three_segments(double tau, std::vector<Branch> branches) {
   return c;
 }
 
+/// The scene under the load of its stationary sliding at v0 (same contact).
+Case under_load(Case c) {
+  c.loading.F0 = spectrum_stationary(c, c.history.v0).FN;
+  c.loading.d = 0.0;
+  return c;
+}
+
 std::vector<Scene> scenes() {
   std::vector<Branch> six;
   for (int k = 0; k < 6; ++k)
     six.push_back({1.0, std::pow(10.0, k - 5)}); // 1e-5 .. 1, longest 1
-  return {{"6-term spectrum", three_segments(0.0, six)},
-          {"standard linear solid", three_segments(0.0, {{9.0, 1.0}})},
-          {"Kelvin", three_segments(1.0, {})}};
+  const std::vector<Scene> depth = {{"6-term spectrum", three_segments(0.0, six)},
+                                    {"standard linear solid", three_segments(0.0, {{9.0, 1.0}})},
+                                    {"Kelvin", three_segments(1.0, {})}};
+  std::vector<Scene> all = depth;
+  for (const Scene& s : depth)
+    all.push_back({s.name + " load", under_load(s.c)});
+  return all;
 }
 
 /// Median wall time of repeated calls: at least `reps` calls and 50 ms of
@@ -89,34 +107,80 @@ double err_of(const RunResult& r, const RunResult& ref, const Case& c) {
 Line spectrum_line(const Scene& s, const RunResult& ref, double rtol, int reps) {
   SpectrumOptions o;
   o.rtol = rtol;
-  const RunResult r = run_spectrum(s.c, o);
+  RunResult r;
+  try {
+    r = run_spectrum(s.c, o);
+  } catch (const CaseAbandoned&) { // over the work budget: said, not timed
+    char name[64];
+    std::snprintf(name, sizeof name, "spectrum rtol %g: over its budget", rtol);
+    return {s.name, name, NAN, NAN, NAN};
+  }
   const double sec = time_median([&] { run_spectrum(s.c, o); }, reps);
   char name[64];
   std::snprintf(name, sizeof name, "spectrum rtol %g", rtol);
   return {s.name, name, err_of(r, ref, s.c), r.info.error_estimate, 1e3 * sec};
 }
 
-/// The brute-force solver at the first a1/dx (doubling from 32) whose error
-/// is at most `target`, or its finest try.
-Line baseline_line(const Scene& s, const RunResult& ref, double target, bool quick) {
+/// The reference: at fixed depth the solver at rtol 1e-7 (--quick 1e-5);
+/// under load the load solver there on the Kelvin foundation, else the
+/// spectrum solver at a fixed a1/dx of 256 (--quick 128; second order: a
+/// small fraction of the error at rtol 1e-3, which runs at 32 to 50).
+RunResult reference(const Case& c, bool quick) {
+  const double rtol = quick ? 1e-5 : 1e-7;
+  if (c.loading.by_force() && c.rheology.kelvin()) {
+    LoadOptions l;
+    l.rtol = rtol;
+    return run_load(c, l);
+  }
+  SpectrumOptions o;
+  o.rtol = rtol;
+  RunControl budget;
+  budget.max_work = 1e12;
+  o.control = &budget;
+  if (c.loading.by_force()) {
+    o.cells_per_a1 = quick ? 128 : 256;
+    o.estimate_error = false;
+  }
+  return run_spectrum(c, o);
+}
+
+/// The brute-force solver at three resolutions (doubling from n0): a line
+/// each, then its observed order p and cost exponent q over the last two and
+/// its time where its error would be `target` (N^q extrapolated; an estimate,
+/// not a run), the resolution in the line's name.
+std::vector<Line> baseline_lines(const Scene& s, const RunResult& ref, double target, double n0) {
   SpectrumBaselineOptions o;
   o.estimate_error = false;
-  RunResult r;
-  double err = 0.0;
-  const double finest = quick ? 256 : 8192;
-  for (o.cells_per_a1 = 32; o.cells_per_a1 <= finest; o.cells_per_a1 *= 2) {
-    r = run_spectrum_baseline(s.c, o);
-    err = err_of(r, ref, s.c);
-    if (err <= target) break;
+  RunControl budget; // (under load at a1/dx 64: several 1e9 updates)
+  budget.max_work = 1e12;
+  o.control = &budget;
+  std::vector<Line> out;
+  double err[3], ms[3];
+  for (int i = 0; i < 3; ++i) {
+    o.cells_per_a1 = n0 * std::pow(2.0, i);
+    err[i] = err_of(run_spectrum_baseline(s.c, o), ref, s.c);
+    ms[i] = 1e3 * time_median([&] { run_spectrum_baseline(s.c, o); }, 1);
+    char name[64];
+    std::snprintf(name, sizeof name, "brute force a1/dx %g", o.cells_per_a1);
+    out.push_back({s.name, name, err[i], 0.0, ms[i]});
   }
-  if (o.cells_per_a1 > finest) o.cells_per_a1 /= 2;
-  const double sec = time_median([&] { run_spectrum_baseline(s.c, o); }, 1);
-  char name[64];
-  std::snprintf(name, sizeof name, "brute force a1/dx %g", o.cells_per_a1);
-  return {s.name, name, err, 0.0, 1e3 * sec};
+  const double p = std::log2(err[1] / err[2]), q = std::log2(ms[2] / ms[1]);
+  const double grow = std::pow(err[2] / target, 1.0 / p); // resolution factor past the last
+  char name[96];
+  std::snprintf(name, sizeof name, "brute force p %.2f q %.2f at a1/dx %.0f (extrap.)", p, q,
+                o.cells_per_a1 * grow);
+  out.push_back({s.name, name, target, 0.0, ms[2] * std::pow(grow, q)});
+  return out;
 }
 
 std::vector<Line> kelvin_lines(const Scene& s, const RunResult& ref, int reps) {
+  if (s.c.loading.by_force()) {
+    LoadOptions l;
+    l.rtol = 1e-3;
+    const RunResult r = run_load(s.c, l);
+    return {{s.name, "load solver rtol 0.001", err_of(r, ref, s.c), r.info.error_estimate,
+             1e3 * time_median([&] { run_load(s.c, l); }, reps)}};
+  }
   MdrOptions m;
   m.rtol = 1e-3;
   const RunResult rm = run_mdr(s.c, m);
@@ -141,24 +205,23 @@ int main(int argc, char** argv) {
   const int reps = quick ? 1 : 5;
   std::vector<Line> lines;
   for (const Scene& s : scenes()) {
-    SpectrumOptions fine;
-    fine.rtol = quick ? 1e-5 : 1e-7;
-    const RunResult ref = run_spectrum(s.c, fine);
+    const bool load = s.c.loading.by_force();
+    const RunResult ref = reference(s.c, quick);
     const Line a = spectrum_line(s, ref, 1e-3, reps);
     lines.push_back(a);
     lines.push_back(spectrum_line(s, ref, 1e-4, reps));
-    const Line b = baseline_line(s, ref, a.err, quick);
-    lines.push_back(b);
-    lines.push_back({s.name, "brute force / spectrum time", 0, 0, b.ms / a.ms});
+    for (const Line& b : baseline_lines(s, ref, a.err, load ? 16.0 : 64.0))
+      lines.push_back(b);
+    lines.push_back({s.name, "brute force (extrap.) / spectrum", 0, 0, lines.back().ms / a.ms});
     if (s.c.rheology.kelvin())
       for (const Line& k : kelvin_lines(s, ref, reps))
         lines.push_back(k);
   }
   std::ofstream md(out + "/spectrum.md");
   md << "| scene | solver | error | estimate | median ms |\n|---|---|---|---|---|\n";
-  std::printf("%-22s %-30s %10s %10s %12s\n", "scene", "solver", "error", "estimate", "median ms");
+  std::printf("%-27s %-46s %10s %10s %12s\n", "scene", "solver", "error", "estimate", "median ms");
   for (const Line& l : lines) {
-    std::printf("%-22s %-30s %10.3g %10.3g %12.4g\n", l.scene.c_str(), l.solver.c_str(), l.err,
+    std::printf("%-27s %-46s %10.3g %10.3g %12.4g\n", l.scene.c_str(), l.solver.c_str(), l.err,
                 l.est, l.ms);
     md << "| " << l.scene << " | " << l.solver << " | " << l.err << " | " << l.est << " | " << l.ms
        << " |\n";

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
-#include "core/metrics/error_metric.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
+#include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
 
@@ -20,13 +19,8 @@ namespace {
 constexpr const char* kName = "spectrum";
 constexpr double kMaxCells = 2e5; // window memory: 4e5 elements of up to 33 doubles
 
-struct SingleRun {
-  Series series;
-  long elements = 0, steps = 0, updates = 0;
-};
-
-SingleRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
-                   const SpectrumOptions& o, const RunControl& control) {
+ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
+                       const SpectrumOptions& o, const RunControl& control) {
   double travel = 2.0 * cells + 8.0;
   for (const auto& seg : c.history.segments)
     travel += seg.w * seg.T / (c.a1() / cells);
@@ -35,7 +29,7 @@ SingleRun run_once(const Case& c, const spectrum::Law& law, double cells, double
                         " cells over the history, more than the element row can count (1e18)");
   spectrum::Row row(c, law, cells, phase, o.sub_travel, 1e-2 * o.rtol, control, kName);
   row.start_stationary(c.history.v0);
-  SingleRun out;
+  ResolutionRun out;
   out.series.resize(c.total_samples());
   out.series.pre = row.measure();
   std::size_t i = 0;
@@ -230,8 +224,8 @@ void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rt
   }
 }
 
-SingleRun run_once_load(const Case& c, const spectrum::Law& law, double cells, double phase,
-                        const SpectrumOptions& o, const RunControl& control) {
+ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cells, double phase,
+                            const SpectrumOptions& o, const RunControl& control) {
   const LoadGeometry geo = load_geometry(c);
   const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
   if (!(a_win / dx < 4.0 * kMaxCells))
@@ -242,7 +236,7 @@ SingleRun run_once_load(const Case& c, const spectrum::Law& law, double cells, d
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, kStepFactor / cells, 1e-4 * o.rtol);
   run.t_min = geo.t_min;
-  SingleRun out;
+  ResolutionRun out;
   out.series.resize(c.total_samples());
   out.series.pre = row.measure();
   std::size_t i = 0;
@@ -267,9 +261,6 @@ SingleRun run_once_load(const Case& c, const spectrum::Law& law, double cells, d
   return out;
 }
 
-// An estimate below this is rounding noise of the two runs, not a resolution error.
-constexpr double kRoundingLevel = 1e-11;
-
 } // namespace
 
 RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
@@ -285,47 +276,20 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
       adaptive ? std::clamp(std::ceil(1.0 / std::sqrt(o.rtol)), 16.0, kMaxCells) : o.cells_per_a1;
   if (!(cells >= 4.0) || cells > kMaxCells)
     throw InvalidInput("cells-per-a1", "must be between 4 and 2e5");
-  RunResult res;
-  res.info.solver = kName;
-  res.info.rtol = o.rtol;
-  const double companion_phase = std::fmod(o.phase + 0.381966, 1.0);
+  Refinement r;
+  r.solver = kName;
+  r.cells = cells;
+  r.max_cells = kMaxCells;
+  r.rtol = o.rtol;
+  r.phase = o.phase;
+  r.adaptive = adaptive;
+  r.estimate = o.estimate_error;
   const RunControl own;
   const RunControl& control = o.control != nullptr ? *o.control : own;
-  double prev_est = 0.0;
-  for (int attempt = 0;; ++attempt) {
-    const auto once = [&](double n, double ph) {
-      return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control)
-                                  : run_once(c, law, n, ph, o, control);
-    };
-    SingleRun fine = once(cells, o.phase);
-    res.info.steps += fine.steps;
-    res.info.element_updates += fine.updates;
-    res.info.refinements = attempt + 1;
-    double est = 0.0;
-    if (o.estimate_error || adaptive) {
-      // second order: the difference to the half-resolution companion (other
-      // element phase) is ~3 times the fine run's error; reported whole
-      SingleRun coarse = once(0.5 * cells, companion_phase);
-      res.info.steps += coarse.steps;
-      res.info.element_updates += coarse.updates;
-      est = case_error(coarse.series, fine.series, c, 1e-12).max() +
-            64.0 * std::numeric_limits<double>::epsilon();
-    }
-    res.series = std::move(fine.series);
-    res.info.error_estimate = est;
-    res.info.cells_per_a1 = cells;
-    res.info.elements = fine.elements;
-    const bool stagnant = attempt > 0 && est > 0.5 * prev_est && est < kRoundingLevel;
-    prev_est = est;
-    if (!adaptive || est <= o.rtol) break;
-    if (stagnant || attempt >= 5 || cells >= kMaxCells)
-      throw CaseAbandoned("spectrum: the error estimate " + format_number(est) +
-                          " stays above rtol " + format_number(o.rtol) + " after " +
-                          std::to_string(attempt + 1) + " resolutions (a1/dx up to " +
-                          format_number(cells) + "); the case cannot meet rtol with this solver");
-    cells = std::min(kMaxCells, std::ceil(cells * std::max(1.5, 1.2 * std::sqrt(est / o.rtol))));
-  }
-  return res;
+  return refine(c, r, [&](double n, double ph) {
+    return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control)
+                                : run_once(c, law, n, ph, o, control);
+  });
 }
 
 } // namespace mdrmap
