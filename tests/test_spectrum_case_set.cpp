@@ -57,18 +57,6 @@ constexpr KnownFailure kKnownFailures[] = {
     // FAILS: 118 s CPU at rtol 1e-3 (a/dx 115, two resolutions); 1e-4 not tried
     {"load polyisobutylene drop-hold-reslide", 1e-3},
     {"load polyisobutylene drop-hold-reslide", 1e-4},
-    // FAILS: the reference converges at first order under load with a parallel
-    // dashpot (ratio 1.96 at a/dx 128 -> 256): own error <= 2.6e-4 after 17 s,
-    // not rtol/10 of 1e-3; rtol 1e-4: CaseAbandoned at the work budget after 30 s
-    {"load dashpot and two terms up 10x, back, down 10x", 1e-3},
-    {"load dashpot and two terms up 10x, back, down 10x", 1e-4},
-    // FAILS: the reference (first order, ratio 2.31) reaches 4.6e-5 at a/dx 256
-    // after 37 s, not rtol/10 of 1e-4; the run at 1e-4 itself takes 26 s
-    {"load dashpot and two terms drop-hold-reslide", 1e-4},
-    // FAILS: CaseAbandoned at the work budget after 22 s at rtol 1e-4; the
-    // refined reference (first order with the dashpot, ratio 2.38) is 2.0e-4 off
-    // the Kelvin load solver at a/dx 256 (so the Kelvin truth is the reference)
-    {"load Kelvin (N=0) drop-hold-reslide", 1e-4},
     // FAILS: the reference reaches 1.6e-5 at a/dx 256 (ratio 2.19, 21 s), not
     // rtol/10 of 1e-4; a/dx 512 would take ~90 s
     {"load six decades slide-hold-slide hold=10000", 1e-4},

@@ -86,18 +86,18 @@ RunResult reference(const Case& c) {
 }
 
 // (1) N = 0 through the spectrum solver under load agrees with the Kelvin load
-// solver within rtol 1e-3 on a subset of the load case set, its estimate at
-// least a third of the difference.
+// solver within rtol 1e-3 on the load case set, its estimate at least a third
+// of the difference. Two cases are left out: at zeta0 = 1e6 they slide 1e6
+// relaxation times' worth of a0 per tau, more than the element row's work
+// budget (the load solver's continuum pieces take them).
 TEST(SpectrumLoadKelvin, AgreesWithTheLoadSolver) {
-  const std::vector<std::string> names = {"3seg up 10x and back, zeta0=1",
-                                          "3seg down 10x and back, zeta0=0.1",
-                                          "3seg slide-hold-slide hold=10 tau"};
+  const std::vector<std::string> over_budget = {"zeta0=1e6 drop 1e-6", "3seg zeta0=1e6 drop 10x"};
   int ran = 0;
   for (const auto& nc : load_case_set(21)) {
-    if (std::find(names.begin(), names.end(), nc.name) == names.end()) continue;
+    if (std::find(over_budget.begin(), over_budget.end(), nc.name) != over_budget.end()) continue;
     ++ran;
     LoadOptions lo;
-    lo.rtol = 1e-5;
+    lo.rtol = 1e-7;
     const RunResult ref = run_load(nc.c, lo);
     SpectrumOptions o;
     o.rtol = 1e-3;
@@ -109,7 +109,7 @@ TEST(SpectrumLoadKelvin, AgreesWithTheLoadSolver) {
     EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name;
     EXPECT_EQ(r.series.d.size(), ref.series.d.size());
   }
-  EXPECT_EQ(ran, static_cast<int>(names.size()));
+  EXPECT_EQ(ran, static_cast<int>(load_case_set(21).size() - over_budget.size()));
 }
 
 // (2) The spectrum histories under load: within rtol 1e-3 of a refined run,

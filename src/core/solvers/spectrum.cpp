@@ -53,10 +53,12 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
 }
 
 // ---- load control ---------------------------------------------------------
-// The depth is the unknown that balances F_N = F0 at every step's end. Within
-// a step it is linear in time (the branch updates exact for that path); the
+// The depth is the unknown that balances F_N = F0 at every step's end. The
 // parallel dashpot sees the depth rate of BDF2 over the last two steps (BE on
-// a segment's first step): L-stable, second order. Steps grow geometrically
+// a segment's first step): L-stable, second order; within a step the depth is
+// the parabola ending at that rate (linear without a dashpot), so the branch
+// updates are exact for the path and the dashpot's force inside the step (it
+// decides where a point lets go) is second order too. Steps grow geometrically
 // from each velocity change (relative step eps = 1 / cells: the companion at
 // half the cells has twice the step, so its difference sees the time error),
 // at most 8 eps a1 / w while sliding.

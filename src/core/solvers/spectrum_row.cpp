@@ -166,9 +166,12 @@ void Row::advance(double dt, double d1, double dd1) {
   if (!(dt > 0.0)) return;
   ++steps_;
   const double d0 = d_, s = d1 > 0.0 ? (d1 - d0) / dt : 0.0;
+  // with a dashpot the path ends at the rate dd1 (the force sees it): the
+  // parabola through the step's ends with that slope at dd1's end
+  const double k = d1 > 0.0 && law_.tau() > 0.0 ? (dd1 - s) / dt : 0.0;
   const long long lo0 = jlo_, hi0 = jhi_;
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
-  Entry en{dt, w_, P_, grid(dt, w_), d0, s};
+  Entry en{dt, w_, P_, grid(dt, w_), d0, s, k};
   if (s != 0.0) { // sub-steps: the contact's travel at the smaller a1 of the step
     const double amin = std::sqrt(R_ * std::min(d0, d1));
     en.g.D = w_ > 0.0 ? std::min(dt, sub_travel_ * amin / w_) : dt;
@@ -182,7 +185,7 @@ void Row::advance(double dt, double d1, double dd1) {
   for (long long j = jlo_; j <= jhi_; ++j) {
     const std::size_t sl = slot(j);
     if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
-    step_material(mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, d0, s);
+    step_material(mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, Path{d0, s - k * dt, k});
   }
   if (d1 > 0.0) {
     d_ = d1;
@@ -193,14 +196,14 @@ void Row::advance(double dt, double d1, double dd1) {
 
 // One material point over a step of dt at w, from its state at 0 (or fresh)
 // to dt, at the end position xe; positions at time t are xe - w (dt - t), the
-// depth d0 + s t.
+// depth p.at(t).
 void Row::step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
-                        double d0, double s) const {
+                        const Path& p) const {
   double t = 0.0;
   if (md == Mode::Fresh) { // enters where the leading edge -a1(t) passes it
     const double xs = xe - w * dt;
     auto behind = [&](double tt) { // > 0 while ahead of the edge
-      return -(xs + w * tt) - std::sqrt(R_ * std::max(0.0, d0 + s * tt));
+      return -(xs + w * tt) - std::sqrt(R_ * std::max(0.0, p.at(tt)));
     };
     if (!(behind(dt) < 0.0)) return;
     t = solve(behind, dt);
@@ -223,8 +226,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
       law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
     }
     ++updates_;
-    const double done =
-        substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents, d0 + s * t, s);
+    const double done = substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents, p.from(t));
     if (done < h) {
       t += done;
       ++events;
@@ -234,27 +236,28 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
   }
 }
 
-// One sub-step of h from position x and depth dA (rate s; coefficients c):
+// One sub-step of h from position x along the depth path q (coefficients c):
 // the exact update, or, where the element switches during it (if it still
 // may), the update up to the switch, located, and the switch. Returns the time
 // advanced.
 double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                    bool may_switch, double dA, double s) const {
+                    bool may_switch, const Path& q) const {
   double tmp[kMaxBranches + 1];
   StepCoef at;
-  const double xn = x + w * h, dn = dA + s * h, h1 = s - 2.0 * x * w / R_, h2 = -w * w / R_;
+  const double xn = x + w * h, dn = q.at(h), h1 = q.r - 2.0 * x * w / R_, h2 = q.k - w * w / R_;
   if (md == Mode::Contact) {
     std::copy(y, y + law_.branches(), tmp);
-    law_.contact_step(tmp, depth(x, dA), h1, h2, c);
-    if (!(may_switch && law_.pressure(depth(xn, dn), s - 2.0 * xn * w / R_, tmp) < -p_tiny_)) {
+    law_.contact_step(tmp, depth(x, q.d), h1, h2, c);
+    if (!(may_switch &&
+          law_.pressure(depth(xn, dn), q.rate(h) - 2.0 * xn * w / R_, tmp) < -p_tiny_)) {
       std::copy(tmp, tmp + law_.branches(), y);
       return h;
     }
-    const double tc = locate(true, y, x, h, w, dA, s); // lets go
+    const double tc = locate(true, y, x, h, w, q); // lets go
     std::copy(y, y + law_.branches(), tmp);
     law_.coef(tc, at, Part::Contact);
-    law_.contact_step(tmp, depth(x, dA), h1, h2, at);
-    law_.to_modal(depth(x + w * tc, dA + s * tc), tmp, y);
+    law_.contact_step(tmp, depth(x, q.d), h1, h2, at);
+    law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
     md = Mode::Free;
     return tc;
   }
@@ -264,13 +267,22 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
     std::copy(tmp, tmp + law_.free_dim(), y);
     return h;
   }
-  const double tc = locate(false, y, x, h, w, dA, s); // touches
+  const double tc = locate(false, y, x, h, w, q); // touches
   law_.coef(tc, at, Part::Free);
   law_.free_step(y, at);
   std::copy(y, y + law_.free_dim(), tmp);
   law_.from_modal(tmp, y);
   md = Mode::Contact;
   return tc;
+}
+
+// The deepest the indenter goes over a step (its ends, or the parabola's vertex).
+double Row::deepest(const Entry& e) {
+  const Path p{e.d0, e.s - e.k * e.dt, e.k};
+  double d = std::max(e.d0, p.at(e.dt));
+  const double top = p.k < 0.0 ? -p.r / (2.0 * p.k) : -1.0;
+  if (top > 0.0 && top < e.dt) d = std::max(d, p.at(top));
+  return d;
 }
 
 // Carries material point J, in state mt after the first `from` log entries,
@@ -292,10 +304,10 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
                                          static_cast<long double>(dx_));
     if (e.dt < 0.0) {
       change_material(mt.mode, mt.y, x, e.w, e.d0, e.s);
-    } else if (mt.mode != Mode::Fresh || x > -std::sqrt(R_ * std::max(e.d0, e.d0 + e.s * e.dt))) {
+    } else if (mt.mode != Mode::Fresh || x > -std::sqrt(R_ * deepest(e))) {
       gone = x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact;
       if (gone) break;
-      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, e.d0, e.s);
+      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
       ++done;
     }
   }
@@ -339,8 +351,8 @@ Row::Material Row::replay(long double J) const {
 
 // Time within a sub-step of length h (from position x, state y) where a
 // contact element's force turns negative, or a free element touches.
-double Row::locate(bool contact, const double* y, double x, double h, double w, double dA,
-                   double s) const {
+double Row::locate(bool contact, const double* y, double x, double h, double w,
+                   const Path& q) const {
   StepCoef c;
   double tmp[kMaxBranches + 1];
   if (contact) {
@@ -348,9 +360,9 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
         [&](double tau) {
           std::copy(y, y + law_.branches(), tmp);
           law_.coef(tau, c, Part::Contact);
-          law_.contact_step(tmp, depth(x, dA), s - 2.0 * x * w / R_, -w * w / R_, c);
+          law_.contact_step(tmp, depth(x, q.d), q.r - 2.0 * x * w / R_, q.k - w * w / R_, c);
           const double xn = x + w * tau;
-          return law_.pressure(depth(xn, dA + s * tau), s - 2.0 * xn * w / R_, tmp);
+          return law_.pressure(depth(xn, q.at(tau)), q.rate(tau) - 2.0 * xn * w / R_, tmp);
         },
         h);
   }
@@ -359,7 +371,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
         std::copy(y, y + law_.free_dim(), tmp);
         law_.coef(tau, c, Part::Free);
         law_.free_step(tmp, c);
-        return law_.free_u(tmp) - depth(x + w * tau, dA + s * tau);
+        return law_.free_u(tmp) - depth(x + w * tau, q.at(tau));
       },
       h);
 }

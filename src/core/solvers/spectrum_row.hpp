@@ -17,8 +17,9 @@
 // at most `sub_travel` a1 of travel so that a switch and its reversal cannot
 // hide inside one.
 //
-// Load control. The depth d(t) may vary: within a step it is linear in time
-// (from the depth at the step's start to a given end depth), so in contact u
+// Load control. The depth d(t) may vary: within a step it is quadratic in time
+// (from the depth at the step's start to a given end depth, with a given rate
+// there where a parallel dashpot sees it, else linear), so in contact u
 // stays quadratic in t and the branch updates stay exact for that path; the
 // leading edge -a1(t) = -sqrt(R d(t)) moves, fresh material enters where it
 // crosses it (also at rest, when the indenter sinks). The window is a fixed
@@ -119,6 +120,14 @@ private:
     long double P;
     Grid g;
     double d0 = 0.0, s = 0.0; // depth at the start, its rate over the step (a change: d, dd)
+    double k = 0.0;           // the depth's curvature: d0 + s t + k t (t - dt)
+  };
+  /// The depth along a (sub-)step from its start: d + r t + k t^2.
+  struct Path {
+    double d, r, k;
+    double at(double t) const { return d + (r + k * t) * t; }
+    double rate(double t) const { return r + 2.0 * k * t; }
+    Path from(double t) const { return {at(t), rate(t), k}; }
   };
   struct Material { // one material point's state
     Mode mode = Mode::Fresh;
@@ -135,16 +144,16 @@ private:
   };
   void set_position(long double P);
   Grid grid(double dt, double w) const;
-  void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g, double d0,
-                     double s) const;
+  void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
+                     const Path& p) const;
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                 bool may_switch, double dA, double s) const;
+                 bool may_switch, const Path& q) const;
   void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
+  static double deepest(const Entry& e);
   long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
   Material replay(long double J) const;
   Tracer& tracer(long double J) const;
-  double locate(bool contact, const double* y, double x, double h, double w, double dA,
-                double s) const;
+  double locate(bool contact, const double* y, double x, double h, double w, const Path& q) const;
   double pressure_at(const double* q, double x) const;
   double node_p(long long j) const;
   double edge_sign(Mode md, const double* y, double x) const;
