@@ -6,7 +6,8 @@ mdrmap_spectrum_physics (tools/physics/spectrum_physics.cpp).
     /usr/bin/python3 tools/plot_spectrum_physics.py OUT [--fig-dir docs/img]
 
 Writes spectrum_sls_load.png, spectrum_width.png, spectrum_healing.png,
-spectrum_direct.png and spectrum_creep.png (each only where its CSV exists).
+spectrum_direct.png, spectrum_creep.png and spectrum_healing_load.png (each
+only where its CSV exists).
 """
 import argparse
 import csv
@@ -152,6 +153,65 @@ def fig_healing(src, out):
     fig.savefig(out, dpi=120)
 
 
+def fig_healing_load(src, out):
+    """Study 6: healing under load against fixed depth, beta per decade, the
+    contact's creep during the hold against Lee-Radok; runs left out (status
+    other than "done") are not drawn."""
+    runs = OrderedDict()
+    with open(src) as f:
+        for row in csv.DictReader(f):
+            if row["status"] != "done":
+                continue
+            runs.setdefault(row["spectrum"], {}).setdefault(row["loading"], []).append(
+                [float(row[k]) for k in ("t_hold", "healing", "a1_hold", "a1_creep",
+                                         "mu_peak")])
+    names = {"SLS": "SLS, $\\tau_1$ = 1", "6x-equal": "6 terms, equal weights",
+             "6x-sqrt": "6 terms, $\\sqrt{G(t)}$ linear in log t"}
+    fig, axes = plt.subplots(2, 2, figsize=(12, 8.5))
+    axes = axes.ravel()
+    for n, (spec, by) in enumerate(runs.items()):
+        color = "C%d" % n
+        lab = names.get(spec.split(",")[0], spec)
+        for loading, style in (("depth", "--"), ("load", "-")):
+            if loading not in by:
+                continue
+            a = np.array(by[loading])
+            th, heal = a[:, 0], a[:, 1]
+            where = "fixed depth" if loading == "depth" else "under load"
+            axes[0].semilogx(th, heal, style, marker=".", color=color,
+                             label="%s, %s" % (lab, where))
+            x = np.log10(th)
+            axes[1].semilogx(np.sqrt(th[1:] * th[:-1]), np.diff(heal) / np.diff(x), style,
+                             marker=".", color=color)
+            if loading == "load":
+                axes[2].semilogx(th, a[:, 2], ".", color=color, label=lab + ": solver")
+                axes[2].semilogx(th, a[:, 3], "-", color=color, lw=0.8,
+                                 label=lab + ": Lee-Radok")
+                axes[3].semilogx(th, a[:, 4] / a[:, 2], "-", marker=".", color=color,
+                                 label=lab + ", under load: $\\mu_{peak}/(a_{1,hold}/R)$")
+            else:
+                axes[3].semilogx(th, a[:, 4], "--", marker=".", color=color,
+                                 label=lab + ", fixed depth: $\\mu_{peak}/(a_1/R)$")
+    for ax in axes:
+        ax.axvspan(1e-5, 1.0, color="0.92", zorder=0)
+        ax.set_xlim(5e-4, 2e4)
+        ax.set_xlabel("hold time / longest $\\tau_k$ (grey: the six-term spectra's span)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("healing $\\mu_{peak}-\\mu_{ss}$  [$a_1/R$]")
+    axes[1].set_ylabel("$\\beta$ = d healing / d log$_{10}$ hold  [$a_1/R$]")
+    axes[2].set_ylabel("contact half-width at the end of the hold  [$a_1$]")
+    axes[3].set_ylabel("$\\mu_{peak}$ in units of the contact at the end of the hold")
+    axes[0].legend(fontsize=7)
+    axes[2].legend(fontsize=7)
+    axes[3].legend(fontsize=6)
+    axes[0].set_title("slide-hold-slide, $G_0/G$ = 100 (dashed: fixed depth, solid: load)")
+    axes[1].set_title("healing per decade of hold (dashed: fixed depth, solid: load)")
+    axes[2].set_title("under load the contact creeps: Lee-Radok")
+    axes[3].set_title("the peak per contact size")
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+
+
 def fig_direct(src, out):
     _, g = read_groups(src, 1)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -205,7 +265,7 @@ def main():
     os.makedirs(args.fig_dir, exist_ok=True)
     figures = [("spectrum_sls_load", fig_sls), ("spectrum_width", fig_width),
                ("spectrum_healing", fig_healing), ("spectrum_direct", fig_direct),
-               ("spectrum_creep", fig_creep)]
+               ("spectrum_creep", fig_creep), ("spectrum_healing_load", fig_healing_load)]
     for name, make in figures:
         src = os.path.join(args.csv_dir, name + ".csv")
         if os.path.exists(src):
