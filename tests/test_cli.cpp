@@ -211,8 +211,10 @@ enum Col { kT = 0, kSegment = 1, kFN = 2, kFx = 3, kMu = 4, kA2 = 5, kD = 6, kA1
 /// fixed depth), the history, the spacing, the sampling parameters, a0 under
 /// load, zeta0.
 std::regex case_line_regex(bool load) {
+  // the parabola's parameters (the other profiles' are not shown), the loading given
   auto given = [&](const mdrmap::ParamSpec& p) {
-    return !p.one_of || (std::string(p.name) == "F0") == load;
+    return p.applies_to(mdrmap::Profile::Parabola) &&
+           (!p.one_of || (std::string(p.name) == "F0") == load);
   };
   std::string re = "^# case";
   for (const auto& p : mdrmap::case_parameters())
@@ -957,6 +959,22 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        "output",
        true},
       {"output is a directory", {{"output", dir.path().string()}}, {}, "output", true},
+      // indenter profiles (issue 21): each profile's parameters, in range, with it only
+      {"profile unknown", {{"profile", "sphere"}}, {}, "profile"},
+      {"--beta with the parabola", {{"beta", "10"}}, {}, "beta"},
+      {"--n with the parabola", {{"n", "2"}}, {}, "n"},
+      {"--R with a cone", {{"profile", "cone"}, {"beta", "10"}}, {}, "R"},
+      {"--A with a cone", {{"profile", "cone"}, {"beta", "10"}, {"R", kDrop}, {"A", "1"}}, {}, "A"},
+      {"cone without --beta", {{"profile", "cone"}, {"R", kDrop}}, {}, "beta"},
+      {"beta = 0", {{"profile", "cone"}, {"R", kDrop}, {"beta", "0"}}, {}, "beta"},
+      {"beta = 90", {{"profile", "cone"}, {"R", kDrop}, {"beta", "90"}}, {}, "beta"},
+      {"beta < 0", {{"profile", "cone"}, {"R", kDrop}, {"beta", "-10"}}, {}, "beta"},
+      {"n < 1", {{"profile", "power"}, {"R", kDrop}, {"n", "0.5"}, {"A", "1"}}, {}, "n"},
+      {"A = 0", {{"profile", "power"}, {"R", kDrop}, {"n", "2"}, {"A", "0"}}, {}, "A"},
+      {"A < 0", {{"profile", "power"}, {"R", kDrop}, {"n", "2"}, {"A", "-1"}}, {}, "A"},
+      {"power without --A", {{"profile", "power"}, {"R", kDrop}, {"n", "2"}}, {}, "A"},
+      {"--R with power", {{"profile", "power"}, {"n", "2"}, {"A", "1"}}, {}, "R"},
+      {"a cone's transient", {{"profile", "cone"}, {"R", kDrop}, {"beta", "10"}}, {}, "profile"},
       // relaxation spectra and the temperature shift (issue 19)
       {"prony G = 0", {{"prony", "0:1"}}, {}, "prony"},
       {"prony G < 0", {{"prony", "1:1,-2:10"}}, {}, "prony"},

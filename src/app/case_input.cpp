@@ -16,7 +16,8 @@ namespace mdrmap::app {
 namespace {
 
 /// Options that are not case parameters of the table (core/model/params.hpp): the
-/// history's two forms, the sampling's spacing and how to run.
+/// indenter's profile, the history's two forms, the sampling's spacing and how to run.
+constexpr const char* kIndenterOptions[] = {"profile"};
 constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
@@ -156,9 +157,22 @@ std::vector<Segment> parse_history(const std::string& text) {
 
 // --- The case --------------------------------------------------------------------
 
-void require_options(const Texts& o) {
+/// The parameters of the profile: each required one given, none of another
+/// profile's (--R with a cone, --beta with a parabola).
+void require_profile_options(const Texts& o, Profile profile) {
+  for (const auto& p : case_parameters()) {
+    if (p.applies_to(profile)) continue;
+    if (o.has(p.name))
+      throw InvalidInput(p.name, std::string("applies to --profile ") + p.profile +
+                                     " only; this case's profile is " + profile_name(profile) +
+                                     (o.has("profile") ? "" : " (the default; give --profile)"));
+  }
+}
+
+void require_options(const Texts& o, Profile profile) {
+  require_profile_options(o, profile);
   for (const auto& p : case_parameters())
-    if (p.required && !o.has(p.name))
+    if (p.required && p.applies_to(profile) && !o.has(p.name))
       throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
   if (o.has("v1") && o.has("history"))
     throw InvalidInput("history", "cannot be combined with --v1: give either --history "
@@ -207,6 +221,14 @@ void require_one_of_each_group(const Texts& o) {
   }
 }
 
+/// default_step_duration of any profile: 6 tau, or for tau = 0 six contact
+/// half-widths a at the slower speed (the parabola's arithmetic as the seed's).
+double default_window(const Indenter& ind, double a, double d, double tau, double v, double v1) {
+  if (ind.parabolic()) return default_step_duration(d, ind.R, tau, v, v1);
+  if (tau > 0.0) return 6.0 * tau;
+  return 6.0 * a / ((v1 > 0.0) ? std::min(v, v1) : v);
+}
+
 /// The one segment of --v1 V1 [--t-end T], the shorthand's values reported as
 /// --v1 / --t-end. Needs the case parameters set (the default window).
 Segment one_step(const Texts& o, Case& c) {
@@ -223,9 +245,9 @@ Segment one_step(const Texts& o, Case& c) {
   // the window's length scale: a1 = sqrt(R d) at fixed depth, the Hertz
   // radius a0 = sqrt(R d0) of F0 under load (tau = 0: Hertz at once, a1 = a0);
   // its time scale the element's longest shifted time (tau for Kelvin)
-  const double a = c.edge_scale(), R = c.indenter.R, tau = scales(c).time, v = c.history.v0;
-  const double d = c.loading.by_force() ? a * a / R : c.loading.d;
-  const double T = t_end ? *t_end : default_step_duration(d, R, tau, v, v1);
+  const double a = c.edge_scale(), tau = scales(c).time, v = c.history.v0;
+  const double d = c.loading.by_force() ? c.indenter.g(a) : c.loading.d;
+  const double T = t_end ? *t_end : default_window(c.indenter, a, d, tau, v, v1);
   if (!t_end) {
     try {
       segment_duration_spec().check(T);
@@ -311,7 +333,7 @@ void check_total_samples(const Case& c) {
 } // namespace
 
 std::vector<std::string> case_option_names() {
-  std::vector<std::string> names;
+  std::vector<std::string> names(std::begin(kIndenterOptions), std::end(kIndenterOptions));
   for (const auto& p : case_parameters())
     if (p.part != Part::Sampling) names.emplace_back(p.name);
   names.insert(names.end(), std::begin(kRheologyOptions), std::end(kRheologyOptions));
@@ -341,8 +363,10 @@ OptionTexts canonical_texts(const OptionTexts& texts, std::map<std::string, std:
 }
 
 CaseInput read_canonical(const Texts& o) {
-  require_options(o);
+  const Profile profile = o.has("profile") ? parse_profile(o["profile"]) : Profile::Parabola;
+  require_options(o, profile);
   CaseInput in;
+  in.c.indenter.profile = profile;
   read_case_parameters(o, in.c);
   require_one_of_each_group(o);
   in.temperature = read_rheology(o, in.c);
@@ -410,6 +434,8 @@ std::string parameter_help_text(const ParamSpec& p) {
   if (p.one_of)
     text += ". The " + std::string(p.one_of) + ": give exactly one of " +
             group_usage(group_members(p.one_of), ", ", " or ");
+  else if (p.profile)
+    text += std::string(p.required ? ", required" : "") + " with --profile " + p.profile + " only";
   else
     text += p.required ? ", required" : ". Default: " + format_number(p.fallback);
   if (const ParamAlias* a = alias_of(p.name))

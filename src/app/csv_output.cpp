@@ -15,10 +15,11 @@ const char* spacing_name(Spacing s) {
   return s == Spacing::Log ? "log" : "linear";
 }
 
-/// Whether the `# case` line shows parameter p of c: of a one_of group only
-/// the member given (non-zero); the shift aT (which the seed's model has not)
-/// only where it shifts.
+/// Whether the `# case` line shows parameter p of c: the indenter's of its
+/// profile only; of a one_of group only the member given (non-zero); the shift aT (which the seed's
+/// model has not) only where it shifts.
 bool shown(const ParamSpec& p, const Case& c) {
+  if (!p.applies_to(c.indenter.profile)) return false;
   if (p.one_of) return p.get(c) != 0.0;
   return std::strcmp(p.name, "aT") != 0 || p.get(c) != 1.0;
 }
@@ -62,7 +63,9 @@ void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
 
 std::string case_line(const Case& c, const std::optional<TemperatureInput>& temperature) {
   const bool load = c.loading.by_force();
-  std::string s = "# case" + parameters(c, false);
+  std::string s = "# case";
+  if (!c.indenter.parabolic()) s += std::string(" profile=") + profile_name(c.indenter.profile);
+  s += parameters(c, false);
   if (!c.rheology.branches.empty()) s += " prony=" + format_prony(c.rheology.branches);
   if (temperature)
     s += " T=" + format_double(temperature->T) + " wlf=" + format_wlf(temperature->wlf);

@@ -164,6 +164,15 @@ std::string help_entry(const std::string& option, const std::string& text) {
   return out + "\n";
 }
 
+std::string profile_help() {
+  return help_entry("--profile P",
+                    "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its "
+                    "surface to the plane) or power (f = A r^n, --n --A); MDR image g(x) = "
+                    "kappa_n A |x|^n. The transient solvers take the parabola only so far; the "
+                    "cone and power profiles have stationary states (Python mdrmap.stationary). "
+                    "Default: parabola");
+}
+
 /// One help entry per table parameter of the sampling part or of the others.
 std::string parameter_help(bool sampling) {
   std::string s;
@@ -326,7 +335,8 @@ Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
 times, velocities length/time; forces come out in units of G * length^2.
 
 Case parameters:
-)" + parameter_help(false) +
+)" + profile_help() +
+         parameter_help(false) +
          "\nRelaxation spectrum and temperature (optional; none: the Kelvin foundation):\n" +
          rheology_help() + "\nVelocity history after t = 0 (--v1 or --history):\n" +
          history_help() + "\nSampling, per segment:\n" + sampling_help() + R"(

@@ -136,7 +136,8 @@ const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
                                         {"v1", "grid.v1"},
                                         {"v1-over-v", "grid.v1_over_v"},
                                         {"temperature", "grid.temperature"},
-                                        {"wlf", "run.wlf"}};
+                                        {"wlf", "run.wlf"},
+                                        {"profile", "run.profile"}};
 
 /// The override options and the keys they set: the run's, the seed's step,
 /// the temperature and its WLF constants, every case parameter of the core's
@@ -317,6 +318,11 @@ then the study is checked: a new history segment takes its two keys):
   --Gk SPEC  --tauk SPEC    a relaxation spectrum's term k = 1..32 (grid.Gk, grid.tauk)
   --temperature SPEC  --wlf C1:C2:TREF   the temperature, shifting the times by
                             WLF (grid.temperature, run.wlf)
+  --profile P  --beta SPEC  --n SPEC  --A SPEC   the indenter (run.profile:
+                            parabola, default, with R; cone with beta; power
+                            with n and A, columns grid.beta, grid.n, grid.A).
+                            The transient solvers take the parabola only so
+                            far: a cone's or power law's case fails (status -1)
   (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
 
 Progress goes to stderr on rank 0: a live bar on a terminal, a line every 10 s

@@ -114,13 +114,15 @@ py::dict info(const app::SimulateRecord& rec) {
   return d;
 }
 
-/// The `# case` line as a dict: the table's parameters (of a one_of group
-/// the member given), the history as (w, T) pairs, the spectrum as (G, tau)
-/// pairs where it has terms, the spacing; a0 under load; zeta0.
+/// The `# case` line as a dict: the profile (other than the parabola), the
+/// table's parameters of the case's profile (of a one_of group the member given), the history as
+/// (w, T) pairs, the spectrum as (G, tau) pairs where it has terms, the spacing; a0 under load;
+/// zeta0.
 py::dict case_dict(const Case& c) {
   py::dict d;
+  if (!c.indenter.parabolic()) d["profile"] = profile_name(c.indenter.profile);
   for (const auto& p : case_parameters())
-    if (!p.one_of || p.get(c) != 0.0) {
+    if (p.applies_to(c.indenter.profile) && (!p.one_of || p.get(c) != 0.0)) {
       if (p.integer())
         d[p.name] = static_cast<long long>(p.get(c));
       else

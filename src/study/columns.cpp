@@ -153,6 +153,7 @@ const std::vector<const ParamSpec*>& study_parameters() {
 }
 
 bool only_where_given(const ParamSpec& p) {
+  if (p.profile) return true; // an indenter's: required with its profile, else not given
   return p.part == Part::Material && std::strcmp(p.name, "aT") == 0;
 }
 
@@ -220,7 +221,10 @@ struct Slot {
       s += (s.empty() ? "" : " or ") + std::string(p->name);
     return s;
   }
-  bool required() const { return params.size() > 1 || params.front()->required; }
+  bool required(Profile profile) const {
+    const ParamSpec& p = *params.front();
+    return params.size() > 1 || (p.required && p.applies_to(profile));
+  }
 };
 
 const std::vector<Slot>& slots() {
@@ -238,11 +242,11 @@ const std::vector<Slot>& slots() {
   return out;
 }
 
-/// "a study needs d or F0, R, tau and v"
-std::string needed() {
+/// "a study needs d or F0, R, tau and v" (of the parabola)
+std::string needed(Profile profile) {
   std::vector<std::string> n;
   for (const Slot& s : slots())
-    if (s.required()) n.push_back(s.names());
+    if (s.required(profile)) n.push_back(s.names());
   std::string out = "a study needs ";
   for (std::size_t i = 0; i < n.size(); ++i)
     out += (i == 0 ? "" : i + 1 == n.size() ? " and " : ", ") + n[i];
@@ -341,7 +345,7 @@ void add_default(std::vector<Axis>& axes, const ParamSpec& p, std::size_t rank) 
 
 } // namespace
 
-void order_columns(std::vector<Axis>& axes, const std::string& where) {
+void order_columns(std::vector<Axis>& axes, const std::string& where, Profile profile) {
   std::stable_sort(axes.begin(), axes.end(), [](const Axis& a, const Axis& b) {
     return column_rank(a.column) < column_rank(b.column);
   });
@@ -359,9 +363,12 @@ void order_columns(std::vector<Axis>& axes, const std::string& where) {
     slot = &a;
   }
   for (std::size_t r = 0; r < slots().size(); ++r)
-    if (!at[slot_rank(r)] && slots()[r].required())
+    if (!at[slot_rank(r)] && slots()[r].required(profile))
       throw ConfigError(std::string("grid.") + slots()[r].params.front()->name,
-                        where + "no " + slots()[r].names() + "; " + needed());
+                        where + "no " + slots()[r].names() + "; " + needed(profile) +
+                            (profile == Profile::Parabola
+                                 ? std::string()
+                                 : std::string(" (the ") + profile_name(profile) + ")"));
   check_spectrum(at, where);
   if (K == 0)
     throw ConfigError("history.w1", where + "no history; give the segments w1 (or w1_over_v) and "

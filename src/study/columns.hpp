@@ -49,12 +49,15 @@ std::size_t column_rank(const Column& col);
 std::vector<std::string> history_names(std::size_t k);
 
 /// Sorts the columns into column order and checks that they make cases:
-/// exactly one loading, R, tau and v (an optional parameter, G, added with
-/// its table default when missing; aT only where given), the spectrum's
+/// exactly one loading, the profile's required parameters (R for the
+/// parabola, beta for the cone, n and A for the power law), tau and v (an
+/// optional parameter, G, added with its table default when missing; aT and
+/// the other profiles' parameters only where given), the spectrum's
 /// terms 1..N each with its modulus and its time, and for
 /// every segment 1..K exactly one velocity and one duration. `where` locates
 /// a message. Throws ConfigError naming the column.
-void order_columns(std::vector<Axis>& axes, const std::string& where);
+void order_columns(std::vector<Axis>& axes, const std::string& where,
+                   Profile profile = Profile::Parabola);
 
 /// The shape text "F0 3 x R 1 x ..." of a grid.
 std::string grid_shape(const StudyConfig& c);

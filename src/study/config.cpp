@@ -218,7 +218,10 @@ std::string canonical_run(const RunSettings& r) {
          "\nspacing = " + (r.spacing == Spacing::Log ? "log" : "linear") +
          "\ndecades = " + format_number(r.decades) + "\nrtol = " + format_number(r.rtol) +
          "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") + "\n" +
-         (r.wlf ? "wlf = " + format_wlf(*r.wlf) + "\n" : std::string()); // where given only
+         (r.wlf ? "wlf = " + format_wlf(*r.wlf) + "\n" : std::string()) + // where given only
+         (r.profile != Profile::Parabola
+              ? std::string("profile = ") + profile_name(r.profile) + "\n"
+              : std::string()); // the parabola's config as before
 }
 
 std::string canonical_columns(const StudyConfig& c) {
@@ -297,6 +300,7 @@ CheckedCase checked_case_for(const StudyConfig& c, const Row& r) {
     if (k == Column::Kind::Velocity || k == Column::Kind::VelocityOverV)
       set_velocity(out, c.axes[i], r[i]);
   }
+  out.indenter.profile = c.run.profile;
   out.sampling.samples = c.run.samples;
   out.sampling.spacing = c.run.spacing;
   out.sampling.decades = c.run.decades;

@@ -29,6 +29,7 @@
 //   solver = auto           ; auto | exact | mdr | baseline
 //   timeseries = false      ; store the full time series of every case
 //   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column
+//   profile = parabola      ; parabola (column R) | cone (column beta) | power (n, A)
 //
 // Every key of [grid] and [history] is a column of the study; in a grid each
 // column is an axis (case order: C order over the columns in column order, the
@@ -112,7 +113,8 @@ struct RunSettings {
   double rtol = 1e-4;
   std::string solver = "auto";
   bool timeseries = false;
-  std::optional<Wlf> wlf; ///< the WLF constants of a temperature column
+  std::optional<Wlf> wlf;              ///< the WLF constants of a temperature column
+  Profile profile = Profile::Parabola; ///< the indenter of every case; its parameters are columns
 };
 
 struct StudyConfig {

@@ -55,7 +55,7 @@ const IniSchema& study_schema() {
                             history_names(1),
                             {"file"},
                             {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "wlf",
-                             "t_end_over_tau", "G"}},
+                             "profile", "t_end_over_tau", "G"}},
                            "[grid], [history], [cases] or [run]",
                            "[grid] or [cases], [history] and [run]",
                            [](const std::string& section, const std::string& key) {
@@ -161,6 +161,14 @@ Spacing run_spacing(const std::string& option, const std::string& text) {
   throw ConfigError(option, "unknown spacing " + shown(text) + "; spacing must be linear or log");
 }
 
+Profile run_profile(const std::string& option, const std::string& text) {
+  try {
+    return parse_profile(lower(trim(text)));
+  } catch (const InvalidInput& e) {
+    throw ConfigError(option, std::string("profile ") + e.what());
+  }
+}
+
 Wlf run_wlf(const std::string& option, const std::string& text) {
   try {
     return parse_wlf(option, text);
@@ -186,6 +194,8 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
     r.timeseries = run_timeseries(option, text);
   else if (key == "wlf")
     r.wlf = run_wlf(option, text);
+  else if (key == "profile")
+    r.profile = run_profile(option, text);
   else
     throw ConfigError(option, "unknown key " + shown(key) + " in [run]");
 }
@@ -268,9 +278,10 @@ void complete_columns(StudyConfig& c) {
                                                 a.column.kind == Column::Kind::DurationOverTau));
   }
   if (seed_step && !duration1) c.axes.push_back(run_column("t_end_over_tau", "6"));
-  order_columns(c.axes, c.kind == StudyConfig::Kind::Cases
-                            ? shown_path(c.cases_file) + " and the config: "
-                            : std::string());
+  order_columns(c.axes,
+                c.kind == StudyConfig::Kind::Cases ? shown_path(c.cases_file) + " and the config: "
+                                                   : std::string(),
+                c.run.profile);
   check_temperature(c);
   if (c.kind != StudyConfig::Kind::Cases) return;
   for (const Axis& a : c.axes)

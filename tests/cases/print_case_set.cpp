@@ -29,6 +29,7 @@ std::string number(double x) {
 std::string keywords(const Case& c) {
   std::string kw;
   for (const auto& p : case_parameters()) {
+    if (!p.applies_to(c.indenter.profile)) continue; // another profile's (0)
     if (p.one_of && p.get(c) == 0.0) continue;
     if (!p.required && !p.one_of && p.get(c) == p.fallback) continue;
     std::string key = p.name;

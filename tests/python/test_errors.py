@@ -89,6 +89,22 @@ ROWS = [
      "history"),
     # relaxation spectra and the temperature shift (issue 19); {dir} is a
     # directory holding PRONY_FILES
+    # indenter profiles (issue 21)
+    ("profile unknown", {"profile": "sphere"}, [], "profile"),
+    ("--beta with the parabola", {"beta": "10"}, [], "beta"),
+    ("--n with the parabola", {"n": "2"}, [], "n"),
+    ("--R with a cone", {"profile": "cone", "beta": "10"}, [], "R"),
+    ("--A with a cone", {"profile": "cone", "beta": "10", "R": DROP, "A": "1"}, [], "A"),
+    ("cone without --beta", {"profile": "cone", "R": DROP}, [], "beta"),
+    ("beta = 0", {"profile": "cone", "R": DROP, "beta": "0"}, [], "beta"),
+    ("beta = 90", {"profile": "cone", "R": DROP, "beta": "90"}, [], "beta"),
+    ("beta < 0", {"profile": "cone", "R": DROP, "beta": "-10"}, [], "beta"),
+    ("n < 1", {"profile": "power", "R": DROP, "n": "0.5", "A": "1"}, [], "n"),
+    ("A = 0", {"profile": "power", "R": DROP, "n": "2", "A": "0"}, [], "A"),
+    ("A < 0", {"profile": "power", "R": DROP, "n": "2", "A": "-1"}, [], "A"),
+    ("power without --A", {"profile": "power", "R": DROP, "n": "2"}, [], "A"),
+    ("--R with power", {"profile": "power", "n": "2", "A": "1"}, [], "R"),
+    ("a cone's transient", {"profile": "cone", "R": DROP, "beta": "10"}, [], "profile"),
     ("prony G = 0", {"prony": "0:1"}, [], "prony"),
     ("prony G < 0", {"prony": "1:1,-2:10"}, [], "prony"),
     ("prony tau = 0", {"prony": "1:0"}, [], "prony"),

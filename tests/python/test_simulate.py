@@ -152,6 +152,29 @@ def test_stationary_is_the_events_stationary_state(load):
     assert e.value.option == "v1"
 
 
+@pytest.mark.parametrize("load", [False, True])
+def test_stationary_of_each_profile(load):
+    loading = dict(F0=0.05) if load else dict(d=0.02)
+    par = mdrmap.stationary(**loading, R=3, tau=2, v=0.7)
+    power = mdrmap.stationary(**loading, profile="power", n=2, A=1 / 6, tau=2, v=0.7)
+    for key in ("FN", "Fx", "mu", "a2"):
+        assert power[key] == pytest.approx(par[key], rel=1e-14, abs=0)
+    # the cone on the Kelvin foundation once v tau >= a1: mu = (pi/2) tan(beta)
+    cone = mdrmap.stationary(**loading, profile="cone", beta=10, tau=2, v=1e3)
+    assert cone["mu"] == pytest.approx(math.pi / 2 * math.tan(math.radians(10)), rel=1e-14)
+    assert cone["a2"] == 0
+    for bad, option in ((dict(profile="cone", beta=10, R=3), "R"),
+                        (dict(profile="cone", beta=90), "beta"),
+                        (dict(profile="power", n=0.5, A=1), "n"),
+                        (dict(R=3, beta=10), "beta")):
+        with pytest.raises(mdrmap.InvalidInput) as e:
+            mdrmap.stationary(**loading, **bad, tau=2, v=1)
+        assert e.value.option == option
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.simulate(**loading, profile="cone", beta=10, tau=2, v=1, v1=0.5)
+    assert e.value.option == "profile"
+
+
 def test_parameters_are_the_table_of_the_help(exe):
     table = mdrmap.parameters()
     code, out, _ = run_cli(exe, ["--help"])

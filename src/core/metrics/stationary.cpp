@@ -2,12 +2,14 @@
 
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/metrics/profile_stationary.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
 
 namespace mdrmap {
 namespace {
 
 State unshifted_stationary(const Case& c, double w) {
+  if (!c.indenter.parabolic()) return profile_stationary(c, w);
   const bool load = c.loading.by_force();
   if (!c.rheology.kelvin())
     return load ? spectrum_stationary_load(c, w) : spectrum_stationary(c, w);

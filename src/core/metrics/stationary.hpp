@@ -10,7 +10,8 @@ namespace mdrmap {
 /// The stationary state at velocity w >= 0: at the case's fixed depth, or
 /// under its load F0 (d and a1 filled); the Kelvin closed forms
 /// (analytic.hpp, load_stationary.hpp) for the Kelvin foundation, those of
-/// spectrum_stationary.hpp for a spectrum.
+/// spectrum_stationary.hpp for a spectrum; for the cone and power profiles
+/// those of profile_stationary.hpp.
 State stationary_state(const Case& c, double w);
 
 } // namespace mdrmap

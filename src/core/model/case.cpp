@@ -7,6 +7,7 @@
 
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/metrics/profile_stationary.hpp"
 #include "core/model/params.hpp"
 
 namespace mdrmap {
@@ -34,7 +35,7 @@ double Sampling::inner_offset(long j, double T) const {
 }
 
 double Case::a0() const {
-  return std::cbrt(3.0 * loading.F0 * indenter.R / (16.0 * rheology.G));
+  return indenter.hertz_radius(loading.F0, rheology.G);
 }
 
 std::size_t Case::total_samples() const {
@@ -87,7 +88,8 @@ std::string contact_problem(const Case& at_depth, double w) {
   if (!(L <= kMaxProduct) || !(L * a * a * a <= kMaxProduct))
     return "w tau = " + format_number(L) + " at a1 = " + format_number(a) +
            ": w tau or w tau a1^3 above 1e306 (an overflow)";
-  const State st = analytic::stationary(at_depth, w);
+  const State st = at_depth.indenter.parabolic() ? analytic::stationary(at_depth, w)
+                                                 : profile_stationary(at_depth, w);
   if (!std::isfinite(st.FN) || !std::isfinite(st.Fx) || !std::isfinite(st.mu) ||
       !(st.FN >= kMinForce))
     return "contact forces F_N = " + format_number(st.FN) + ", F_x = " + format_number(st.Fx) +
@@ -99,7 +101,8 @@ std::string contact_problem(const Case& at_depth, double w) {
 /// fixed depth (no copy), under load of the case at its stationary depth.
 std::string stationary_contact_problem(const Case& c, double w) {
   if (!c.loading.by_force()) return contact_problem(c, w);
-  return contact_problem(at_depth(c, stationary_depth(c, w)), w);
+  const double d = c.indenter.parabolic() ? stationary_depth(c, w) : profile_stationary_depth(c, w);
+  return contact_problem(at_depth(c, d), w);
 }
 
 /// The option a velocity of the history stands for: a segment's W is the
@@ -141,7 +144,7 @@ void check_scales(const Case& c) {
     throw InvalidInput(opt, std::string(load ? "with R and G gives a Hertz radius a0 = "
                                              : "with R gives a contact radius sqrt(R d) = ") +
                                 format_number(a) + " that is not representable; rescale the units");
-  const double d = load ? a * a / c.indenter.R : c.loading.d;
+  const double d = load ? c.indenter.g(a) : c.loading.d;
   const double force_scale = d * d * c.rheology.G * 16.0;
   if (!std::isfinite(force_scale))
     throw InvalidInput(opt, "with G gives a force scale 16 G d^2 = " + format_number(force_scale) +
@@ -183,6 +186,15 @@ void check_groups(const Case& c) {
   }
 }
 
+/// The parameters of the other profiles are not given (0).
+void check_profile_parameters(const Case& c) {
+  const Profile kind = c.indenter.profile;
+  for (const auto& p : case_parameters())
+    if (!p.applies_to(kind) && p.get(c) != 0.0)
+      throw InvalidInput(p.name, std::string("applies to --profile ") + p.profile +
+                                     " only; this case's profile is " + profile_name(kind));
+}
+
 /// The Kelvin case whose scales bound those of `c`: the glassy modulus G0
 /// and the longest (shifted) time, so that its stationary forces are at least
 /// the spectrum's. `c` itself (no copy) where it is Kelvin and unshifted.
@@ -197,8 +209,10 @@ const Case& kelvin_bound(const Case& c, Case& storage) {
 
 void validate(const Case& c) {
   check_groups(c);
+  check_profile_parameters(c);
   for (const auto& p : case_parameters())
-    if (!p.one_of || p.get(c) != 0.0) p.check(p.get(c)); // a group's other members are 0
+    if (p.applies_to(c.indenter.profile) && (!p.one_of || p.get(c) != 0.0))
+      p.check(p.get(c)); // a group's other members are 0
   validate(c.rheology);
   check_history(c.history);
   Case storage;
@@ -258,6 +272,15 @@ void require_kelvin(const Case& c, const char* solver) {
                                     " solves the Kelvin foundation only (no Maxwell branches); "
                                     "this case has " +
                                     std::to_string(c.rheology.branches.size()));
+}
+
+void require_parabola(const Case& c, const char* solver) {
+  if (!c.indenter.parabolic())
+    throw InvalidInput("profile", std::string(solver) +
+                                      " solves the parabola only; this case's profile is " +
+                                      profile_name(c.indenter.profile) +
+                                      " (the cone and power profiles have stationary states only "
+                                      "so far: mdrmap.stationary in Python)");
 }
 
 double zeta(const Case& c, double w) {

@@ -2,7 +2,8 @@
 // The case model: one computation of mdrmap, made of parts that are each
 // validated once (docs/design.md, "The case model").
 //
-//   indenter  the rigid profile and its MDR image g(x); today the parabola
+//   indenter  the rigid profile and its MDR image g(x): parabola, cone or power
+//             law (profile.hpp)
 //   rheology  the foundation element: the Kelvin element G, tau of the seed, or a
 //             relaxation spectrum (Maxwell branches), shifted by aT (rheology.hpp)
 //   loading   what holds the indenter in the foundation: today a fixed depth d
@@ -19,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/model/profile.hpp"
 #include "core/model/rheology.hpp"
 
 namespace mdrmap {
@@ -37,18 +39,6 @@ private:
 
 /// A number with 17 significant digits, as error messages quote it.
 std::string format_number(double x);
-
-/// Rigid indenter. Today the parabola f(r) = r^2/2R, MDR image g(x) = x^2/R.
-/// A cone or power law would be one more profile here; the solvers ask the
-/// indenter for g, g' and the contact radius, their callers never do.
-struct Indenter {
-  double R = 0.0; ///< radius of curvature, > 0
-  double g(double x) const { return x * x / R; }
-  double slope(double x) const { return 2.0 * x / R; }
-  /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
-  /// solvers ask for it at every sample.)
-  double contact_radius(double d) const { return std::sqrt(R) * std::sqrt(d); }
-};
 
 /// How the indenter is held: at a fixed depth d (depth control), or under a
 /// prescribed normal force F0 with the depth free (load control). Exactly one
@@ -116,7 +106,8 @@ struct Case {
 
   /// Leading edge a1 = contact radius at depth d (depth control).
   double a1() const { return indenter.contact_radius(loading.d); }
-  /// Hertz contact radius of F0 (load control): F0 = 16/3 G a0^3 / R.
+  /// Hertz contact radius of F0 (load control): F0 = 4 G int (g(a0) - g)
+  /// over [-a0, a0] (16/3 G a0^3 / R for the parabola).
   double a0() const;
   /// The length the error metric measures edges by: a1 at fixed depth, a0
   /// under load.
@@ -172,6 +163,10 @@ void require_depth_control(const Case& c, const char* solver);
 /// foundation (no Maxwell branches): the guard of the solvers and closed forms
 /// that take the Kelvin foundation only (`solver` names the caller).
 void require_kelvin(const Case& c, const char* solver);
+
+/// Throws InvalidInput("profile") unless the indenter is the parabola: the
+/// guard of the solvers that take the parabola only (`solver` names the caller).
+void require_parabola(const Case& c, const char* solver);
 
 /// Similarity variable zeta = w tau / a1 at velocity w.
 double zeta(const Case& c, double w);

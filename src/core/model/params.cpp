@@ -1,6 +1,7 @@
 #include "core/model/params.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace mdrmap {
@@ -21,6 +22,24 @@ double get_R(const Case& c) {
 }
 void set_R(Case& c, double x) {
   c.indenter.R = x;
+}
+double get_beta(const Case& c) {
+  return c.indenter.beta;
+}
+void set_beta(Case& c, double x) {
+  c.indenter.beta = x;
+}
+double get_n(const Case& c) {
+  return c.indenter.n;
+}
+void set_n(Case& c, double x) {
+  c.indenter.n = x;
+}
+double get_A(const Case& c) {
+  return c.indenter.A;
+}
+void set_A(Case& c, double x) {
+  c.indenter.A = x;
 }
 double get_tau(const Case& c) {
   return c.rheology.tau;
@@ -91,12 +110,16 @@ const char* dim_name(Dim d) {
   return "?";
 }
 
+bool ParamSpec::applies_to(Profile p) const {
+  return profile == nullptr || std::strcmp(profile, profile_name(p)) == 0;
+}
+
 std::string ParamSpec::allowed() const {
   if (integer()) return "an integer from " + format_number(lo) + " to " + format_number(hi);
   std::string s = "a finite number ";
   s += lo_inclusive ? ">= " : "> ";
   s += format_number(lo);
-  if (std::isfinite(hi)) s += " and <= " + format_number(hi);
+  if (std::isfinite(hi)) s += (hi_inclusive ? " and <= " : " and < ") + format_number(hi);
   return s;
 }
 
@@ -111,7 +134,8 @@ const std::vector<ParamSpec>& case_parameters() {
       {"F0", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
        "prescribed normal load (load control: the depth follows it)", get_F0, set_F0},
       {"R", "R", Part::Indenter, Dim::Length, 0.0, false, kInf, true, nullptr, 0.0,
-       "radius of curvature of the parabolic indenter", get_R, set_R},
+       "radius of curvature of the parabolic indenter (--profile parabola)", get_R, set_R,
+       "parabola"},
       {"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, nullptr, 0.0,
        "relaxation time eta/G of the foundation's dashpot; 0 is the purely elastic limit (with "
        "--prony: no parallel dashpot)",
@@ -124,6 +148,14 @@ const std::vector<ParamSpec>& case_parameters() {
        set_aT},
       {"v", "V0", Part::History, Dim::Velocity, 0.0, false, kInf, true, nullptr, 0.0,
        "sliding velocity of the stationary sliding before t = 0", get_v0, set_v0},
+      {"beta", "DEG", Part::Indenter, Dim::Number, 0.0, false, 90.0, true, nullptr, 0.0,
+       "angle between the cone's surface and the plane, in degrees (--profile cone)", get_beta,
+       set_beta, "cone", false},
+      {"n", "N", Part::Indenter, Dim::Number, 1.0, true, kInf, true, nullptr, 0.0,
+       "exponent of the power-law profile f(r) = A r^n (--profile power)", get_n, set_n, "power"},
+      {"A", "A", Part::Indenter, Dim::Number, 0.0, false, kInf, true, nullptr, 0.0,
+       "coefficient of the power-law profile f(r) = A r^n, in length^(1-n) (--profile power)",
+       get_A, set_A, "power"},
       {"samples", "N", Part::Sampling, Dim::Count, 2.0, true, static_cast<double>(kMaxSamples),
        false, nullptr, 201.0, "output instants per segment, from its start to its end", get_samples,
        set_samples},

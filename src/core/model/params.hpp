@@ -28,13 +28,18 @@ struct ParamSpec {
   Dim dim;             ///< physical dimension
   double lo;           ///< lower bound
   bool lo_inclusive;   ///< the range is >= lo (true) or > lo (false)
-  double hi;           ///< inclusive upper bound (infinity: none)
+  double hi;           ///< upper bound (infinity: none), inclusive unless hi_inclusive is false
   bool required;       ///< the case cannot be built without it
   const char* one_of;  ///< nullptr, or a group (e.g. "loading") of which exactly one is given
   double fallback;     ///< default when not required
   const char* meaning; ///< one line, lower case, no final period
   double (*get)(const Case&);
   void (*set)(Case&, double);
+  /// nullptr, or the indenter profile (profile_name) the parameter belongs
+  /// to: it applies to (and `required` means required for) that profile only,
+  /// and is 0 (not given) for the others.
+  const char* profile = nullptr;
+  bool hi_inclusive = true; ///< the range is <= hi (true) or < hi (false)
 
   bool integer() const { return dim == Dim::Count; }
   /// "a finite number > 0" / "an integer from 2 to 100000000" ...
@@ -42,8 +47,11 @@ struct ParamSpec {
   /// Whether x is in the range (an integer where the dimension is a count).
   bool contains(double x) const {
     const bool above = lo_inclusive ? x >= lo : x > lo;
-    return std::isfinite(x) && above && x <= hi && (!integer() || x == std::floor(x));
+    const bool below = hi_inclusive ? x <= hi : x < hi;
+    return std::isfinite(x) && above && below && (!integer() || x == std::floor(x));
   }
+  /// Whether the parameter applies to a case with this indenter profile.
+  bool applies_to(Profile p) const;
   /// Throws InvalidInput(name, "must be <allowed>, got <x>"). (Inline: every
   /// case of a study passes here many times.)
   void check(double x) const {
@@ -54,7 +62,8 @@ struct ParamSpec {
 };
 
 /// The scalar parameters of a case, in the order of the help text: the
-/// loading, indenter and material, then the history's v0, then the sampling.
+/// loading, the parabola's R and the material, the history's v0, the other
+/// profiles' parameters (beta, n, A), then the sampling.
 const std::vector<ParamSpec>& case_parameters();
 
 /// The parameters of one history segment ("w" velocity, "T" duration): the

@@ -178,6 +178,7 @@ RunResult run_baseline(const Case& s, const BaselineOptions& opt) {
   validate(s);
   require_depth_control(s, "baseline");
   require_kelvin(s, "baseline");
+  require_parabola(s, "baseline");
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
   RunResult res = run_baseline_once(s, opt, control);

@@ -41,10 +41,11 @@ void validate_rtol(double rtol) {
 }
 
 ModelNeeds model_needs(const Case& c) {
-  return ModelNeeds{c.loading.by_force(), !c.rheology.kelvin()};
+  return ModelNeeds{c.loading.by_force(), !c.rheology.kelvin(), c.indenter.profile};
 }
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
+  if (needs.profile != Profile::Parabola) return false; // no transient solver takes it yet
   switch (kind) {
   case SolverKind::Auto:
     return true;
@@ -89,11 +90,18 @@ RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunCo
 
 namespace {
 
-/// Throws InvalidInput unless `kind` handles the case: "prony" where the
-/// solver takes the Kelvin foundation only, "solver" for the loading.
+/// Throws InvalidInput unless `kind` handles the case: "profile" for a
+/// profile no solver takes, "prony" where the solver takes the Kelvin
+/// foundation only, "solver" for the loading.
 void require_handled(SolverKind kind, const Case& c) {
   const ModelNeeds needs = model_needs(c);
   if (solver_handles(kind, needs)) return;
+  if (needs.profile != Profile::Parabola)
+    throw InvalidInput("profile", std::string("solver ") + solver_name(kind) +
+                                      " solves the parabola only: the cone and power profiles "
+                                      "have stationary states only so far (Python "
+                                      "mdrmap.stationary); the transient solvers take the "
+                                      "parabola");
   if (needs.spectrum)
     throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
                                     " solves the Kelvin foundation only (no Maxwell branches); "

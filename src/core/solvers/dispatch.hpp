@@ -19,11 +19,13 @@ inline constexpr SolverKind kSolverKinds[] = {SolverKind::Auto, SolverKind::Exac
 SolverKind parse_solver(const std::string& name);
 const char* solver_name(SolverKind k);
 
-/// What a case asks of a solver: its loading, and whether its rheology has
-/// Maxwell branches (a relaxation spectrum) beyond the Kelvin element.
+/// What a case asks of a solver: its loading, whether its rheology has
+/// Maxwell branches (a relaxation spectrum) beyond the Kelvin element, and
+/// its indenter profile.
 struct ModelNeeds {
-  bool by_force = false; ///< load control (else a fixed depth)
-  bool spectrum = false; ///< Maxwell branches (else the Kelvin foundation)
+  bool by_force = false;               ///< load control (else a fixed depth)
+  bool spectrum = false;               ///< Maxwell branches (else the Kelvin foundation)
+  Profile profile = Profile::Parabola; ///< the indenter's profile
 };
 ModelNeeds model_needs(const Case& c);
 
@@ -31,12 +33,14 @@ ModelNeeds model_needs(const Case& c);
 /// depth control only; exact, mdr and baseline (and the load solvers they
 /// dispatch to) the Kelvin foundation only; spectrum (the element row of any
 /// rheology) every case, at fixed depth and under load, with or without
-/// branches; auto every case. run_case refuses the others with InvalidInput naming
+/// branches; auto every case. Every solver takes the parabola only so far
+/// (the cone and power profiles have stationary states only). run_case
+/// refuses the others with InvalidInput naming "profile" (the indenter),
 /// "solver" (the loading) or "prony" (the spectrum).
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);
 /// The same for a loading alone, on the Kelvin foundation.
 inline bool solver_handles(SolverKind kind, bool by_force) {
-  return solver_handles(kind, ModelNeeds{by_force, false});
+  return solver_handles(kind, ModelNeeds{by_force, false, Profile::Parabola});
 }
 
 /// Runs one case (its relaxation times shifted by aT). `Auto` picks the

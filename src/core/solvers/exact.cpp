@@ -377,6 +377,7 @@ RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& c
   const Case& c = checked.get();
   require_depth_control(c, "exact");
   require_kelvin(c, "exact");
+  require_parabola(c, "exact");
   // Solve the roots to ~10 bits beyond what rtol asks, 52 bits at most.
   const int bits = std::clamp(static_cast<int>(std::ceil(-std::log2(rtol))) + 12, 24, 52);
   ExactSolution ex(c, bits, &control);

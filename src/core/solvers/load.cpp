@@ -309,6 +309,7 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   if (!c.loading.by_force())
     throw InvalidInput("solver", "the load solver needs a prescribed normal load (--F0)");
   require_kelvin(c, "the load solver");
+  require_parabola(c, "the load solver");
   validate_rtol(opt.rtol);
   RunResult res;
   res.info.solver = "mdr";

@@ -348,6 +348,7 @@ RunResult run_load_baseline(const Case& c, const LoadBaselineOptions& opt) {
     throw InvalidInput("solver", "the load-control baseline solves load control only (--F0); "
                                  "this case prescribes the depth (--d)");
   require_kelvin(c, "the load-control baseline");
+  require_parabola(c, "the load-control baseline");
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
   RunResult res = run_once(c, opt, control);

@@ -93,6 +93,7 @@ RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   validate(s);
   require_depth_control(s, "mdr");
   require_kelvin(s, "mdr");
+  require_parabola(s, "mdr");
   Refinement r;
   r.solver = "mdr";
   r.cells = opt.cells_per_a1 > 0.0 ? opt.cells_per_a1 : initial_cells(opt);

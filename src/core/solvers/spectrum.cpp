@@ -267,6 +267,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
 
 RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   validate(given);
+  require_parabola(given, "spectrum");
   const bool adaptive = !(o.cells_per_a1 > 0.0);
   if (adaptive) validate_rtol(o.rtol);
   if (!(o.sub_travel > 0.0) || !(o.sub_travel <= 2.0))

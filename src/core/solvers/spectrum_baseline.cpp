@@ -281,6 +281,7 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
 
 RunResult run_spectrum_baseline(const Case& given, const SpectrumBaselineOptions& o) {
   validate(given);
+  require_parabola(given, "spectrum-baseline");
   Case c = given;
   c.rheology = given.rheology.shifted();
   const RunControl own;

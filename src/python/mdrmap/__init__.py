@@ -37,7 +37,7 @@ _ALIASES = _core.parameter_aliases()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
 # the case's parameters without history and sampling, and its spectrum and temperature
 _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
-    [o for o in ("prony", "prony-file", "T", "wlf") if o in _OPTIONS]
+    [o for o in ("profile", "prony", "prony-file", "T", "wlf") if o in _OPTIONS]
 
 
 def _keywords(options):
@@ -170,8 +170,9 @@ def simulate(**options):
 
 def stationary(**options):
     """The stationary state at velocity v (FN, Fx, mu, a2, and d, a1 under
-    load) of the case's parameters without a history: d or F0, R, tau, v, G,
-    and its spectrum (prony= as "G1:TAU1,..." or [(G1, TAU1), ...], or
+    load) of the case's parameters without a history: d or F0, the indenter
+    (R, or profile="cone" with beta=, or profile="power" with n= and A=), tau,
+    v, G, and its spectrum (prony= as "G1:TAU1,..." or [(G1, TAU1), ...], or
     prony_file=) and shift (aT=, or T= with wlf=).
     It is the state that events[0]["mu_ss_before"] of simulate describes."""
     texts = _texts(options, _STATIONARY_KEYWORDS, "stationary")

@@ -1,0 +1,260 @@
+#include "core/metrics/profile_stationary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include <boost/math/quadrature/tanh_sinh.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+
+#include "core/metrics/analytic.hpp"
+#include "core/metrics/load_stationary.hpp"
+#include "core/metrics/spectrum_stationary.hpp"
+
+// Derivation: docs/design.md, "Indenter profiles". Every integral is split
+// at the tip x = 0, where g' of the cone jumps and |x|^(n-1) is not smooth,
+// so that tanh-sinh sees the kinks and the branches' boundary layers (width
+// lambda_k behind the leading edge and behind the tip) at its end points.
+
+namespace mdrmap {
+namespace {
+
+struct Term {
+  double G;   // branch modulus
+  double lam; // w tau_k
+};
+
+// The contact of g = c |x|^n at leading edge a1 (depth d = c a1^n), velocity w.
+struct Contact {
+  double n = 2.0, c = 1.0, a1 = 0.0, L = 0.0, G = 0.0;
+  std::vector<Term> terms;
+};
+
+struct Edge {
+  double a2, delta; // trailing edge and a1 - a2, each without cancellation
+};
+
+Contact make_contact(const Case& c, double a1, double w) {
+  Contact k;
+  k.n = c.indenter.exponent();
+  k.c = c.indenter.coefficient();
+  k.a1 = a1;
+  k.L = w * c.rheology.tau;
+  k.G = c.rheology.G;
+  for (const Branch& b : c.rheology.branches)
+    if (w * b.tau > 0.0) k.terms.push_back({b.G, w * b.tau});
+  return k;
+}
+
+template <class F> double root(F f, double lo, double hi) {
+  std::uintmax_t iters = 200;
+  const auto r = boost::math::tools::toms748_solve(
+      f, lo, hi, boost::math::tools::eps_tolerance<double>(52), iters);
+  return 0.5 * (r.first + r.second);
+}
+
+template <class F> double integral(F f, double lo, double hi) {
+  if (!(hi > lo)) return 0.0;
+  thread_local boost::math::quadrature::tanh_sinh<double> rule; // grows its tables: per thread
+  return rule.integrate(f, lo, hi, 1e-13);
+}
+
+/// |g'| at distance y >= 0 from the tip: c n y^(n-1).
+double slope_mag(const Contact& k, double y) {
+  return k.n == 1.0 ? k.c : k.c * k.n * std::pow(y, k.n - 1.0);
+}
+
+/// a1^n - (a1 - delta)^n without cancellation.
+double pow_diff(double a1, double delta, double n) {
+  return std::pow(a1, n) * -std::expm1(n * std::log1p(-delta / a1));
+}
+
+/// The Kelvin trailing edge: the root of a1^n - a2^n = L n a2^(n-1).
+Edge kelvin_edge(const Contact& k) {
+  const double a1 = k.a1, n = k.n, L = k.L, half = 0.5 * a1;
+  if (L == 0.0) return {a1, 0.0};
+  if (n == 1.0) return L >= a1 ? Edge{0.0, a1} : Edge{a1 - L, L};
+  auto in_delta = [&](double dl) {
+    return pow_diff(a1, dl, n) - L * n * std::pow(a1 - dl, n - 1.0);
+  };
+  if (in_delta(half) >= 0.0) {
+    const double dl = root(in_delta, 0.0, half);
+    return {a1 - dl, dl};
+  }
+  auto in_a2 = [&](double x) {
+    return std::pow(x, n) + L * n * std::pow(x, n - 1.0) - std::pow(a1, n);
+  };
+  const double a2 = root(in_a2, 0.0, half);
+  return {a2, a1 - a2};
+}
+
+/// The Kelvin brackets of F_N / (4 G c) and F_x / (4 G c^2) of the contact.
+void kelvin_brackets(const Contact& k, const Edge& e, double& N, double& X) {
+  const double n = k.n, a1 = k.a1, a2 = e.a2, an = std::pow(a1, n);
+  const double D = pow_diff(a1, e.delta, n); // a1^n - a2^n
+  N = n / (n + 1.0) * an * a1 + a2 * (an - std::pow(a2, n) / (n + 1.0)) + k.L * D;
+  X = 0.5 * D * D +
+      k.L * n * n * (std::pow(a1, 2.0 * n - 1.0) + std::pow(a2, 2.0 * n - 1.0)) / (2.0 * n - 1.0);
+}
+
+/// The stress r of a branch of length lambda at x: int exp(-(x - x')/lambda)
+/// (-g'(x')) dx' from the leading edge (the kernel below e^-40 dropped).
+double branch_stress(const Contact& k, double x, double lam) {
+  const double lo = std::max(-k.a1, x - 40.0 * lam);
+  double r = integral([&](double t) { return std::exp(-(x - t) / lam) * slope_mag(k, -t); }, lo,
+                      std::min(x, 0.0));
+  if (x > 0.0)
+    r -= integral([&](double t) { return std::exp(-(x - t) / lam) * slope_mag(k, t); },
+                  std::max(lo, 0.0), x);
+  return r;
+}
+
+/// sum_k G_k r_k(x).
+double branches(const Contact& k, double x) {
+  double s = 0.0;
+  for (const Term& t : k.terms)
+    s += t.G * branch_stress(k, x, t.lam);
+  return s;
+}
+
+/// p / 4 at x >= 0 of the contact (behind the tip: g' > 0), x = a1 - delta.
+double pressure_behind(const Contact& k, double x, double delta) {
+  const double h = k.c * pow_diff(k.a1, delta, k.n); // d - g(x)
+  return k.G * (h - k.L * slope_mag(k, x)) + branches(k, x);
+}
+
+Edge spectrum_edge(const Contact& k) {
+  const double a1 = k.a1, half = 0.5 * a1;
+  if (k.L == 0.0 && k.terms.empty()) return {a1, 0.0};      // at rest: elastic, symmetric
+  if (pressure_behind(k, 0.0, a1) <= 0.0) return {0.0, a1}; // lets go at the tip
+  if (pressure_behind(k, half, half) > 0.0) {
+    auto f = [&](double dl) { return pressure_behind(k, a1 - dl, dl); };
+    if (f(0.0) >= 0.0) return {a1, 0.0};
+    const double dl = root(f, 0.0, half);
+    return {a1 - dl, dl};
+  }
+  const double x = root([&](double t) { return pressure_behind(k, t, a1 - t); }, 0.0, half);
+  return {x, a1 - x};
+}
+
+/// sum_k G_k int r_k over the contact, one integral per branch (the order
+/// of integration swapped): lambda int (-g'(x')) (1 - exp(-(a2 - x')/lambda)) dx'.
+double branch_normal(const Contact& k, const Edge& e) {
+  double s = 0.0;
+  for (const Term& t : k.terms) {
+    auto kernel = [&](double x) { return -std::expm1(-(e.a2 - x) / t.lam); };
+    const double front =
+        integral([&](double x) { return slope_mag(k, -x) * kernel(x); }, -k.a1, 0.0);
+    const double back = integral([&](double x) { return slope_mag(k, x) * kernel(x); }, 0.0, e.a2);
+    s += t.G * t.lam * (front - back);
+  }
+  return s;
+}
+
+/// sum_k G_k int r_k (-g') over the contact: r_k by quadrature at each node.
+double branch_friction(const Contact& k, const Edge& e) {
+  return integral([&](double x) { return branches(k, x) * slope_mag(k, -x); }, -k.a1, 0.0) -
+         integral([&](double x) { return branches(k, x) * slope_mag(k, x); }, 0.0, e.a2);
+}
+
+/// The forces of the contact; F_x (and mu) only where `friction` is asked.
+State forces(const Contact& k, const Edge& e, bool friction = true) {
+  double N = 0.0, X = 0.0;
+  kelvin_brackets(k, e, N, X);
+  const bool any = !k.terms.empty();
+  State st;
+  st.a2 = e.a2;
+  st.a1 = k.a1;
+  st.FN = 4.0 * (k.G * k.c * N + (any ? branch_normal(k, e) : 0.0));
+  if (!friction) return st;
+  st.Fx = 4.0 * (k.G * k.c * k.c * X + (any ? branch_friction(k, e) : 0.0));
+  st.mu = st.Fx / st.FN;
+  return st;
+}
+
+/// The general path at leading edge a1 (depth c a1^n).
+State at_edge(const Case& c, double a1, double w, bool friction = true) {
+  const Contact k = make_contact(c, a1, w);
+  State st = forces(k, k.terms.empty() ? kelvin_edge(k) : spectrum_edge(k), friction);
+  st.d = k.c * std::pow(a1, k.n);
+  return st;
+}
+
+/// Power law with n = 2 and the parabola: g = c x^2, the parabola of R = 1/c.
+bool quadratic(const Indenter& i) {
+  return i.parabolic() || (i.profile == Profile::Power && i.n == 2.0);
+}
+
+Case as_parabola(const Case& c) {
+  Case p = c;
+  p.indenter = Indenter{};
+  p.indenter.R = c.indenter.parabolic() ? c.indenter.R : 1.0 / c.indenter.coefficient();
+  return p;
+}
+
+State parabola_stationary(const Case& p, double w) {
+  const bool load = p.loading.by_force();
+  if (!p.rheology.kelvin())
+    return load ? spectrum_stationary_load(p, w) : spectrum_stationary(p, w);
+  return load ? stationary_under_load(p, w) : analytic::stationary(p, w);
+}
+
+/// The cone on the Kelvin foundation under load, in closed form: with
+/// q = F0 / (4 G c) = a0^2, a1 = sqrt(q - L^2/2) while a1 > L, else the
+/// root of a1^2/2 + L a1 = q.
+double cone_kelvin_edge(const Case& c, double w) {
+  const double L = w * c.rheology.tau;
+  const double q = c.loading.F0 / (4.0 * c.rheology.G * c.indenter.coefficient());
+  if (q > 1.5 * L * L) return std::sqrt(q - 0.5 * L * L);
+  return 2.0 * q / (std::sqrt(L * L + 2.0 * q) + L);
+}
+
+/// The leading edge of stationary sliding under load: F_N grows with a1.
+double load_edge(const Case& c, double w) {
+  if (c.indenter.profile == Profile::Cone && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
+  const double F0 = c.loading.F0;
+  auto f = [&](double a1) { return at_edge(c, a1, w, false).FN / F0 - 1.0; };
+  double lo = c.a0(), hi = lo;
+  for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
+    lo *= 0.5;
+  for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
+    hi *= 2.0;
+  return lo == hi ? lo : root(f, lo, hi);
+}
+
+void check_velocity(double w) {
+  if (!(w >= 0.0) || !std::isfinite(w))
+    throw std::invalid_argument("profile_stationary: w must be finite and >= 0");
+}
+
+} // namespace
+
+double profile_stationary_depth(const Case& c, double w) {
+  check_velocity(w);
+  if (!c.loading.by_force())
+    throw std::invalid_argument("profile_stationary_depth: the case needs a load F0 > 0");
+  if (quadratic(c.indenter)) return parabola_stationary(as_parabola(c), w).d;
+  return c.indenter.g(load_edge(c, w));
+}
+
+State profile_stationary(const Case& c, double w) {
+  check_velocity(w);
+  if (quadratic(c.indenter)) return parabola_stationary(as_parabola(c), w);
+  const double a1 = c.loading.by_force() ? load_edge(c, w) : c.a1();
+  State st = at_edge(c, a1, w);
+  if (!c.loading.by_force()) st.d = c.loading.d;
+  return st;
+}
+
+namespace profile_detail {
+State general_stationary(const Case& c, double w) {
+  check_velocity(w);
+  State st = at_edge(c, c.a1(), w);
+  st.d = c.loading.d;
+  return st;
+}
+} // namespace profile_detail
+
+} // namespace mdrmap

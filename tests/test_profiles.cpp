@@ -1,0 +1,386 @@
+// Indenter profiles (src/core/model/profile.*, src/core/metrics/profile_stationary.*):
+// the MDR image and the Hertz-type scales of each profile, the stationary
+// states of the cone and the power law against an independent computation
+// (the branch ODEs integrated along the contact by adaptive Dormand-Prince,
+// the trailing edge the zero of that pressure), the power law with n = 2
+// against the parabola on the history and load case sets, the cone's limits,
+// and the refusals (docs/design.md, "Indenter profiles").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/tools/toms748_solve.hpp>
+#include <boost/numeric/odeint.hpp>
+
+#include "cases/case_set.hpp"
+#include "cases/load_case_set.hpp"
+#include "core/metrics/profile_stationary.hpp"
+#include "core/metrics/stationary.hpp"
+#include "core/model/case.hpp"
+#include "core/solvers/dispatch.hpp"
+#include "core/solvers/exact.hpp"
+#include "core/solvers/mdr.hpp"
+
+namespace {
+
+using mdrmap::Branch;
+using mdrmap::Case;
+using mdrmap::Profile;
+using mdrmap::State;
+
+const double kPi = boost::math::constants::pi<double>();
+
+Case cone_case(double beta, double d, double tau, double v, std::vector<Branch> b = {}) {
+  Case c = mdrmap::step_case(d, 1.0, tau, v, v, 1.0, 1.0, 11);
+  c.indenter.R = 0.0;
+  c.indenter.profile = Profile::Cone;
+  c.indenter.beta = beta;
+  c.rheology.branches = std::move(b);
+  return c;
+}
+
+Case power_case(double n, double A, double d, double tau, double v, std::vector<Branch> b = {}) {
+  Case c = cone_case(10.0, d, tau, v, std::move(b));
+  c.indenter.profile = Profile::Power;
+  c.indenter.beta = 0.0;
+  c.indenter.n = n;
+  c.indenter.A = A;
+  return c;
+}
+
+Case under_load(Case c, double F0) {
+  c.loading.d = 0.0;
+  c.loading.F0 = F0;
+  return c;
+}
+
+double rel(double a, double b) {
+  return a == b ? 0.0 : std::fabs(a - b) / std::fmax(std::fabs(a), std::fabs(b));
+}
+
+TEST(ProfileModel, ImageOfEachProfile) {
+  EXPECT_NEAR(mdrmap::mdr_kappa(2.0), 2.0, 4e-16);
+  EXPECT_NEAR(mdrmap::mdr_kappa(1.0), kPi / 2.0, 4e-16);
+  // kappa_3 = sqrt(pi) Gamma(5/2) / Gamma(2) = 3 pi / 4
+  EXPECT_NEAR(mdrmap::mdr_kappa(3.0), 0.75 * kPi, 1e-15);
+  const Case cone = cone_case(20.0, 0.1, 1.0, 1.0);
+  const double c = kPi / 2.0 * std::tan(20.0 * kPi / 180.0);
+  EXPECT_NEAR(cone.indenter.g(-0.3), c * 0.3, 1e-16);
+  EXPECT_NEAR(cone.indenter.slope(0.3), c, 1e-16);
+  EXPECT_NEAR(cone.indenter.slope(-0.3), -c, 1e-16);
+  const Case p = power_case(1.5, 0.7, 0.1, 1.0, 1.0);
+  const double a = p.a1();
+  EXPECT_NEAR(p.indenter.g(a), 0.1, 1e-16);
+  // the parabola's arithmetic is the seed's, bit for bit
+  Case par = mdrmap::step_case(0.01, 3.0, 1.0, 1.0, 1.0);
+  for (double x : {-0.7, 0.1, 1.3e-9, 4.0}) {
+    EXPECT_EQ(par.indenter.g(x), x * x / 3.0);
+    EXPECT_EQ(par.indenter.slope(x), 2.0 * x / 3.0);
+  }
+  EXPECT_EQ(par.a1(), std::sqrt(3.0) * std::sqrt(0.01));
+}
+
+// a0 of a load: F0 = 4 G int over [-a0, a0] of (g(a0) - g), by Gauss-Legendre
+TEST(ProfileModel, HertzRadiusOfEachProfile) {
+  std::vector<Case> cases = {cone_case(10.0, 0.1, 1.0, 1.0), cone_case(60.0, 0.1, 1.0, 1.0),
+                             power_case(1.5, 0.7, 0.1, 1.0, 1.0),
+                             power_case(3.0, 2.0, 0.1, 1.0, 1.0),
+                             mdrmap::step_case(0.1, 2.0, 1.0, 1.0, 1.0)};
+  for (Case c : cases) {
+    c.rheology.G = 2.5;
+    for (double F0 : {1e-6, 0.3, 40.0}) {
+      c = under_load(c, F0);
+      const double a0 = c.a0(), d0 = c.indenter.g(a0);
+      // one half, in x = t^2 (|x|^n is then smooth for 2n integer)
+      const double half = boost::math::quadrature::gauss<double, 30>::integrate(
+          [&](double t) { return (d0 - c.indenter.g(t * t)) * 2.0 * t; }, 0.0, std::sqrt(a0));
+      EXPECT_LT(rel(4.0 * c.rheology.G * 2.0 * half, F0), 1e-13)
+          << mdrmap::profile_name(c.indenter.profile) << " F0 = " << F0;
+    }
+  }
+}
+
+// --- The independent stationary state: the branch ODEs along the contact ----
+
+struct Reference {
+  const Case& c;
+  double w, n, k, a1, L;
+  Reference(const Case& cc, double ww)
+      : c(cc), w(ww), n(cc.indenter.exponent()), k(cc.indenter.coefficient()), a1(0.0),
+        L(ww * cc.rheology.tau) {}
+  // -g'(x) on the side `behind` (x >= 0) or ahead of the tip
+  double minus_slope(double x, bool behind) const {
+    const double m = n * k * std::pow(std::fabs(x), n - 1.0);
+    return behind ? -m : m;
+  }
+  double h(double x) const { return k * (std::pow(a1, n) - std::pow(std::fabs(x), n)); }
+  // y = (q_1 .. q_N, int p/4, int p/4 (-g')); x in [-a1, end]
+  std::vector<double> integrate_to(double end) const {
+    namespace ode = boost::numeric::odeint;
+    const std::size_t N = c.rheology.branches.size();
+    std::vector<double> y(N + 2, 0.0);
+    auto rhs = [&](bool behind) {
+      return [this, N, behind](const std::vector<double>& s, std::vector<double>& ds, double x) {
+        const double hx = h(x), mg = minus_slope(x, behind);
+        double P = c.rheology.G * (hx + L * mg);
+        for (std::size_t i = 0; i < N; ++i) {
+          const double lam = w * c.rheology.branches[i].tau;
+          ds[i] = (hx - s[i]) / lam;
+          P += c.rheology.branches[i].G * (hx - s[i]);
+        }
+        ds[N] = P;
+        ds[N + 1] = P * mg;
+      };
+    };
+    auto stepper =
+        ode::make_controlled(1e-15, 1e-14, ode::runge_kutta_dopri5<std::vector<double>>());
+    ode::integrate_adaptive(stepper, rhs(false), y, -a1, std::fmin(end, 0.0), 1e-6 * a1);
+    if (end > 0.0) ode::integrate_adaptive(stepper, rhs(true), y, 0.0, end, 1e-6 * a1);
+    return y;
+  }
+  double pressure(double x) const { // p/4 at x >= 0, behind the tip
+    const std::vector<double> y = integrate_to(x);
+    const double hx = h(x);
+    double P = c.rheology.G * (hx + L * minus_slope(x, true));
+    for (std::size_t i = 0; i < c.rheology.branches.size(); ++i)
+      P += c.rheology.branches[i].G * (hx - y[i]);
+    return P;
+  }
+  State at_depth(double d) {
+    a1 = std::pow(d / k, 1.0 / n);
+    double a2 = a1;
+    if (pressure(0.0) <= 0.0)
+      a2 = 0.0;
+    else if (pressure(a1) < 0.0) {
+      std::uintmax_t it = 100;
+      const auto r =
+          boost::math::tools::toms748_solve([&](double x) { return pressure(x); }, 0.0, a1,
+                                            boost::math::tools::eps_tolerance<double>(50), it);
+      a2 = 0.5 * (r.first + r.second);
+    }
+    const std::vector<double> y = integrate_to(a2);
+    const std::size_t N = c.rheology.branches.size();
+    State st;
+    st.a1 = a1;
+    st.a2 = a2;
+    st.d = d;
+    st.FN = 4.0 * y[N];
+    st.Fx = 4.0 * y[N + 1];
+    st.mu = st.Fx / st.FN;
+    return st;
+  }
+};
+
+void expect_close(const State& got, const State& ref, double tol, const std::string& what) {
+  EXPECT_LT(rel(got.FN, ref.FN), tol) << what << " FN " << got.FN << " vs " << ref.FN;
+  EXPECT_LT(rel(got.Fx, ref.Fx), tol) << what << " Fx " << got.Fx << " vs " << ref.Fx;
+  EXPECT_LT(std::fabs(got.a2 - ref.a2), tol * ref.a1)
+      << what << " a2 " << got.a2 << " vs " << ref.a2;
+}
+
+std::vector<std::vector<Branch>> rheologies() {
+  return {{}, {{2.0, 0.3}}, {{1.5, 0.05}, {4.0, 2.0}, {0.5, 20.0}}};
+}
+
+std::vector<Case> profiles(double d, double tau, double v, const std::vector<Branch>& b) {
+  return {cone_case(10.0, d, tau, v, b), cone_case(45.0, d, tau, v, b),
+          power_case(1.5, 0.8, d, tau, v, b), power_case(3.0, 2.0, d, tau, v, b)};
+}
+
+std::string label(const Case& c, double w) {
+  return std::string(mdrmap::profile_name(c.indenter.profile)) +
+         " n=" + std::to_string(c.indenter.exponent()) +
+         " branches=" + std::to_string(c.rheology.branches.size()) + " w=" + std::to_string(w);
+}
+
+TEST(ProfileStationary, AgainstTheBranchOdesAtFixedDepth) {
+  double worst = 0.0;
+  for (const auto& b : rheologies())
+    for (double tau : {1.0, 0.0}) {
+      if (tau == 0.0 && b.empty()) continue;
+      for (double v : {0.02, 0.3, 3.0})
+        for (const Case& c : profiles(0.05, tau, v, b)) {
+          const State got = mdrmap::stationary_state(c, v);
+          const State ref = Reference(c, v).at_depth(c.loading.d);
+          expect_close(got, ref, 1e-10, label(c, v));
+          worst = std::fmax(worst, std::fmax(rel(got.FN, ref.FN), rel(got.Fx, ref.Fx)));
+        }
+    }
+  std::printf("profile stationary vs ODE, fixed depth: worst relative %.3g\n", worst);
+}
+
+TEST(ProfileStationary, UnderLoadMeetsTheLoadAndTheDepthState) {
+  for (const auto& b : rheologies())
+    for (double v : {0.02, 3.0})
+      for (const Case& c : profiles(0.05, 1.0, v, b)) {
+        const Case l = under_load(c, 0.02);
+        const State st = mdrmap::stationary_state(l, v);
+        EXPECT_LT(rel(st.FN, 0.02), 1e-12) << label(c, v);
+        // the state at the depth it found is the fixed-depth state there
+        Case at = c;
+        at.loading.d = st.d;
+        const State ref = Reference(at, v).at_depth(st.d);
+        expect_close(st, ref, 1e-10, label(c, v) + " under load");
+      }
+}
+
+// --- Power law with n = 2, A = 1/(2R) is the parabola ----------------------------
+
+Case as_power(const Case& c) {
+  Case p = c;
+  p.indenter.profile = Profile::Power;
+  p.indenter.n = 2.0;
+  p.indenter.A = 1.0 / (2.0 * c.indenter.R);
+  p.indenter.R = 0.0;
+  return p;
+}
+
+void expect_same(const State& a, const State& b, double tol, const std::string& what) {
+  EXPECT_LT(rel(a.FN, b.FN), tol) << what;
+  EXPECT_LT(rel(a.Fx, b.Fx), tol) << what;
+  EXPECT_LT(rel(a.mu, b.mu), tol) << what;
+  EXPECT_LT(rel(a.a2, b.a2), tol) << what;
+  EXPECT_LT(rel(a.d, b.d), tol) << what;
+}
+
+TEST(ProfileStationary, PowerTwoIsTheParabolaOnTheCaseSets) {
+  std::vector<mdrmap::NamedCase> set = mdrmap::history_case_set();
+  for (auto& nc : mdrmap::load_case_set())
+    set.push_back(nc);
+  int compared = 0;
+  for (const auto& nc : set)
+    for (int spectrum = 0; spectrum < 2; ++spectrum) {
+      Case c = nc.c;
+      if (spectrum) {
+        const double t = c.rheology.tau > 0.0 ? c.rheology.tau : 1.0;
+        c.rheology.branches = {{2.0 * c.rheology.G, 0.1 * t}, {0.5 * c.rheology.G, 10.0 * t}};
+      }
+      mdrmap::validate(c);
+      const Case p = as_power(c);
+      mdrmap::validate(p);
+      for (std::size_t k = 0; k <= c.history.size(); ++k) {
+        const double w = c.history.before(k);
+        expect_same(mdrmap::stationary_state(p, w), mdrmap::stationary_state(c, w), 1e-14,
+                    nc.name + (spectrum ? " spectrum" : "") + " w=" + std::to_string(w));
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 100);
+}
+
+// the general path (root of the edge, Kelvin brackets in n, branches by
+// quadrature) taken at n = 2 gives the parabola's closed forms
+TEST(ProfileStationary, GeneralPathAtNTwoIsTheParabola) {
+  double worst = 0.0;
+  for (const auto& b : rheologies())
+    for (double v : {1e-3, 0.02, 0.3, 3.0, 300.0}) {
+      Case c = mdrmap::step_case(0.05, 2.0, 1.0, v, v);
+      c.rheology.branches = b;
+      const State par = mdrmap::stationary_state(c, v);
+      const State gen = mdrmap::profile_detail::general_stationary(as_power(c), v);
+      EXPECT_LT(rel(gen.FN, par.FN), 1e-12) << v;
+      EXPECT_LT(rel(gen.Fx, par.Fx), 1e-12) << v;
+      EXPECT_LT(std::fabs(gen.a2 - par.a2), 1e-12 * par.a1) << v;
+      worst = std::fmax(worst, std::fmax(rel(gen.FN, par.FN), rel(gen.Fx, par.Fx)));
+    }
+  std::printf("general path at n = 2 vs parabola: worst relative %.3g\n", worst);
+}
+
+// --- The cone on the Kelvin foundation -------------------------------------------
+
+TEST(ProfileStationary, ConeOnKelvinClosedFormAndLimits) {
+  const double beta = 15.0, d = 0.04;
+  const double c = kPi / 2.0 * std::tan(beta * kPi / 180.0), a1 = d / c;
+  for (double L : {1e-3 * a1, 0.3 * a1, 0.9 * a1}) {
+    const State st = mdrmap::stationary_state(cone_case(beta, d, 1.0, L), L);
+    // mu = c L (2 a1 - L/2) / (a1^2 + L^2/2), a2 = a1 - L (docs/design.md)
+    EXPECT_LT(rel(st.mu, c * L * (2.0 * a1 - 0.5 * L) / (a1 * a1 + 0.5 * L * L)), 1e-13) << L;
+    EXPECT_LT(rel(st.a2, a1 - L), 1e-13) << L;
+  }
+  // v tau >= a1: the rear face has let go, mu = (pi/2) tan(beta) exactly
+  for (double L : {a1, 2.0 * a1, 1e6 * a1}) {
+    const State st = mdrmap::stationary_state(cone_case(beta, d, 1.0, L), L);
+    EXPECT_LT(rel(st.mu, c), 1e-14) << L;
+    EXPECT_EQ(st.a2, 0.0) << L;
+  }
+  // v -> 0: mu ~ 2 c v tau / a1 -> 0
+  const double L = 1e-9 * a1;
+  const State slow = mdrmap::stationary_state(cone_case(beta, d, 1.0, L), L);
+  EXPECT_LT(rel(slow.mu, 2.0 * c * L / a1), 1e-8);
+  // under load: the closed-form leading edge carries F0 on both branches of it
+  for (double L2 : {0.01, 0.5, 5.0}) {
+    const Case l = under_load(cone_case(beta, d, 1.0, L2), 0.01);
+    EXPECT_LT(rel(mdrmap::stationary_state(l, L2).FN, 0.01), 1e-14) << L2;
+  }
+}
+
+TEST(ProfileStationary, ConeWithASpectrumTendsToTheGlassyCone) {
+  // every branch glassy (lambda_k >> a1) and tau = 0: the elastic cone with G0,
+  // mu -> 0; fast with a dashpot: mu -> (pi/2) tan beta
+  const Case glassy = cone_case(20.0, 0.05, 0.0, 1e7, {{3.0, 1.0}});
+  const State g = mdrmap::stationary_state(glassy, 1e7);
+  const double c = kPi / 2.0 * std::tan(20.0 * kPi / 180.0), a1 = 0.05 / c;
+  EXPECT_LT(rel(g.FN, 4.0 * 4.0 * c * a1 * a1), 1e-6); // 8 G0 c n/(n+1) a1^2
+  EXPECT_LT(g.mu, 1e-6);
+  const State f = mdrmap::stationary_state(cone_case(20.0, 0.05, 1.0, 1e3, {{3.0, 0.01}}), 1e3);
+  EXPECT_LT(rel(f.mu, c), 1e-2);
+}
+
+// --- Refusals -------------------------------------------------------------------
+
+std::string refused(const Case& c) {
+  try {
+    mdrmap::validate(c);
+  } catch (const mdrmap::InvalidInput& e) {
+    return e.option();
+  }
+  return "";
+}
+
+TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
+  Case c = cone_case(10.0, 0.1, 1.0, 1.0);
+  EXPECT_EQ(refused(c), "");
+  c.indenter.R = 2.0;
+  EXPECT_EQ(refused(c), "R");
+  for (double beta : {0.0, 90.0, -5.0, 120.0}) {
+    c = cone_case(beta, 0.1, 1.0, 1.0);
+    EXPECT_EQ(refused(c), "beta") << beta;
+  }
+  Case p = power_case(0.999, 1.0, 0.1, 1.0, 1.0);
+  EXPECT_EQ(refused(p), "n");
+  p = power_case(1.0, 0.0, 0.1, 1.0, 1.0);
+  EXPECT_EQ(refused(p), "A");
+  p = power_case(2.0, 1.0, 0.1, 1.0, 1.0);
+  p.indenter.beta = 10.0;
+  EXPECT_EQ(refused(p), "beta");
+  Case par = mdrmap::step_case(0.1, 2.0, 1.0, 1.0, 1.0);
+  par.indenter.n = 2.0;
+  EXPECT_EQ(refused(par), "n");
+}
+
+TEST(ProfileModel, TransientSolversRefuseOtherProfilesInOnePlace) {
+  const Case c = cone_case(10.0, 0.1, 1.0, 1.0);
+  for (const mdrmap::SolverKind k : mdrmap::kSolverKinds) {
+    EXPECT_FALSE(mdrmap::solver_handles(k, mdrmap::model_needs(c))) << mdrmap::solver_name(k);
+    try {
+      mdrmap::run_case(c, k, 1e-3);
+      ADD_FAILURE() << "not refused: " << mdrmap::solver_name(k);
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), "profile");
+      EXPECT_NE(std::string(e.what()).find("stationary"), std::string::npos);
+    }
+  }
+  // the guards at the solvers' own entries
+  EXPECT_THROW(mdrmap::run_exact(c, 1e-3), mdrmap::InvalidInput);
+  EXPECT_THROW(mdrmap::run_mdr(c, mdrmap::MdrOptions{}), mdrmap::InvalidInput);
+  EXPECT_TRUE(mdrmap::solver_handles(mdrmap::SolverKind::Exact,
+                                     mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
+}
+
+} // namespace
