@@ -186,13 +186,21 @@ void check_groups(const Case& c) {
   }
 }
 
-/// The parameters of the other profiles are not given (0).
-void check_profile_parameters(const Case& c) {
+/// Every parameter of the table in its range; a parameter of another
+/// profile not given (0), a one_of group's other members 0 (check_groups).
+/// One pass, one read of each: every case of a study passes here.
+void check_parameters(const Case& c) {
   const Profile kind = c.indenter.profile;
-  for (const auto& p : case_parameters())
-    if (!p.applies_to(kind) && p.get(c) != 0.0)
-      throw InvalidInput(p.name, std::string("applies to --profile ") + p.profile +
-                                     " only; this case's profile is " + profile_name(kind));
+  for (const auto& p : case_parameters()) {
+    const double x = p.get(c);
+    if (p.profile != nullptr && !p.applies_to(kind)) {
+      if (x != 0.0)
+        throw InvalidInput(p.name, std::string("applies to --profile ") + p.profile +
+                                       " only; this case's profile is " + profile_name(kind));
+      continue;
+    }
+    if (!p.one_of || x != 0.0) p.check(x);
+  }
 }
 
 /// The Kelvin case whose scales bound those of `c`: the glassy modulus G0
@@ -209,10 +217,7 @@ const Case& kelvin_bound(const Case& c, Case& storage) {
 
 void validate(const Case& c) {
   check_groups(c);
-  check_profile_parameters(c);
-  for (const auto& p : case_parameters())
-    if (p.applies_to(c.indenter.profile) && (!p.one_of || p.get(c) != 0.0))
-      p.check(p.get(c)); // a group's other members are 0
+  check_parameters(c);
   validate(c.rheology);
   check_history(c.history);
   Case storage;
