@@ -55,21 +55,10 @@ ResolutionRun run_once(const Case& c, double cells, double phase, const MdrOptio
   else
     row.init_stationary(c.history.v0, 0.0L);
   ResolutionRun out;
-  out.series.resize(c.total_samples());
-  out.series.pre = row.measure();
-  std::size_t i = 0;
-  for (std::size_t k = 0; k < c.history.size(); ++k) {
-    const Segment& seg = c.history.segments[k];
-    const double t0 = c.history.start(k);
-    row.change_velocity(seg.w);
-    double prev = 0.0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      row.advance(off - prev); // exact: no steps needed between samples
-      prev = off;
-      out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
-    }
-  }
+  out.series = sample_history(
+      c, [&](double w) { row.change_velocity(w); },
+      [&](double dt, double) { row.advance(dt); }, // exact: no steps needed between samples
+      [&] { return row.measure(); });
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();

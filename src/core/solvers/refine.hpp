@@ -20,6 +20,31 @@ struct ResolutionRun {
   long updates = 0;  ///< element state updates
 };
 
+/// The samples of one run of an element-row solver over the case's history:
+/// measure() before t = 0 (pre), then for each segment change(w) at its
+/// start and, to each output instant, advance(dt, w) by the time since the
+/// last one and measure() there.
+template <class Change, class Advance, class Measure>
+Series sample_history(const Case& c, Change change, Advance advance, Measure measure) {
+  Series s;
+  s.resize(c.total_samples());
+  s.pre = measure();
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < c.history.size(); ++k) {
+    const Segment& seg = c.history.segments[k];
+    const double t0 = c.history.start(k);
+    change(seg.w);
+    double prev = 0.0;
+    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
+      const double off = c.sampling.offset(j, seg.T);
+      advance(off - prev, seg.w);
+      prev = off;
+      s.set(i, t0 + off, static_cast<int>(k), measure());
+    }
+  }
+  return s;
+}
+
 /// Runs the solver once at resolution `cells` (a1/dx) with element phase
 /// `phase`.
 using RunAtResolution = std::function<ResolutionRun(double cells, double phase)>;

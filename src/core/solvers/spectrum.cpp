@@ -30,22 +30,13 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   spectrum::Row row(c, law, cells, phase, o.sub_travel, 1e-2 * o.rtol, control, kName);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
-  out.series.resize(c.total_samples());
-  out.series.pre = row.measure();
-  std::size_t i = 0;
-  for (std::size_t k = 0; k < c.history.size(); ++k) {
-    const Segment& seg = c.history.segments[k];
-    const double t0 = c.history.start(k);
-    row.change_velocity(seg.w);
-    double prev = 0.0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      row.renumber();
-      row.advance(off - prev);
-      prev = off;
-      out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
-    }
-  }
+  out.series = sample_history(
+      c, [&](double w) { row.change_velocity(w); },
+      [&](double dt, double) {
+        row.renumber();
+        row.advance(dt);
+      },
+      [&] { return row.measure(); });
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
@@ -238,25 +229,21 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, kStepFactor / cells, 1e-4 * o.rtol);
   run.t_min = geo.t_min;
+  double t_seg = 0.0; // since the segment's start
   ResolutionRun out;
-  out.series.resize(c.total_samples());
-  out.series.pre = row.measure();
-  std::size_t i = 0;
-  for (std::size_t k = 0; k < c.history.size(); ++k) {
-    const Segment& seg = c.history.segments[k];
-    const double t0 = c.history.start(k);
-    run.change(seg.w);
-    double prev = 0.0, t_seg = 0.0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      run.advance(off - prev, seg.w, t_seg);
-      prev = off;
-      if (row.a1_now() > a_win - 2.0 * dx)
-        throw CaseAbandoned("spectrum: under load the contact grew past its window (a1 = " +
-                            format_number(row.a1_now()) + ")");
-      out.series.set(i, t0 + off, static_cast<int>(k), row.measure());
-    }
-  }
+  out.series = sample_history(
+      c,
+      [&](double w) {
+        run.change(w);
+        t_seg = 0.0;
+      },
+      [&](double dt, double w) {
+        run.advance(dt, w, t_seg);
+        if (row.a1_now() > a_win - 2.0 * dx)
+          throw CaseAbandoned("spectrum: under load the contact grew past its window (a1 = " +
+                              format_number(row.a1_now()) + ")");
+      },
+      [&] { return row.measure(); });
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
