@@ -168,9 +168,9 @@ std::string profile_help() {
   return help_entry("--profile P",
                     "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its "
                     "surface to the plane) or power (f = A r^n, --n --A); MDR image g(x) = "
-                    "kappa_n A |x|^n. The transient solvers take the parabola only so far; the "
-                    "cone and power profiles have stationary states (Python mdrmap.stationary). "
-                    "Default: parabola");
+                    "kappa_n A |x|^n. The cone and power profiles are solved by the spectrum "
+                    "solver (auto picks it); the other solvers take the parabola only. Their "
+                    "stationary states: mdrmap stationary. Default: parabola");
 }
 
 /// One help entry per table parameter of the sampling part or of the others.
@@ -351,7 +351,7 @@ Other options:
                              exponential updates, error control
                    auto      the cheapest solver that meets rtol (exact at
                              fixed depth, the load solver under --F0, spectrum
-                             with --prony)
+                             with --prony or a cone or power profile)
   --output FILE  write to FILE instead of stdout. A regular file (or the
                  file a symbolic link points to) is replaced at once when
                  the run succeeds and left untouched when it fails; a

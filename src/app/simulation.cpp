@@ -19,11 +19,12 @@ constexpr double kSpectrumReferenceFactor = 1e-2;
 constexpr double kSpectrumReferenceFloor = 1e-7;
 
 /// For a solver other than the default: the case error against a reference.
-/// On the Kelvin foundation at fixed depth the continuum solver at 1e-12;
+/// Where the continuum solver takes the case (the Kelvin foundation and the
+/// parabola at fixed depth) that solver at 1e-12;
 /// under load, or with a spectrum, the default solver at a much tighter rtol
 /// (docs/design.md, "Error metric").
 void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecord& rec) {
-  if (!a.c.loading.by_force() && a.c.rheology.kelvin()) {
+  if (solver_handles(SolverKind::Exact, model_needs(a.c))) {
     if (rec.solver == "exact") return;
     const RunResult ref = run_case(a.c, SolverKind::Exact, kExactReferenceRtol);
     rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();

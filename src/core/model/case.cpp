@@ -284,8 +284,7 @@ void require_parabola(const Case& c, const char* solver) {
     throw InvalidInput("profile", std::string(solver) +
                                       " solves the parabola only; this case's profile is " +
                                       profile_name(c.indenter.profile) +
-                                      " (the cone and power profiles have stationary states only "
-                                      "so far: mdrmap.stationary in Python)");
+                                      " (the spectrum solver takes every profile)");
 }
 
 double zeta(const Case& c, double w) {

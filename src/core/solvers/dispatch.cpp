@@ -45,7 +45,8 @@ ModelNeeds model_needs(const Case& c) {
 }
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
-  if (needs.profile != Profile::Parabola) return false; // no transient solver takes it yet
+  if (needs.profile != Profile::Parabola) // the spectrum solver takes every profile
+    return kind == SolverKind::Auto || kind == SolverKind::Spectrum;
   switch (kind) {
   case SolverKind::Auto:
     return true;
@@ -98,10 +99,9 @@ void require_handled(SolverKind kind, const Case& c) {
   if (solver_handles(kind, needs)) return;
   if (needs.profile != Profile::Parabola)
     throw InvalidInput("profile", std::string("solver ") + solver_name(kind) +
-                                      " solves the parabola only: the cone and power profiles "
-                                      "have stationary states only so far (Python "
-                                      "mdrmap.stationary); the transient solvers take the "
-                                      "parabola");
+                                      " solves the parabola only; this case's profile is " +
+                                      profile_name(needs.profile) +
+                                      ": use --solver auto or spectrum");
   if (needs.spectrum)
     throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
                                     " solves the Kelvin foundation only (no Maxwell branches); "
@@ -120,7 +120,8 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
   if (given.get().rheology.aT != 1.0) return run_case(given.shifted(), kind, rtol, control);
   const CheckedCase& checked = given;
   const Case& c = checked.get();
-  if (kind == SolverKind::Spectrum || (kind == SolverKind::Auto && !c.rheology.kelvin())) {
+  if (kind == SolverKind::Spectrum ||
+      (kind == SolverKind::Auto && (!c.rheology.kelvin() || !c.indenter.parabolic()))) {
     SpectrumOptions o;
     o.rtol = rtol;
     o.control = &control;

@@ -33,8 +33,8 @@ ModelNeeds model_needs(const Case& c);
 /// depth control only; exact, mdr and baseline (and the load solvers they
 /// dispatch to) the Kelvin foundation only; spectrum (the element row of any
 /// rheology) every case, at fixed depth and under load, with or without
-/// branches; auto every case. Every solver takes the parabola only so far
-/// (the cone and power profiles have stationary states only). run_case
+/// branches; auto every case. Only spectrum (and auto, which picks it) takes
+/// the cone and power profiles; the others the parabola only. run_case
 /// refuses the others with InvalidInput naming "profile" (the indenter),
 /// "solver" (the loading) or "prony" (the spectrum).
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);

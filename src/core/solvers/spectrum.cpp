@@ -8,6 +8,7 @@
 
 #include <boost/math/tools/toms748_solve.hpp>
 
+#include "core/metrics/profile_stationary.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
@@ -91,16 +92,24 @@ struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
 };
 
+// The stationary depth under load at w, and the contact radius at depth d
+// (the parabola's arithmetic as before the profiles, bit for bit).
+double load_depth(const Case& c, double w) {
+  return c.indenter.parabolic() ? spectrum_stationary_depth(c, w) : profile_stationary_depth(c, w);
+}
+double radius_at(const Case& c, double d) {
+  return c.indenter.parabolic() ? std::sqrt(c.indenter.R * d) : c.indenter.contact_radius(d);
+}
+
 LoadGeometry load_geometry(const Case& c) {
   LoadGeometry g;
-  g.d_pre = spectrum_stationary_depth(c, c.history.v0);
-  const double R = c.indenter.R;
-  g.a_ref = std::sqrt(R * g.d_pre);
+  g.d_pre = load_depth(c, c.history.v0);
+  g.a_ref = radius_at(c, g.d_pre);
   double amax = std::max(c.a0(), g.a_ref);
   g.t_min = g.a_ref / c.history.v0;
   for (const auto& seg : c.history.segments) {
     if (!(seg.w > 0.0)) continue;
-    const double a = std::sqrt(R * spectrum_stationary_depth(c, seg.w));
+    const double a = radius_at(c, load_depth(c, seg.w));
     g.a_ref = std::min(g.a_ref, a);
     amax = std::max(amax, a);
     g.t_min = std::min(g.t_min, a / seg.w);
@@ -204,7 +213,8 @@ private:
 // (the closed-form depth d_pre, corrected by the discretisation: secant steps).
 void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rtol) {
   const double F0 = c.loading.F0;
-  double d = d_pre, slope = 1.5 * F0 / d;
+  const double m = c.indenter.exponent(); // F ~ a^(m + 1) ~ d^((m + 1) / m)
+  double d = d_pre, slope = (m + 1.0) / m * F0 / d;
   row.start_stationary(c.history.v0, d);
   double f = row.measure().FN - F0;
   for (int n = 0; n < 8 && std::abs(f) > 1e-4 * rtol * F0; ++n) {
@@ -254,7 +264,6 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
 
 RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   validate(given);
-  require_parabola(given, "spectrum");
   const bool adaptive = !(o.cells_per_a1 > 0.0);
   if (adaptive) validate_rtol(o.rtol);
   if (!(o.sub_travel > 0.0) || !(o.sub_travel <= 2.0))

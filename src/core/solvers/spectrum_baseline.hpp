@@ -6,7 +6,9 @@
 // branch relaxes towards the element's depression at the step end,
 // q_k <- u + (q_k - u) exp(-dt/tau_k); a free element's u solves its
 // force balance implicitly, G u + G tau (u - u_old)/dt + sum G_k (u - q_k) = 0
-// with those q_k: stable for any dt, tau_k and tau.
+// with those q_k: stable for any dt, tau_k and tau. Any indenter profile
+// (core/model/profile.hpp): an element in contact follows h = d - g(x), the
+// contact spans [-a1, a1] at most, g(a1) = d.
 #include "core/model/case.hpp"
 #include "core/solvers/result.hpp"
 #include "core/solvers/run_control.hpp"

@@ -14,6 +14,7 @@ namespace {
 
 constexpr int kMaxEvents = 8;           // contact switches of one element within one step
 constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
+constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
 
 // Root of f on [0, hi] with f(0) > 0 > f(hi); the end itself when the sign
 // condition fails there (rounding at a tangency).
@@ -54,8 +55,9 @@ Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, doubl
 
 Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, double phase,
          double sub_travel, double edge_tol, const RunControl& control, const char* name)
-    : law_(law), control_(control), name_(name), R_(c.indenter.R), d_(d), dx_(dx), aw_(a_win),
-      phase_(phase), sub_travel_(sub_travel) {
+    : law_(law), control_(control), name_(name), ind_(c.indenter), parab_(c.indenter.parabolic()),
+      exact_force_(parab_ || c.indenter.exponent() == 1.0 || c.indenter.exponent() == 2.0),
+      R_(c.indenter.R), d_(d), dx_(dx), aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8;
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
@@ -129,7 +131,7 @@ void Row::change_velocity(double w, double dd) {
 
 // A contact element whose force at the new velocity is negative lets go.
 void Row::change_material(Mode& md, double* y, double x, double w, double d, double dd) const {
-  if (md != Mode::Contact || !(law_.pressure(depth(x, d), dd - 2.0 * x * w / R_, y) < 0.0)) return;
+  if (md != Mode::Contact || !(law_.pressure(depth(x, d), dd - lift(x, w), y) < 0.0)) return;
   double q[kMaxBranches + 1];
   std::copy(y, y + law_.branches(), q);
   law_.to_modal(depth(x, d), q, y);
@@ -139,7 +141,7 @@ void Row::change_material(Mode& md, double* y, double x, double w, double d, dou
 Row::Grid Row::grid(double dt, double w) const {
   Grid g;
   g.dt = dt;
-  g.D = w > 0.0 ? std::min(dt, sub_travel_ * a1_now() / w) : dt;
+  g.D = w > 0.0 ? std::min(dt, sub_length(a1_now()) / w) : dt;
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
@@ -173,8 +175,8 @@ void Row::advance(double dt, double d1, double dd1) {
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
   Entry en{dt, w_, P_, grid(dt, w_), d0, s, k};
   if (s != 0.0) { // sub-steps: the contact's travel at the smaller a1 of the step
-    const double amin = std::sqrt(R_ * std::min(d0, d1));
-    en.g.D = w_ > 0.0 ? std::min(dt, sub_travel_ * amin / w_) : dt;
+    const double amin = radius(std::min(d0, d1));
+    en.g.D = w_ > 0.0 ? std::min(dt, sub_length(amin) / w_) : dt;
     en.g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / en.g.D)));
     law_.coef(dt - static_cast<double>(en.g.K - 1) * en.g.D, en.g.first);
     law_.coef(en.g.D, en.g.full);
@@ -203,7 +205,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
   if (md == Mode::Fresh) { // enters where the leading edge -a1(t) passes it
     const double xs = xe - w * dt;
     auto behind = [&](double tt) { // > 0 while ahead of the edge
-      return -(xs + w * tt) - std::sqrt(R_ * std::max(0.0, p.at(tt)));
+      return -(xs + w * tt) - radius(std::max(0.0, p.at(tt)));
     };
     if (!(behind(dt) < 0.0)) return;
     t = solve(behind, dt);
@@ -216,9 +218,14 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
     const long long i = std::max(0LL, static_cast<long long>(std::ceil((dt - t) / g.D)) - 1);
     double tn = dt - static_cast<double>(i) * g.D;
     if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
+    const double cut = parab_ ? tn : next_cut(xe - w * dt, t, tn, w);
+    const bool whole = cut == tn;
+    tn = cut;
     const double h = tn - t;
     const StepCoef* c = &local;
-    if (t == 0.0 && i == g.K - 1) {
+    if (!whole) {
+      law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
+    } else if (t == 0.0 && i == g.K - 1) {
       c = &g.first;
     } else if (std::abs(h - g.D) <= 1e-13 * g.D) {
       c = &g.full;
@@ -244,26 +251,26 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
                     bool may_switch, const Path& q) const {
   double tmp[kMaxBranches + 1];
   StepCoef at;
-  const double xn = x + w * h, dn = q.at(h), h1 = q.r - 2.0 * x * w / R_, h2 = q.k - w * w / R_;
+  const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
+    const Forcing u = forcing(x, w, h, q);
     std::copy(y, y + law_.branches(), tmp);
-    law_.contact_step(tmp, depth(x, q.d), h1, h2, c);
-    if (!(may_switch &&
-          law_.pressure(depth(xn, dn), q.rate(h) - 2.0 * xn * w / R_, tmp) < -p_tiny_)) {
+    law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
+    if (!(may_switch && law_.pressure(depth(xn, dn), q.rate(h) - lift(xn, w), tmp) < -p_tiny_)) {
       std::copy(tmp, tmp + law_.branches(), y);
       return h;
     }
     const double tc = locate(true, y, x, h, w, q); // lets go
     std::copy(y, y + law_.branches(), tmp);
     law_.coef(tc, at, Part::Contact);
-    law_.contact_step(tmp, depth(x, q.d), h1, h2, at);
+    law_.contact_step(tmp, u.h0, u.h1, u.h2, at);
     law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
     md = Mode::Free;
     return tc;
   }
   std::copy(y, y + law_.free_dim(), tmp);
   law_.free_step(tmp, c);
-  if (!(may_switch && depth(xn, dn) - law_.free_u(tmp) > psi_tiny_ && xn * xn <= R_ * dn)) {
+  if (!(may_switch && depth(xn, dn) - law_.free_u(tmp) > psi_tiny_ && inside(xn, dn))) {
     std::copy(tmp, tmp + law_.free_dim(), y);
     return h;
   }
@@ -304,7 +311,7 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
                                          static_cast<long double>(dx_));
     if (e.dt < 0.0) {
       change_material(mt.mode, mt.y, x, e.w, e.d0, e.s);
-    } else if (mt.mode != Mode::Fresh || x > -std::sqrt(R_ * deepest(e))) {
+    } else if (mt.mode != Mode::Fresh || x > -radius(deepest(e))) {
       gone = x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact;
       if (gone) break;
       step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
@@ -356,13 +363,14 @@ double Row::locate(bool contact, const double* y, double x, double h, double w,
   StepCoef c;
   double tmp[kMaxBranches + 1];
   if (contact) {
+    const Forcing u = forcing(x, w, h, q);
     return solve(
         [&](double tau) {
           std::copy(y, y + law_.branches(), tmp);
           law_.coef(tau, c, Part::Contact);
-          law_.contact_step(tmp, depth(x, q.d), q.r - 2.0 * x * w / R_, q.k - w * w / R_, c);
+          law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
           const double xn = x + w * tau;
-          return law_.pressure(depth(xn, q.at(tau)), q.rate(tau) - 2.0 * xn * w / R_, tmp);
+          return law_.pressure(depth(xn, q.at(tau)), q.rate(tau) - lift(xn, w), tmp);
         },
         h);
   }
@@ -377,7 +385,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w,
 }
 
 double Row::pressure_at(const double* q, double x) const {
-  return law_.pressure(depth(x), dd_ - 2.0 * x * w_ / R_, q);
+  return law_.pressure(depth(x), dd_ - lift(x, w_), q);
 }
 
 double Row::node_p(long long j) const {
@@ -449,6 +457,15 @@ double Row::trailing_edge(long long jb, double& pe) const {
   };
   const double tol = edge_tol_ * a1 / dx_;
   double lo = 0.0, hi = 1.0, slo = std::max(node_p(jb), 0.0) / law_.G0() + 1e-300, shi = s1;
+  if (!parab_ && xb < 0.0 && xb + dx_ > 0.0) { // the tip inside the edge cell
+    const double p_left = tip_pressure(jb, -1), p_right = past_tip(p_left);
+    if (!(p_right > 0.0)) { // the pressure turns negative across the tip: the rear face is free
+      pe = std::max(p_left, 0.0);
+      return 0.0;
+    }
+    lo = -xb / dx_; // in contact past the tip: the edge lies behind it
+    slo = p_right / law_.G0() + 1e-300;
+  }
   for (const bool contact : {true, false}) {
     const double tc = predicted_edge(jb, contact);
     const double a = std::floor(tc / tol) * tol, b = a + tol;
@@ -470,20 +487,108 @@ double Row::trailing_edge(long long jb, double& pe) const {
   return std::min(xb + r.first * dx_, a1);
 }
 
-// Forces (per 4, as sums of p dx) of the contact run ja..jb: the 4th-order
-// Gregory rule over its nodes, and the partial cells at its ends integrated on
-// the cubic through the end value and the three nearest nodes (the leading
-// edge -a1, where the material is fresh; the trailing edge from the replay).
+// The contact forcing of a sub-step of h from x: the parabola's Taylor form
+// (exact), a cone's or n = 2's on the sub-step's side of the tip (exact),
+// else the quadratic through u at 0, h/2 and h.
+Row::Forcing Row::forcing(double x, double w, double h, const Path& q) const {
+  if (parab_) return {depth(x, q.d), q.r - lift(x, w), q.k - w * w / R_};
+  const double c = ind_.coefficient();
+  if (!(w > 0.0)) return {depth(x, q.d), q.r, q.k};
+  if (exact_force_ && ind_.exponent() == 1.0)
+    return {depth(x, q.d), q.r - (x + 0.5 * w * h < 0.0 ? -c : c) * w, q.k};
+  if (exact_force_) return {depth(x, q.d), q.r - 2.0 * c * x * w, q.k - c * w * w};
+  const double u0 = depth(x, q.d), um = depth(x + 0.5 * w * h, q.at(0.5 * h)),
+               u1 = depth(x + w * h, q.at(h));
+  return {u0, (4.0 * um - 3.0 * u0 - u1) / h, 2.0 * (u0 - 2.0 * um + u1) / (h * h)};
+}
+
+// The end of a sub-step from t to tn of a point at x0 + w t: tn, or the time
+// it passes the tip where that lies inside (not within rounding of an end).
+double Row::next_cut(double x0, double t, double tn, double w) const {
+  if (!(w > 0.0)) return tn;
+  const double tip = -x0 / w, margin = 1e-9 * (tn - t);
+  return tip > t + margin && tip < tn - margin ? tip : tn;
+}
+
+double Row::sub_length(double a) const {
+  const double s = sub_travel_ * a;
+  return exact_force_ ? s : std::min(s, kSubCells * dx_);
+}
+
+// The pressure at the tip x = 0 from one side (-1: left of it, from nodes
+// jt, jt-1, ..; +1: right, from jt, jt+1, ..): Lagrange extrapolation through
+// up to four of that side's nodes in contact.
+double Row::tip_pressure(long long jt, int side) const {
+  double x[4], f[4];
+  int n = 0;
+  for (long long j = jt; n < 4 && j >= jlo_ && j <= jhi_; j += side, ++n) {
+    if (mode_[slot(j)] != Mode::Contact) break;
+    x[n] = xi(j);
+    f[n] = node_p(j);
+  }
+  double s = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double l = 1.0;
+    for (int k = 0; k < n; ++k)
+      if (k != i) l *= (0.0 - x[k]) / (x[i] - x[k]);
+    s += f[i] * l;
+  }
+  return s;
+}
+
+// Forces (per 4, as sums of p dx) of the contact run ja..jb; the trailing
+// edge e. The run is integrated on either side of a tip inside it (not the
+// parabola's: its force density is smooth there).
 void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const {
-  const long long n = jb - ja + 1;
-  const double xa = xi(ja), xb = xi(jb);
-  auto fx = [&](double x, double p) { return p * (-2.0 * x / R_); };
   const bool leading = ja == jlo_ || mode_[slot(ja - 1)] == Mode::Fresh;
   const double a1 = a1_now();
-  const double xl = leading ? -a1 : xa - 0.5 * dx_;
-  const double pl = leading ? law_.tau() * law_.G() * (dd_ + w_ * 2.0 * a1 / R_) : node_p(ja);
+  const double xl = leading ? -a1 : xi(ja) - 0.5 * dx_;
+  const double pl = leading ? law_.tau() * law_.G() * (dd_ + lift(a1, w_)) : node_p(ja);
   double pe = 0.0;
   e = trailing_edge(jb, pe);
+  long long jt = static_cast<long long>(std::ceil(-(theta_ + phase_))) - m_ - 1;
+  while (xi(jt + 1) < 0.0)
+    ++jt;
+  while (!(xi(jt) < 0.0))
+    --jt; // the last node left of the tip
+  if (!parab_ && ja <= jt && jt < jb) {
+    piece_forces(ja, jt, xl, pl, 0.0, tip_pressure(jt, -1), FN, Fx);
+    piece_forces(jt + 1, jb, 0.0, tip_pressure(jt + 1, 1), e, pe, FN, Fx);
+    return;
+  }
+  if (!parab_ && jb == jt && e > 0.0) { // the edge behind the tip, within the last cell
+    const double p_left = tip_pressure(jt, -1), p_right = past_tip(p_left);
+    piece_forces(ja, jb, xl, pl, 0.0, p_left, FN, Fx);
+    FN += 0.5 * e * (p_right + pe); // linear over the sliver [0, e]
+    Fx -= 0.5 * e * (p_right * ind_.slope(0.5 * e) + pe * ind_.slope(e));
+    return;
+  }
+  piece_forces(ja, jb, xl, pl, e, pe, FN, Fx);
+}
+
+// The pressure just behind the tip from the one just ahead of it: a cone's
+// slope jumps from -c to c there, so a parallel dashpot's stress falls by
+// 2 G tau c w (the branches' states and u are continuous); other profiles'
+// slopes are continuous.
+double Row::past_tip(double p_ahead) const {
+  if (parab_ || ind_.exponent() != 1.0) return p_ahead;
+  return p_ahead - 2.0 * law_.tau() * law_.G() * ind_.coefficient() * w_;
+}
+
+// Forces of the nodes ja..jb in contact and the partial cells to the ends xl
+// (pressure pl) and xr (pr): the 4th-order Gregory rule over the nodes, and
+// the partial cells integrated on the cubic through the end value and the
+// three nearest nodes (the leading edge -a1, where the material is fresh; the
+// trailing edge from the replay; a tip from its side's nodes).
+void Row::piece_forces(long long ja, long long jb, double xl, double pl, double xr, double pr,
+                       double& FN, double& Fx) const {
+  const long long n = jb - ja + 1;
+  const double xa = xi(ja), xb = xi(jb);
+  const double side = xr <= 0.0 ? -1.0 : (xl >= 0.0 ? 1.0 : 0.0); // of the tip
+  auto fx = [&](double x, double p) {
+    if (x == 0.0 && !parab_ && ind_.exponent() == 1.0) return -p * side * ind_.coefficient();
+    return p * -lift(x, 1.0);
+  };
   if (n < 8) { // few nodes: trapezoid, linear end cells
     double sN = 0.0, sX = 0.0;
     for (long long k = ja; k <= jb; ++k) {
@@ -493,9 +598,9 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
     }
     if (n == 1) sN = sX = 0.0;
     const double pa = node_p(ja), pb = node_p(jb);
-    FN += dx_ * sN + 0.5 * (xa - xl) * (pl + pa) + 0.5 * (e - xb) * (pb + pe);
+    FN += dx_ * sN + 0.5 * (xa - xl) * (pl + pa) + 0.5 * (xr - xb) * (pb + pr);
     Fx += dx_ * sX + 0.5 * (xa - xl) * (fx(xl, pl) + fx(xa, pa)) +
-          0.5 * (e - xb) * (fx(xb, pb) + fx(e, pe));
+          0.5 * (xr - xb) * (fx(xb, pb) + fx(xr, pr));
     return;
   }
   long double sN = 0.0L, sX = 0.0L;
@@ -512,16 +617,16 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
   FN += dx_ * static_cast<double>(sN);
   Fx += dx_ * static_cast<double>(sX);
   const double XL[4] = {xl, xa, xa + dx_, xa + 2.0 * dx_},
-               XR[4] = {xb - 2.0 * dx_, xb - dx_, xb, e};
+               XR[4] = {xb - 2.0 * dx_, xb - dx_, xb, xr};
   const double PL[4] = {pl, node_p(ja), node_p(ja + 1), node_p(ja + 2)};
-  const double PR[4] = {node_p(jb - 2), node_p(jb - 1), node_p(jb), pe};
+  const double PR[4] = {node_p(jb - 2), node_p(jb - 1), node_p(jb), pr};
   double FL[4], FR[4];
   for (int i = 0; i < 4; ++i) {
     FL[i] = fx(XL[i], PL[i]);
     FR[i] = fx(XR[i], PR[i]);
   }
-  FN += cubic_integral(XL, PL, xl, xa) + cubic_integral(XR, PR, xb, e);
-  Fx += cubic_integral(XL, FL, xl, xa) + cubic_integral(XR, FR, xb, e);
+  FN += cubic_integral(XL, PL, xl, xa) + cubic_integral(XR, PR, xb, xr);
+  Fx += cubic_integral(XL, FL, xl, xa) + cubic_integral(XR, FR, xb, xr);
 }
 
 State Row::measure() const {

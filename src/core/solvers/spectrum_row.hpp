@@ -17,11 +17,24 @@
 // at most `sub_travel` a1 of travel so that a switch and its reversal cannot
 // hide inside one.
 //
+// Profiles. The indenter's image g(x) (core/model/profile.hpp) gives the
+// depth h = d - g of a material point. In contact u = h along the material
+// path is quadratic in t for the parabola (and on either side of the tip for
+// the cone and the power law with n = 1, 2): the branch updates are exact.
+// A sub-step never crosses the tip x = 0 of a profile other than the
+// parabola (it is cut there: g' jumps at a cone's tip, g'' is singular there
+// for n < 2); for other n the forcing of a sub-step is the quadratic through
+// u at its start, middle and end, and a sub-step travels at most
+// kSubCells dx, so the interpolation error falls with dx as the rest and the
+// half-resolution companion sees it. Forces are integrated on either side of
+// the tip separately (the force density jumps there with a dashpot or a
+// cone's slope), each side's end value extrapolated from its own nodes.
+//
 // Load control. The depth d(t) may vary: within a step it is quadratic in time
 // (from the depth at the step's start to a given end depth, with a given rate
 // there where a parallel dashpot sees it, else linear), so in contact u
 // stays quadratic in t and the branch updates stay exact for that path; the
-// leading edge -a1(t) = -sqrt(R d(t)) moves, fresh material enters where it
+// leading edge -a1(t) (g(a1) = d(t)) moves, fresh material enters where it
 // crosses it (also at rest, when the indenter sinks). The window is a fixed
 // [-a_win, a_win] (the deepest contact the history can reach) and material is
 // kept until it leaves it. A caller finds the end depth that balances the
@@ -97,7 +110,7 @@ public:
   void renumber();
   double depth_now() const { return d_; }
   double rate_now() const { return dd_; }
-  double a1_now() const { return std::sqrt(R_ * d_); }
+  double a1_now() const { return radius(d_); }
   /// Forces and trailing edge now.
   State measure() const;
 
@@ -161,8 +174,28 @@ private:
   double trailing_edge(long long jb, double& pe) const;
   void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const;
 
+  /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
+  /// along the depth path q.
+  struct Forcing {
+    double h0, h1, h2;
+  };
+  Forcing forcing(double x, double w, double h, const Path& q) const;
+  double next_cut(double x0, double t, double tn, double w) const;
+  void piece_forces(long long ja, long long jb, double xl, double pl, double xr, double pr,
+                    double& FN, double& Fx) const;
+  double tip_pressure(long long jt, int side) const;
+  double past_tip(double p_ahead) const;
+
+  // The profile (the parabola's arithmetic as the seed's, bit for bit).
   double depth(double x) const { return depth(x, d_); }
-  double depth(double x, double d) const { return d - x * x / R_; }
+  double depth(double x, double d) const { return parab_ ? d - x * x / R_ : d - ind_.g(x); }
+  /// g'(x) w: how fast the indenter rises under a point at x moving at w.
+  double lift(double x, double w) const { return parab_ ? 2.0 * x * w / R_ : ind_.slope(x) * w; }
+  double radius(double d) const { return parab_ ? std::sqrt(R_ * d) : ind_.contact_radius(d); }
+  bool inside(double x, double d) const { return parab_ ? x * x <= R_ * d : ind_.g(x) <= d; }
+  /// The largest travel of a sub-step where the contact is a: sub_travel a,
+  /// and at most kSubCells dx where the forcing is interpolated.
+  double sub_length(double a) const;
   double xi(long long j) const { return (static_cast<double>(j + m_) + theta_ + phase_) * dx_; }
   std::size_t slot(long long j) const {
     const auto c = static_cast<long long>(cap_);
@@ -172,6 +205,9 @@ private:
   const Law& law_;
   const RunControl& control_;
   const char* name_;
+  Indenter ind_;
+  bool parab_;       // the parabola: Taylor forcing, no tip
+  bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
   double R_, d_, dx_, aw_, phase_, sub_travel_;
   double dd_ = 0.0; // depth rate now (load control)
   std::size_t cap_, stride_;
