@@ -55,7 +55,7 @@ RunResult refine(const Case& c, const Refinement& r, const RunAtResolution& once
     if (r.estimate || r.adaptive) {
       const ResolutionRun coarse = once(0.5 * cells, phase2);
       add_cost(res.info, coarse);
-      est = estimate(coarse, fine, c);
+      est = estimate(coarse, fine, c) + r.tolerance_floor;
     }
     res.series = std::move(fine.series);
     res.info.error_estimate = est;

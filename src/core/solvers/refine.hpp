@@ -59,6 +59,9 @@ struct Refinement {
   bool adaptive = true;          ///< refine until the estimate is <= rtol (else one resolution)
   bool estimate = true;          ///< run the companion for an estimate even when not adaptive
   double rounding_level = 1e-11; ///< an estimate below this is rounding noise, not resolution
+  /// Added to every estimate: the error the solver's own tolerances leave,
+  /// which the companion shares (0: none).
+  double tolerance_floor = 0.0;
 };
 
 /// Phase of the companion: shifted by a non-commensurate fraction of a cell,

@@ -17,6 +17,13 @@
 namespace mdrmap {
 namespace {
 
+/// The trailing edge is located to kEdgeTol rtol a1. Where the pressure jumps
+/// there (a re-touch front) the forces err by about that times the jump
+/// relative to the mean pressure, up to kEdgeFloor / kEdgeTol = 4 times it
+/// (the cone's Kelvin drops: 3): both runs of the estimate share it, so it is
+/// added to the estimate.
+constexpr double kEdgeTol = 1e-3, kEdgeFloor = 4e-3;
+
 constexpr const char* kName = "spectrum";
 constexpr double kMaxCells = 2e5; // window memory: 4e5 elements of up to 33 doubles
 
@@ -28,7 +35,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   if (!(travel < 1e18))
     throw CaseAbandoned("spectrum: the indenter travels " + format_number(travel) +
                         " cells over the history, more than the element row can count (1e18)");
-  spectrum::Row row(c, law, cells, phase, o.sub_travel, 1e-2 * o.rtol, control, kName);
+  spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
   out.series = sample_history(
@@ -234,7 +241,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   if (!(a_win / dx < 4.0 * kMaxCells))
     throw CaseAbandoned("spectrum: the window under load would hold " +
                         format_number(2.0 * a_win / dx) + " elements (at most 8e5)");
-  spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, 1e-2 * o.rtol, control,
+  spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, kStepFactor / cells, 1e-4 * o.rtol);
@@ -283,6 +290,7 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   r.phase = o.phase;
   r.adaptive = adaptive;
   r.estimate = o.estimate_error;
+  r.tolerance_floor = kEdgeFloor * o.rtol;
   const RunControl own;
   const RunControl& control = o.control != nullptr ? *o.control : own;
   return refine(c, r, [&](double n, double ph) {

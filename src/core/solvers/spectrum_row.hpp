@@ -181,8 +181,20 @@ private:
   };
   Forcing forcing(double x, double w, double h, const Path& q) const;
   double next_cut(double x0, double t, double tn, double w) const;
+  // Forces (spectrum_forces.cpp).
   void piece_forces(long long ja, long long jb, double xl, double pl, double xr, double pr,
                     double& FN, double& Fx) const;
+  void profile_piece_forces(long long ja, long long jb, double xl, double bl, double xr, double br,
+                            double& FN, double& Fx) const;
+  long long last_before_tip() const;
+  double side_slope(double x, int side) const;
+  double known_p(double x, int side) const;
+  struct KnownForces {
+    double N, X; ///< int A, int A (-g')
+  };
+  KnownForces known_forces(double l, double r) const;
+  double node_rest(long long j) const;
+  double tip_rest(long long jt, int side) const;
   double tip_pressure(long long jt, int side) const;
   double past_tip(double p_ahead) const;
 
@@ -225,6 +237,7 @@ private:
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
+  mutable std::vector<double> scratch_;  // a contact run's node values while its forces are summed
   double psi_tiny_ = 0.0, p_tiny_ = 0.0; // gap and force below rounding
 };
 
