@@ -142,5 +142,22 @@ TEST(TransientTracker, InterpolatesBetweenItsPoints) {
   EXPECT_GT(bump.result().overshoot, 0.0); // it falls below 1 later
 }
 
+// A start on the stationary state to rounding (a cone's plateau: mu(0+) =
+// mu_ss to 1e-16) is no transient: the noise after it gives neither an
+// overshoot nor D_c. (Before the rule: overshoot 3.3e15 and D_c from the
+// noise in the cone example study.) A deviation of 1e-9 still is one.
+TEST(TransientTracker, AStartOnTheStationaryStateToRoundingIsNoTransient) {
+  const double mu_ss = 0.27697377361169129;
+  TransientTracker flat(mu_ss, mu_ss * (1.0 + 2.2e-16));
+  for (int i = 1; i <= 20; ++i)
+    flat.add(0.1 * i, mu_ss * (1.0 + (i % 3 - 1) * 4.4e-16));
+  EXPECT_EQ(flat.result().overshoot, 0.0);
+  EXPECT_TRUE(std::isnan(flat.result().t_decay));
+  TransientTracker small(mu_ss, mu_ss * (1.0 + 1e-9));
+  for (int i = 1; i <= 20; ++i)
+    small.add(0.25 * i, mu_ss * (1.0 + 1e-9 * std::exp(-0.25 * i)));
+  EXPECT_NEAR(small.result().t_decay, 1.0, 2e-3);
+}
+
 } // namespace
 } // namespace mdrmap

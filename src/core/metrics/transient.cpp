@@ -16,8 +16,15 @@ double parabola(const double* t, const double* f, double x) {
 
 } // namespace
 
+/// A deviation |mu(0+) - mu_ss| at or below this fraction of |mu_ss| is the
+/// rounding of a solver that lands on the stationary state (a rise out of
+/// stationary sliding at fixed depth, a cone's plateau on the Kelvin
+/// foundation): no transient, whatever the noise after it shows.
+constexpr double kRoundingDeviation = 1e-12;
+
 TransientTracker::TransientTracker(double mu_ss, double mu0)
     : mu_ss_(mu_ss), side_(mu0 >= mu_ss ? 1.0 : -1.0), dev0_(std::abs(mu0 - mu_ss)) {
+  if (dev0_ <= kRoundingDeviation * std::abs(mu_ss)) dev0_ = 0.0;
   add(0.0, mu0);
 }
 

@@ -15,10 +15,12 @@ struct Transient {
   double mu_peak = kNaN; ///< mu farthest from mu_ss within the segment (mu(0+) if none is farther)
   double t_peak = 0.0;   ///< its time since the change
   /// Time since the change at which |mu - mu_ss| first falls to 1/e of
-  /// |mu(0+) - mu_ss|; NaN if it does not within the segment or mu(0+) = mu_ss.
+  /// |mu(0+) - mu_ss|; NaN if it does not within the segment or mu(0+) = mu_ss
+  /// (to 1e-12 of mu_ss: a solver's rounding).
   double t_decay = kNaN;
   /// Largest excursion of mu beyond mu_ss on the side opposite to mu(0+),
-  /// relative to |mu(0+) - mu_ss|; 0 for a one-sided transient.
+  /// relative to |mu(0+) - mu_ss|; 0 for a one-sided transient and where
+  /// mu(0+) = mu_ss (to 1e-12 of mu_ss).
   double overshoot = 0.0;
 };
 
