@@ -385,4 +385,31 @@ TEST(ProfileModel, OnlyTheSpectrumSolverTakesOtherProfiles) {
                                      mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
 }
 
+// A transient in closed form: on the Kelvin foundation at fixed depth a rise
+// from v tau < a1 to v tau > a1 lets the cone's rear face go at once (the
+// pressure behind the tip, 4 G (h - L c), is negative everywhere), and no
+// released material touches again (its gap grows as s c (L - a1) after s tau;
+// docs/design.md, "Indenter profiles"). So from t = 0+ the state is the
+// stationary one of the new velocity: mu = (pi/2) tan beta, a2 = 0,
+// F_N = 4 G c (a1^2/2 + L a1). The spectrum solver at rtol 1e-3 and 1e-4,
+// every sample of the rise and of the segment after it, to 1e-13.
+TEST(ProfileTransient, ConeRiseAcrossTheTipIsStationaryAtOnce) {
+  for (const double beta : {10.0, 45.0})
+    for (const double rtol : {1e-3, 1e-4}) {
+      Case c = cone_case(beta, 0.01, 1.0, 1.0);
+      const double cc = 0.5 * kPi * std::tan(beta * kPi / 180.0), a1 = 0.01 / cc;
+      c.history.v0 = 0.3 * a1; // v tau = 0.3 a1: the rear face in contact
+      c.history.segments = {mdrmap::Segment{3.0 * a1, 2.0}, mdrmap::Segment{30.0 * a1, 1.0}};
+      const mdrmap::RunResult r = mdrmap::run_case(c, mdrmap::SolverKind::Auto, rtol);
+      ASSERT_EQ(r.info.solver, "spectrum");
+      EXPECT_GT(r.series.pre.a2, 0.5 * a1); // in contact behind the tip before the rise
+      for (std::size_t k = 0; k < r.series.size(); ++k) {
+        const double L = c.history.segments[static_cast<std::size_t>(r.series.segment[k])].w;
+        EXPECT_NEAR(r.series.mu[k], cc, 1e-13 * cc) << "beta " << beta << " sample " << k;
+        EXPECT_NEAR(r.series.FN[k], 4.0 * cc * (0.5 * a1 * a1 + L * a1), 1e-13 * r.series.FN[k]);
+        EXPECT_LE(std::fabs(r.series.a2[k]), 1e-13 * a1);
+      }
+    }
+}
+
 } // namespace

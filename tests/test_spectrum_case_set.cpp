@@ -22,6 +22,8 @@
 #include <utility>
 #include <vector>
 
+#include "case_checks.hpp"
+#include "cases/refined_reference.hpp"
 #include "cases/spectrum_case_set.hpp"
 #include "core/metrics/creep.hpp"
 #include "core/metrics/error_metric.hpp"
@@ -49,10 +51,6 @@ const NamedCase& by_name(const std::string& name) {
 /// Runs of today's solver that fail their check or cannot be afforded here
 /// (not run; reported with figures, to be re-enabled when the solver is
 /// fixed). CPU times on the shared 2-core development machine.
-struct KnownFailure {
-  const char* name;
-  double rtol;
-};
 constexpr KnownFailure kKnownFailures[] = {
     // FAILS: 118 s CPU at rtol 1e-3 (a/dx 115, two resolutions); 1e-4 not tried
     {"load polyisobutylene drop-hold-reslide", 1e-3},
@@ -66,74 +64,7 @@ constexpr KnownFailure kKnownFailures[] = {
 };
 
 bool known_failure(const std::string& name, double rtol) {
-  return std::any_of(std::begin(kKnownFailures), std::end(kKnownFailures),
-                     [&](const KnownFailure& k) { return name == k.name && rtol == k.rtol; });
-}
-
-double cpu_ms() {
-  return 1e3 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
-
-RunResult fixed(const Case& c, double cells) {
-  SpectrumOptions o;
-  o.cells_per_a1 = cells;
-  o.rtol = 1e-7; // edge to 1e-9 a1, load balance to 1e-11 F0
-  o.estimate_error = false;
-  return run_spectrum(c, o);
-}
-
-/// Difference of two runs by the error metric (the finer one as reference).
-double difference(const Series& coarse, const Series& fine, const Case& c) {
-  return case_error(coarse, fine, c, 1e-12).max();
-}
-
-/// Differences below this are not the resolution's: the runs locate the
-/// trailing edge to 1e-9 a1 and balance the load to 1e-11 F0 (rtol 1e-7), and
-/// round at ~1e-12 (the Kelvin case converges to 1e-9 of the continuum
-/// solution at a/dx = 2048, its differences then no longer falling).
-constexpr double kNoise = 1e-8;
-
-/// A reference refined by doubling the resolution from n0: after three runs
-/// N/4, N/2, N the differences D1 (N/4 to N/2) and D2 (N/2 to N) give the
-/// ratio r = D1 / D2 (4 at second order) and the bound of the finest run's
-/// error D2 / (min(r, 4) - 1) (the sum of the differences still to come, each
-/// r times smaller). Doubles until the bound is below `goal`, N passes n_max
-/// (fixed depth 8192, under load 256) or a run passes the work budget;
-/// the ratio must show convergence (r > 1.5), otherwise the bound is infinite;
-/// a difference D2 below kNoise bounds the error by kNoise.
-struct Reference {
-  Series series;
-  double cells = 0.0, ratio = 0.0, bound = std::numeric_limits<double>::infinity(), ms = 0.0;
-};
-
-Reference refine(const Case& c, double goal) {
-  const bool load = c.loading.by_force();
-  const double n0 = load ? 32.0 : 256.0, n_max = load ? 256.0 : 8192.0;
-  Reference ref;
-  const double t0 = cpu_ms();
-  std::vector<Series> runs;
-  std::vector<double> diffs;
-  for (double n = n0; n <= n_max; n *= 2.0) {
-    try {
-      runs.push_back(fixed(c, n).series);
-    } catch (const CaseAbandoned&) { // past the work budget: the bound so far stands
-      break;
-    }
-    ref.cells = n;
-    if (runs.size() >= 2) diffs.push_back(difference(runs[runs.size() - 2], runs.back(), c));
-    if (diffs.size() < 2) continue;
-    const double d1 = diffs[diffs.size() - 2], d2 = diffs.back();
-    ref.ratio = d1 / d2;
-    if (d2 <= kNoise)
-      ref.bound = kNoise;
-    else
-      ref.bound = ref.ratio > 1.5 ? d2 / (std::min(ref.ratio, 4.0) - 1.0)
-                                  : std::numeric_limits<double>::infinity();
-    if (ref.bound <= goal) break;
-  }
-  ref.series = std::move(runs.back());
-  ref.ms = cpu_ms() - t0;
-  return ref;
+  return known_failure(kKnownFailures, name, rtol);
 }
 
 /// The truth where it is known: N = 0 through the continuum solution (fixed
@@ -146,29 +77,6 @@ Series kelvin_truth(const Case& c) {
 }
 
 constexpr double kRtols[] = {1e-3, 1e-4};
-
-/// The adaptive run at rtol: within rtol of the reference, its estimate at
-/// least a third of the true error and at most rtol.
-void check_run(const NamedCase& nc, double rtol, const Series& reference) {
-  SpectrumOptions o;
-  o.rtol = rtol;
-  const double t0 = cpu_ms();
-  RunResult r;
-  try {
-    r = run_spectrum(nc.c, o);
-  } catch (const CaseAbandoned& e) {
-    ADD_FAILURE() << nc.name << " at rtol " << rtol << ": " << e.what() << " after "
-                  << cpu_ms() - t0 << " ms";
-    return;
-  }
-  const double ms = cpu_ms() - t0;
-  const double err = case_error(r.series, reference, nc.c).max();
-  std::printf("| %s | %g | %.2e | %.2e | %.0f | a/dx %g |\n", nc.name.c_str(), rtol, err,
-              r.info.error_estimate, ms, r.info.cells_per_a1);
-  EXPECT_LE(err, rtol) << nc.name << " at rtol " << rtol;
-  EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name << " at rtol " << rtol;
-  EXPECT_LE(r.info.error_estimate, rtol) << nc.name << " at rtol " << rtol;
-}
 
 class SpectrumCases : public ::testing::TestWithParam<std::size_t> {};
 
@@ -189,7 +97,7 @@ TEST_P(SpectrumCases, MeetsRtolWithAnHonestEstimate) {
     reference = kelvin_truth(nc.c);
     if (!nc.c.loading.by_force()) {
       const Reference ref = refine(nc.c, goal);
-      const double truth = difference(ref.series, reference, nc.c);
+      const double truth = run_difference(ref.series, reference, nc.c);
       std::printf("| %s | refined reference | a/dx %g, ratio %.2f, own error <= %.2e, true "
                   "%.2e | %.0f ms |\n",
                   nc.name.c_str(), ref.cells, ref.ratio, ref.bound, truth, ref.ms);
@@ -212,10 +120,7 @@ TEST_P(SpectrumCases, MeetsRtolWithAnHonestEstimate) {
 }
 
 std::string test_name(const ::testing::TestParamInfo<std::size_t>& info) {
-  std::string s;
-  for (char ch : cases()[info.param].name)
-    s += std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  return std::to_string(info.param) + "_" + s;
+  return case_test_name(cases(), info.param);
 }
 
 INSTANTIATE_TEST_SUITE_P(SpectrumCaseSet, SpectrumCases,
@@ -244,14 +149,8 @@ TEST(SpectrumCaseSetBruteForce, ConvergesToTheReferenceAtFirstOrder) {
     const NamedCase& nc = by_name(name);
     const Reference ref = refine(nc.c, 1e-5);
     const std::vector<double> cells = {50, 100, 200};
-    std::vector<double> err;
     const double t0 = cpu_ms();
-    for (double n : cells) {
-      SpectrumBaselineOptions b;
-      b.cells_per_a1 = n;
-      b.estimate_error = false;
-      err.push_back(case_error(run_spectrum_baseline(nc.c, b).series, ref.series, nc.c).max());
-    }
+    const std::vector<double> err = brute_force_errors(nc.c, ref.series, cells);
     const double order = testing::observed_order(cells, err);
     std::printf("%s: brute force errors %.2e %.2e %.2e at a/dx 50, 100, 200: order %.2f (%.0f "
                 "ms)\n",
@@ -288,7 +187,7 @@ TEST(SpectrumCaseSetCreep, AHoldAfterGlassySlidingCreepsAsLeeRadokTo1e6) {
   Case c = make(material(1.0, 0.0, {{3.0, 1.0}}), true, 1e8, {{0.0, 8.0}});
   c.sampling.samples = 801;
   const double t0 = cpu_ms();
-  const RunResult r = fixed(c, 128);
+  const RunResult r = fixed_resolution(c, 128);
   double worst = 0.0;
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     const double want = creep_depth(c, r.series.t[k]);
@@ -339,7 +238,7 @@ TEST(SpectrumCaseSetStationary, LongSegmentsEndInTheStationaryState) {
     Case c = run.c;
     c.sampling.samples = 3;
     const double t0 = cpu_ms();
-    const RunResult r = fixed(c, run.cells);
+    const RunResult r = fixed_resolution(c, run.cells);
     const double ms = cpu_ms() - t0;
     const double w = c.history.segments.back().w, a = c.edge_scale();
     const State want =
