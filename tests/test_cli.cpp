@@ -32,6 +32,7 @@
 #include "app/prony_input.hpp"
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/events.hpp"
+#include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/solvers/dispatch.hpp"
@@ -1935,6 +1936,392 @@ TEST(cli, StudyTakesSpectrumTermsAndTheTemperature) {
   EXPECT_EQ(k.code, 0) << k.err;
   EXPECT_NE(k.err.find("2 cases in " + shifted.string() + ": 2 done, 0 failed"), std::string::npos)
       << k.err;
+}
+
+// --- mdrmap stationary -----------------------------------------------------------
+
+/// The output of `mdrmap stationary`: comment lines, the header, then the
+/// rows as the texts of their fields.
+struct StationaryTable {
+  std::vector<std::string> comments;
+  std::string header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+StationaryTable parse_stationary(const std::string& text) {
+  StationaryTable t;
+  for (const auto& line : split_lines(text)) {
+    if (starts_with(line, "#") && t.header.empty())
+      t.comments.push_back(line);
+    else if (t.header.empty())
+      t.header = line;
+    else
+      t.rows.push_back(split(line, ','));
+  }
+  return t;
+}
+
+/// Runs `mdrmap stationary ARGS`: exit 0, nothing on stderr, the two comment
+/// lines, the header and rows of seven fields.
+StationaryTable run_stationary(const std::vector<std::string>& args) {
+  std::vector<std::string> all{"stationary"};
+  all.insert(all.end(), args.begin(), args.end());
+  const Outcome r = run_mdrmap(all, kNoHangSeconds);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  const StationaryTable t = parse_stationary(r.out);
+  EXPECT_EQ(t.comments.size(), 2U) << r.out;
+  EXPECT_TRUE(!t.comments.empty() && starts_with(t.comments[0], "# mdrmap ") &&
+              t.comments[0].size() > 11 &&
+              t.comments[0].compare(t.comments[0].size() - 11, 11, " stationary") == 0)
+      << r.out;
+  EXPECT_TRUE(t.comments.size() > 1 && starts_with(t.comments[1], "# case ")) << r.out;
+  EXPECT_EQ(t.header, "v,d,a1,a2,FN,Fx,mu");
+  for (const auto& row : t.rows)
+    EXPECT_EQ(row.size(), 7U);
+  return t;
+}
+
+/// Every row is the core's stationary_state of `c` at the row's v, printed
+/// with 17 significant digits: each field's text equals format_double of the
+/// core's double (which reads back to that double), so the command adds
+/// nothing to the numbers.
+void expect_core_states(const StationaryTable& t, const mdrmap::Case& c) {
+  for (const auto& row : t.rows) {
+    ASSERT_EQ(row.size(), 7U);
+    const double v = to_double(row[0]);
+    const mdrmap::State s = mdrmap::stationary_state(c, v);
+    const double want[] = {v, s.d, s.a1, s.a2, s.FN, s.Fx, s.mu};
+    for (std::size_t k = 0; k < 7; ++k)
+      EXPECT_EQ(row[k], mdrmap::app::format_double(want[k]))
+          << "column " << k << ", v = " << row[0];
+  }
+}
+
+double rel_diff(double x, double ref) {
+  return std::abs(x - ref) / std::abs(ref);
+}
+
+/// The cone's c = (pi/2) tan(beta) in long double, independent of the core.
+double cone_c(double beta_deg) {
+  const long double pi = 3.141592653589793238462643383279502884L;
+  return static_cast<double>(pi / 2 * std::tan(static_cast<long double>(beta_deg) * pi / 180));
+}
+
+mdrmap::Case stationary_case(mdrmap::Profile profile, double G, double tau) {
+  mdrmap::Case c;
+  c.indenter.profile = profile;
+  c.rheology.G = G;
+  c.rheology.tau = tau;
+  return c;
+}
+
+// The printed states are the core's (core/metrics/stationary.hpp), digit for
+// digit; the cone's also equal the closed forms of docs/design.md ("Indenter
+// profiles") to 1e-14.
+TEST(cli, StationaryConeAtFixedDepthIsTheClosedForm) {
+  const double beta = 20, d = 0.02, G = 3, tau = 2;
+  const StationaryTable t =
+      run_stationary({"--profile", "cone", "--beta", "20", "--d", "0.02", "--G", "3", "--tau", "2",
+                      "--v-list", "0.001,0.01,0.0174,0.05,1"});
+  ASSERT_EQ(t.rows.size(), 5U);
+  EXPECT_EQ(t.comments[1], "# case profile=cone d=0.02 tau=2 G=3 beta=20");
+  mdrmap::Case c = stationary_case(mdrmap::Profile::Cone, G, tau);
+  c.indenter.beta = beta;
+  c.loading.d = d;
+  expect_core_states(t, c);
+  const double cc = cone_c(beta), a1 = d / cc;
+  int rear_let_go = 0;
+  for (const auto& row : t.rows) {
+    const double v = to_double(row[0]), L = v * tau;
+    SCOPED_TRACE("v = " + row[0]);
+    const bool contact = L < a1;
+    const double a2 = contact ? a1 - L : 0.0;
+    const double FN =
+        contact ? 4 * G * cc * (a1 * a1 + L * L / 2) : 4 * G * cc * (a1 * a1 / 2 + L * a1);
+    const double Fx = contact ? 4 * G * cc * cc * L * (2 * a1 - L / 2) : cc * FN;
+    rear_let_go += contact ? 0 : 1;
+    EXPECT_EQ(to_double(row[1]), d);
+    EXPECT_LE(rel_diff(to_double(row[2]), a1), 1e-14);
+    EXPECT_LE(std::abs(to_double(row[3]) - a2), 1e-14 * a1);
+    EXPECT_LE(rel_diff(to_double(row[4]), FN), 1e-14);
+    EXPECT_LE(rel_diff(to_double(row[5]), Fx), 1e-14);
+    EXPECT_LE(rel_diff(to_double(row[6]), Fx / FN), 1e-14);
+  }
+  EXPECT_EQ(rear_let_go, 2) << "the velocities straddle v tau = a1";
+}
+
+// A power law n = 1.5 under load on a two-term spectrum (quadrature and the
+// root in a1): the core's states digit for digit, and F_N = F0.
+TEST(cli, StationaryPowerLawUnderLoadWithASpectrumIsTheCores) {
+  const StationaryTable t =
+      run_stationary({"--profile", "power", "--n", "1.5", "--A", "2", "--F0", "0.05", "--tau",
+                      "0.5", "--prony", "2:0.1,5:10", "--v-list", "0.01,1,100"});
+  ASSERT_EQ(t.rows.size(), 3U);
+  EXPECT_TRUE(starts_with(t.comments[1], "# case profile=power F0=0.05000000000000000"))
+      << t.comments[1];
+  EXPECT_NE(t.comments[1].find(" prony=2:0.10000000000000001,5:10 a0="), std::string::npos)
+      << t.comments[1];
+  mdrmap::Case c = stationary_case(mdrmap::Profile::Power, 1.0, 0.5);
+  c.indenter.n = 1.5;
+  c.indenter.A = 2;
+  c.loading.F0 = 0.05;
+  c.rheology.branches = {{2.0, 0.1}, {5.0, 10.0}};
+  expect_core_states(t, c);
+  for (const auto& row : t.rows) {
+    EXPECT_LE(rel_diff(to_double(row[4]), 0.05), 1e-12) << row[0];
+    EXPECT_GT(to_double(row[3]), 0.0);
+    EXPECT_LT(to_double(row[3]), to_double(row[2]));
+  }
+}
+
+// The parabola, at fixed depth (with a modulus and a shift) and under load.
+TEST(cli, StationaryParabolaIsTheCores) {
+  const StationaryTable depth = run_stationary({"--d", "0.1", "--R", "10", "--tau", "1", "--G", "2",
+                                                "--aT", "0.5", "--v-range", "0.01:100:5"});
+  ASSERT_EQ(depth.rows.size(), 5U);
+  EXPECT_EQ(depth.comments[1], "# case d=0.10000000000000001 R=10 tau=1 G=2 aT=0.5");
+  mdrmap::Case c = stationary_case(mdrmap::Profile::Parabola, 2.0, 1.0);
+  c.indenter.R = 10;
+  c.loading.d = 0.1;
+  c.rheology.aT = 0.5;
+  expect_core_states(depth, c);
+
+  const StationaryTable load =
+      run_stationary({"--F0", "0.2", "--R", "10", "--tau", "1", "--v-list", "0.1,1,10"});
+  ASSERT_EQ(load.rows.size(), 3U);
+  mdrmap::Case l = stationary_case(mdrmap::Profile::Parabola, 1.0, 1.0);
+  l.indenter.R = 10;
+  l.loading.F0 = 0.2;
+  expect_core_states(load, l);
+  for (const auto& row : load.rows)
+    EXPECT_LE(rel_diff(to_double(row[4]), 0.2), 1e-12) << row[0];
+}
+
+// The cone on the Kelvin foundation: for v tau >= a1 (the boundary
+// included) the rear face has let go, a2 = 0, and mu = (pi/2) tan(beta),
+// compared with the long-double value to 1e-15 (its double to a few ulps);
+// just below, a2 > 0 and mu < (pi/2) tan(beta). Under load as well.
+TEST(cli, StationaryConeOnKelvinHasMuPiOver2TanBetaForVTauFromA1) {
+  for (const double beta : {10.0, 45.0, 80.0}) {
+    SCOPED_TRACE("beta = " + num(beta));
+    mdrmap::Indenter cone;
+    cone.profile = mdrmap::Profile::Cone;
+    cone.beta = beta;
+    const double a1 = cone.contact_radius(0.01); // the core's a1: v = a1 is v tau = a1 exactly
+    std::string list = mdrmap::app::format_double(0.5 * a1);
+    for (const double k : {1.0, 1.5, 10.0, 1e6})
+      list += "," + mdrmap::app::format_double(k * a1);
+    const StationaryTable t = run_stationary(
+        {"--profile", "cone", "--beta", num(beta), "--d", "0.01", "--tau", "1", "--v-list", list});
+    ASSERT_EQ(t.rows.size(), 5U);
+    EXPECT_EQ(to_double(t.rows[1][0]), a1);
+    EXPECT_GT(to_double(t.rows[0][3]), 0.0);
+    EXPECT_LT(to_double(t.rows[0][6]), cone_c(beta) * (1 - 1e-3));
+    for (std::size_t k = 1; k < t.rows.size(); ++k) {
+      SCOPED_TRACE("v = " + t.rows[k][0]);
+      EXPECT_EQ(t.rows[k][3], "0");
+      EXPECT_LE(rel_diff(to_double(t.rows[k][6]), cone_c(beta)), 1e-15);
+    }
+    // under load: a0 of the load F0 = 4 G c a0^2, v tau from 2 a0 on (a1 < a0)
+    const StationaryTable load = run_stationary({"--profile", "cone", "--beta", num(beta), "--F0",
+                                                 "0.01", "--tau", "1", "--v-list", "1,100"});
+    const double a0 = std::sqrt(0.01 / (4 * cone_c(beta)));
+    ASSERT_EQ(load.rows.size(), 2U);
+    for (const auto& row : load.rows) {
+      SCOPED_TRACE("under load, v = " + row[0]);
+      ASSERT_GE(to_double(row[0]), 2 * a0);
+      EXPECT_EQ(row[3], "0");
+      EXPECT_LE(rel_diff(to_double(row[6]), cone_c(beta)), 1e-15);
+      EXPECT_LE(rel_diff(to_double(row[4]), 0.01), 1e-14);
+    }
+  }
+}
+
+// --v-range LO:HI:N: N rows, log-spaced, the ends exactly the doubles of LO
+// and HI as typed; --v-list keeps its order.
+TEST(cli, StationaryVRangeIsLogSpacedWithExactEnds) {
+  const std::vector<std::string> scene{"--d", "0.1", "--R", "10", "--tau", "1"};
+  struct Range {
+    std::string lo, hi;
+    std::size_t n;
+  };
+  for (const Range& r : {Range{"0.003", "70", 9}, Range{"1e-3", "1e3", 2}, Range{"0.7", "0.71", 13},
+                         Range{"1.5e-12", "3e+11", 101}}) {
+    const std::string text = r.lo + ":" + r.hi + ":" + std::to_string(r.n);
+    SCOPED_TRACE(text);
+    auto args = scene;
+    args.insert(args.end(), {"--v-range", text});
+    const StationaryTable t = run_stationary(args);
+    ASSERT_EQ(t.rows.size(), r.n);
+    const double lo = to_double(r.lo), hi = to_double(r.hi);
+    EXPECT_EQ(to_double(t.rows.front()[0]), lo);
+    EXPECT_EQ(to_double(t.rows.back()[0]), hi);
+    const double step = (std::log10(hi) - std::log10(lo)) / static_cast<double>(r.n - 1);
+    for (std::size_t k = 1; k < r.n; ++k) {
+      const double prev = to_double(t.rows[k - 1][0]), v = to_double(t.rows[k][0]);
+      EXPECT_LT(prev, v) << k;
+      EXPECT_LE(std::abs(std::log10(v) - std::log10(prev) - step), 1e-12 * std::max(1.0, step))
+          << k;
+    }
+  }
+  auto args = scene;
+  args.insert(args.end(), {"--v-list", "10, 0.1,1"});
+  const StationaryTable t = run_stationary(args);
+  ASSERT_EQ(t.rows.size(), 3U);
+  EXPECT_EQ(t.rows[0][0], "10");
+  EXPECT_EQ(t.rows[1][0], "0.10000000000000001");
+  EXPECT_EQ(t.rows[2][0], "1");
+  // one velocity with --v
+  args = scene;
+  args.insert(args.end(), {"--v", "2"});
+  const StationaryTable one = run_stationary(args);
+  ASSERT_EQ(one.rows.size(), 1U);
+  EXPECT_EQ(one.rows[0][0], "2");
+}
+
+// --output gets exactly what stdout gets.
+TEST(cli, StationaryOutputFileEqualsStdout) {
+  TempDir dir;
+  const fs::path file = dir.path() / "states.csv";
+  write_file(file, "old\n");
+  const std::vector<std::string> args{"stationary", "--profile", "cone",     "--beta",
+                                      "10",         "--d",       "0.01",     "--tau",
+                                      "1",          "--v-range", "0.001:1:4"};
+  const Outcome to_stdout = run_mdrmap(args);
+  auto with_file = args;
+  with_file.insert(with_file.end(), {"--output", file.string()});
+  const Outcome to_file = run_mdrmap(with_file);
+  EXPECT_EQ(to_stdout.code, 0) << to_stdout.err;
+  EXPECT_EQ(to_file.code, 0) << to_file.err;
+  EXPECT_EQ(to_file.out, "");
+  EXPECT_EQ(to_file.err, "");
+  EXPECT_EQ(read_file(file), to_stdout.out);
+  EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{"states.csv"});
+}
+
+// Bad input: exit 2, one line on stderr naming the option (or, where no one
+// option is at fault, the choice to make), nothing on stdout, an existing
+// --output file unchanged and no file left behind.
+TEST(cli, StationaryBadInputsExit2WithOneLineNamingTheOption) {
+  struct Bad {
+    const char* label;
+    std::vector<std::string> args; ///< after the scene
+    std::string says;              ///< the message after "mdrmap stationary: error: "
+  };
+  const std::string choose = "give exactly one of --v V, --v-list V1,V2,... or --v-range LO:HI:N";
+  const std::vector<Bad> rows{
+      {"v-range N = 1", {"--v-range", "0.1:1:1"}, "--v-range: N (LO:HI:N) must be an integer"},
+      {"v-range N = 0", {"--v-range", "0.1:1:0"}, "--v-range: N (LO:HI:N) must be an integer"},
+      {"v-range N = 2.5", {"--v-range", "0.1:1:2.5"}, "--v-range: N (LO:HI:N) must be an integer"},
+      {"v-range N too many", {"--v-range", "0.1:1:1000001"}, "--v-range: N (LO:HI:N)"},
+      {"v-range LO = HI", {"--v-range", "1:1:3"}, "--v-range: LO must be below HI"},
+      {"v-range LO > HI", {"--v-range", "2:1:3"}, "--v-range: LO must be below HI"},
+      {"v-range two parts", {"--v-range", "0.1:1"}, "--v-range: must be LO:HI:N"},
+      {"v-range LO = 0", {"--v-range", "0:1:3"}, "--v-range: LO must be a velocity"},
+      {"v-range LO < 0", {"--v-range", "-1:1:3"}, "--v-range: LO must be a velocity"},
+      {"v-range HI nan", {"--v-range", "0.1:nan:3"}, "--v-range: HI must be a velocity"},
+      {"v-list not a number", {"--v-list", "0.1,abc,1"}, "--v-list: item 2 must be a velocity"},
+      {"v-list empty item", {"--v-list", "0.1,,1"}, "--v-list: item 2 must be a velocity"},
+      {"v-list trailing junk", {"--v-list", "0.1,1mm"}, "--v-list: item 2 must be a velocity"},
+      {"v-list 0", {"--v-list", "1,0"}, "--v-list: item 2 must be a velocity"},
+      {"v-list < 0", {"--v-list", "-2"}, "--v-list: item 1 must be a velocity"},
+      {"v-list inf", {"--v-list", "1,inf"}, "--v-list: item 2 must be a velocity"},
+      {"v-list overflows w tau / a", {"--v-list", "1,1e308"}, "--v-list: at v = 1e+308: "},
+      {"v = 0", {"--v", "0"}, "--v: must be a finite number > 0, got 0"},
+      {"v < 0", {"--v", "-1"}, "--v: must be a finite number > 0, got -1"},
+      {"v not a number", {"--v", "fast"}, "--v: "},
+      {"v twice", {"--v", "1", "--v", "2"}, "--v: may be given only once"},
+      {"v without value", {"--v"}, "--v: needs a value"},
+      {"--v and --v-list", {"--v", "1", "--v-list", "1,2"}, choose},
+      {"--v-list and --v-range", {"--v-list", "1,2", "--v-range", "1:2:3"}, choose},
+      {"none of them", {}, choose},
+      {"--R with a cone", {"--R", "10", "--v", "1"}, "--R: applies to --profile parabola only"},
+      {"--beta 90", {"--beta", "90", "--v", "1"}, "--beta: "},
+      {"--n with a cone", {"--n", "2", "--v", "1"}, "--n: "},
+      {"unknown option",
+       {"--v", "1", "--speed", "3"},
+       "--speed: not an option of mdrmap stationary"},
+      {"simulate's option", {"--v", "1", "--samples", "5"}, "--samples: not an option"},
+      {"history", {"--v", "1", "--history", "1:1"}, "--history: not an option"},
+      {"stray argument", {"--v", "1", "7"}, "unexpected argument 7"},
+      {"bad prony", {"--v", "1", "--prony", "1:-1"}, "--prony: "},
+  };
+  const std::vector<std::string> cone{"--profile", "cone", "--d", "0.01", "--tau", "1"};
+  TempDir dir;
+  const fs::path existing = dir.path() / "existing.csv";
+  const std::string sentinel = "v,d,a1,a2,FN,Fx,mu\n1,2,3,4,5,6,7\n";
+  for (const Bad& row : rows) {
+    SCOPED_TRACE(row.label);
+    std::vector<std::string> args{"stationary"};
+    args.insert(args.end(), cone.begin(), cone.end());
+    const bool sets_beta = std::find(row.args.begin(), row.args.end(), "--beta") != row.args.end();
+    if (!sets_beta) args.insert(args.end(), {"--beta", "10"});
+    args.insert(args.end(), row.args.begin(), row.args.end());
+    if (row.args.empty() || row.args.back() != "--v")
+      args.insert(args.end(), {"--output", existing.string()});
+    write_file(existing, sentinel);
+    const Outcome r = run_mdrmap(args, kNoHangSeconds);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(starts_with(r.err, "mdrmap stationary: error: " + row.says)) << r.err;
+    EXPECT_EQ(read_file(existing), sentinel);
+    EXPECT_EQ(names_in(dir.path()), std::vector<std::string>{"existing.csv"});
+  }
+  // neither or both: the message names what was given
+  const Outcome both = run_mdrmap(
+      {"stationary", "--d", "0.1", "--R", "1", "--tau", "1", "--v", "1", "--v-range", "1:2:3"});
+  EXPECT_NE(both.err.find("got --v and --v-range"), std::string::npos) << both.err;
+  const Outcome none = run_mdrmap({"stationary", "--d", "0.1", "--R", "1", "--tau", "1"});
+  EXPECT_NE(none.err.find("got none"), std::string::npos) << none.err;
+}
+
+// The help lists every option with what it allows, in lines of at most 79
+// columns; --help wins over bad options, and `mdrmap help stationary` is
+// the same text. The options an unknown option's message lists are those.
+TEST(cli, StationaryHelpListsEveryOptionWithItsRange) {
+  const Outcome r = run_mdrmap({"stationary", "--help"});
+  ASSERT_EQ(r.code, 0);
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(run_mdrmap({"help", "stationary"}).out, r.out);
+  EXPECT_EQ(run_mdrmap({"stationary", "--v", "abc", "--help"}).out, r.out);
+  for (const auto& line : split_lines(r.out))
+    EXPECT_LE(line.size(), 79U) << line;
+  const std::string help = flattened(r.out);
+  const std::vector<std::string> options{"--profile", "--d",          "--F0",     "--R",   "--tau",
+                                         "--G",       "--aT",         "--beta",   "--n",   "--A",
+                                         "--prony",   "--prony-file", "--T",      "--wlf", "--v",
+                                         "--v-list",  "--v-range",    "--output", "--help"};
+  for (const auto& o : options)
+    EXPECT_NE(r.out.find("\n  " + o + " "), std::string::npos) << o;
+  for (const auto& p : mdrmap::case_parameters()) {
+    if (p.part == mdrmap::Part::Sampling || p.part == mdrmap::Part::History) continue;
+    SCOPED_TRACE(p.name);
+    EXPECT_NE(help.find(std::string("--") + p.name + " " + p.symbol + " (" +
+                        mdrmap::dim_name(p.dim) + ") " + flattened(p.meaning)),
+              std::string::npos);
+    EXPECT_NE(help.find(p.allowed().substr(1)), std::string::npos) << p.allowed();
+  }
+  const mdrmap::ParamSpec& v = *mdrmap::find_parameter("v");
+  for (const std::string& word :
+       {"--v V (length/time) one velocity, " + v.allowed(), "each " + v.allowed(),
+        "LO and HI each " + v.allowed() + ", LO < HI; N an integer from 2 to 1000000",
+        std::string("at most 1000000 velocities"), mdrmap::branch_modulus_spec().allowed(),
+        mdrmap::branch_time_spec().allowed(), std::string("at most 32 terms"),
+        std::string("v,d,a1,a2,FN,Fx,mu"), std::string("--FN is accepted"),
+        std::string("Default: parabola"), std::string("Exit codes")})
+    EXPECT_NE(help.find(flattened(word)), std::string::npos) << word;
+
+  const Outcome bad = run_mdrmap({"stationary", "--nope", "1"});
+  std::string listed;
+  for (const auto& o : options)
+    if (o != "--help") listed += o + ", ";
+  EXPECT_EQ(bad.code, 2);
+  const std::string list = bad.err.substr(bad.err.find("case-sensitive: ") + 16);
+  for (const auto& o : options)
+    EXPECT_NE(list.find(o + (o == "--help" ? ")" : ",")), std::string::npos) << o;
+  EXPECT_NE(list.find("--FN, "), std::string::npos);
 }
 
 } // namespace

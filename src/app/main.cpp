@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/simulate_cmd.hpp"
+#include "app/stationary_cmd.hpp"
 #include "app/study_cmd.hpp"
 #include "mdrmap/version.hpp"
 
@@ -31,6 +32,8 @@ Subcommands:
   simulate   one case, a velocity step or history: normal force, friction
              force, friction coefficient and trailing edge of the contact
              over time, as CSV, with event metrics of every velocity change
+  stationary the stationary sliding states of one case (any profile and
+             rheology, fixed depth or load) at one or more velocities, as CSV
   study      parameter maps over many cases in parallel: MPI ranks share
              the cases, results go to one HDF5 friction map
 
@@ -50,7 +53,7 @@ int print_stdout(const std::string& text) {
 int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
   if (args.empty()) {
     std::fputs("mdrmap: error: missing subcommand; usage: mdrmap <subcommand> [options] "
-               "(subcommands: simulate, study; see mdrmap --help)\n",
+               "(subcommands: simulate, stationary, study; see mdrmap --help)\n",
                stderr);
     return kExitBadInput;
   }
@@ -65,14 +68,16 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
   if (cmd == "help") {
     if (rest.front() == "simulate") return print_stdout(mdrmap::app::simulate_help());
     if (rest.front() == "study") return print_stdout(mdrmap::app::study_help());
-    std::fprintf(
-        stderr,
-        "mdrmap: error: no help for unknown subcommand '%s' (subcommands: simulate, study)\n",
-        rest.front().c_str());
+    if (rest.front() == "stationary") return print_stdout(mdrmap::app::stationary_help());
+    std::fprintf(stderr,
+                 "mdrmap: error: no help for unknown subcommand '%s' (subcommands: simulate, "
+                 "stationary, study)\n",
+                 rest.front().c_str());
     return kExitBadInput;
   }
   if (cmd == "simulate") return mdrmap::app::simulate_main(rest);
   if (cmd == "study") return mdrmap::app::study_main(rest, argc, argv);
+  if (cmd == "stationary") return mdrmap::app::stationary_main(rest);
 
   if (!cmd.empty() && cmd[0] == '-')
     std::fprintf(stderr,
@@ -80,10 +85,10 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
                  "<subcommand> [options] (see mdrmap --help)\n",
                  cmd.c_str());
   else
-    std::fprintf(
-        stderr,
-        "mdrmap: error: unknown subcommand '%s'; available: simulate, study (see mdrmap --help)\n",
-        cmd.c_str());
+    std::fprintf(stderr,
+                 "mdrmap: error: unknown subcommand '%s'; available: simulate, stationary, study "
+                 "(see mdrmap --help)\n",
+                 cmd.c_str());
   return kExitBadInput;
 }
 

@@ -1,14 +1,12 @@
 #include "app/simulate_cmd.hpp"
 
-#include <cctype>
-#include <cstdio>
-#include <exception>
-#include <new>
-#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <boost/program_options.hpp>
 
 #include "app/case_input.hpp"
+#include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/output_file.hpp"
 #include "app/simulation.hpp"
@@ -20,7 +18,7 @@ namespace po = boost::program_options;
 namespace mdrmap::app {
 namespace {
 
-constexpr const char* kPrefix = "mdrmap simulate: error: ";
+constexpr const char* kCommand = "simulate";
 
 /// Every option, in the order of the help text: those of a case
 /// (app/case_input.hpp, with the old spellings it takes), then --output.
@@ -30,47 +28,6 @@ std::vector<std::string> option_names() {
   return names;
 }
 
-std::string all_option_names() {
-  std::string s;
-  for (const auto& o : option_names())
-    s += "--" + o + ", ";
-  return s + "--help";
-}
-
-/// Keeps a message on one line: control characters become visible escapes.
-std::string one_line(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    if (c == '\n')
-      out += "\\n";
-    else if (c == '\r')
-      out += "\\r";
-    else if (c == '\t')
-      out += "\\t";
-    else if (static_cast<unsigned char>(c) < 0x20)
-      out += '?';
-    else
-      out += c;
-  }
-  return out;
-}
-
-int report_bad_input(const std::string& option, const std::string& what) {
-  std::fprintf(stderr, "%s--%s: %s\n", kPrefix, one_line(option).c_str(), one_line(what).c_str());
-  return kExitBadInput;
-}
-
-int report_bad_input_raw(const std::string& what) {
-  std::fprintf(stderr, "%s%s\n", kPrefix, one_line(what).c_str());
-  return kExitBadInput;
-}
-
-int report_runtime(const std::string& what) {
-  std::fprintf(stderr, "%s%s\n", kPrefix, one_line(what).c_str());
-  return kExitRuntime;
-}
-
 // --- Command line --------------------------------------------------------------
 
 struct SimulateArgs {
@@ -78,50 +35,13 @@ struct SimulateArgs {
   std::string output; ///< empty or "-": stdout
 };
 
-/// Parses the command line into option texts. Throws InvalidInput for stray
-/// arguments, or lets boost::program_options errors through.
-po::variables_map option_texts(const std::vector<std::string>& args) {
-  po::options_description desc;
-  for (const auto& name : option_names())
-    desc.add_options()(name.c_str(), po::value<std::string>());
-  desc.add_options()("help", "");
-
-  const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
-  const po::parsed_options parsed =
-      po::command_line_parser(args).options(desc).style(style).allow_unregistered().run();
-
-  // Unknown options and stray positional arguments.
-  const std::vector<std::string> stray =
-      po::collect_unrecognized(parsed.options, po::include_positional);
-  if (!stray.empty()) {
-    const std::string& tok = stray.front();
-    if (tok.size() > 1 && tok[0] == '-') {
-      std::string name = tok.substr(0, tok.find('='));
-      name.erase(0, name.find_first_not_of('-'));
-      throw InvalidInput(name, "not an option of mdrmap simulate (options are case-sensitive: " +
-                                   all_option_names() + "), got " + tok);
-    }
-    throw InvalidInput("", "unexpected argument " + shown(tok) +
-                               "; every value must follow its option, e.g. --d 0.1");
-  }
-  po::variables_map vm;
-  po::store(parsed, vm);
-  po::notify(vm);
-  return vm;
-}
-
 /// Parses and validates the command line. Throws InvalidInput, or lets
 /// boost::program_options errors through for the caller to translate.
 SimulateArgs parse_args(const std::vector<std::string>& args) {
-  const po::variables_map vm = option_texts(args);
-  OptionTexts texts;
-  for (const auto& name : case_option_spellings())
-    if (vm.count(name)) texts.emplace(name, vm[name].as<std::string>());
+  const po::variables_map vm = option_texts(args, kCommand, option_names(), "--d 0.1");
   SimulateArgs a;
-  a.in = read_case_input(texts);
-  if (vm.count("output")) a.output = vm["output"].as<std::string>();
-  if (vm.count("output") && a.output.empty())
-    throw InvalidInput("output", "must be a file path (or - for stdout), got an empty string");
+  a.in = read_case_input(given_texts(vm, case_option_spellings()));
+  a.output = output_option(vm);
   return a;
 }
 
@@ -134,35 +54,6 @@ int run(const SimulateArgs& a) {
 }
 
 // --- Help ----------------------------------------------------------------------
-
-/// "  --name ARG" padded to the text column, then `text` wrapped to 79 columns.
-std::string help_entry(const std::string& option, const std::string& text) {
-  constexpr std::size_t kColumn = 17, kWidth = 79;
-  std::string out = "  " + option;
-  if (out.size() + 1 > kColumn)
-    out += "\n" + std::string(kColumn, ' ');
-  else
-    out += std::string(kColumn - out.size(), ' ');
-  std::size_t col = kColumn;
-  std::size_t pos = 0;
-  bool first = true;
-  while (pos < text.size()) {
-    std::size_t end = text.find(' ', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(pos, end - pos);
-    if (!first && col + 1 + word.size() > kWidth) {
-      out += "\n" + std::string(kColumn, ' ');
-      col = kColumn;
-      first = true;
-    }
-    if (!first) out += ' ', ++col;
-    out += word;
-    col += word.size();
-    first = false;
-    pos = end + 1;
-  }
-  return out + "\n";
-}
 
 std::string profile_help() {
   return help_entry("--profile P",
@@ -178,7 +69,7 @@ std::string parameter_help(bool sampling) {
   std::string s;
   for (const auto& p : case_parameters()) {
     if ((p.part == Part::Sampling) != sampling) continue;
-    s += help_entry(std::string("--") + p.name + " " + p.symbol, parameter_help_text(p));
+    s += parameter_entry(p);
   }
   return s;
 }
@@ -194,31 +85,6 @@ std::string required_usage() {
     if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
   }
   return s;
-}
-
-std::string rheology_help() {
-  const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
-  const std::string n = std::to_string(kMaxBranches);
-  return help_entry("--prony G1:TAU1,G2:TAU2,...",
-                    "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "
-                    "spring of modulus Gk (" +
-                        std::string(dim_name(g.dim)) + "), " + g.allowed() +
-                        ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) +
-                        "), " + t.allowed() + "; at most " + n +
-                        " terms, absolute values in the units of --G and --tau. With a spectrum "
-                        "--G is the long-term (rubbery) modulus and --tau the parallel dashpot's "
-                        "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
-         help_entry("--prony-file FILE",
-                    "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
-                    "line (at most " +
-                        n +
-                        "); blank lines and lines starting with # are skipped. Give --prony or "
-                        "--prony-file, not both") +
-         help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
-                                "equation (instead of --aT), a finite number > TREF - C2") +
-         help_entry("--wlf C1:C2:TREF",
-                    "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, "
-                    "C2 > 0 (in the unit of T), TREF the reference temperature (aT = 1)");
 }
 
 std::string history_help() {
@@ -376,57 +242,7 @@ Exit codes:
 }
 
 int simulate_main(const std::vector<std::string>& args) {
-  for (const auto& arg : args) {
-    if (arg == "--") break;
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(simulate_help().c_str(), stdout);
-      return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
-    }
-  }
-
-  SimulateArgs a;
-  try {
-    a = parse_args(args);
-  } catch (const InvalidInput& e) {
-    if (e.option().empty()) return report_bad_input_raw(e.what());
-    return report_bad_input(e.option(), e.what());
-  } catch (const po::multiple_occurrences& e) {
-    return report_bad_input_raw(e.get_option_name() + ": may be given only once");
-  } catch (const po::invalid_command_line_syntax& e) {
-    std::string what;
-    switch (e.kind()) {
-    case po::invalid_syntax::missing_parameter:
-      what = "needs a value, e.g. " + e.get_option_name() + " 1.5";
-      break;
-    case po::invalid_syntax::empty_adjacent_parameter:
-      what = "needs a value after '=', e.g. " + e.get_option_name() + "=1.5";
-      break;
-    case po::invalid_syntax::extra_parameter:
-      what = "takes no value";
-      break;
-    default:
-      what = e.what();
-      break;
-    }
-    return report_bad_input_raw(e.get_option_name() + ": " + what);
-  } catch (const po::error_with_option_name& e) {
-    const std::string name = e.get_option_name();
-    if (name.empty()) return report_bad_input_raw(e.what());
-    return report_bad_input_raw(name + ": " + e.what());
-  } catch (const po::error& e) {
-    return report_bad_input_raw(e.what());
-  }
-
-  try {
-    return run(a);
-  } catch (const InvalidInput& e) {
-    if (e.option().empty()) return report_bad_input_raw(e.what());
-    return report_bad_input(e.option(), e.what());
-  } catch (const std::bad_alloc&) {
-    return report_runtime("out of memory (try fewer --samples)");
-  } catch (const std::exception& e) {
-    return report_runtime(e.what());
-  }
+  return command_main(kCommand, args, simulate_help, parse_args, run, "try fewer --samples");
 }
 
 } // namespace mdrmap::app

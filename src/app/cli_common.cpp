@@ -1,0 +1,222 @@
+#include "app/cli_common.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include <boost/program_options.hpp>
+
+#include "app/case_input.hpp"
+#include "app/simulate_cmd.hpp"
+
+namespace po = boost::program_options;
+
+namespace mdrmap::app {
+
+// --- Messages ------------------------------------------------------------------
+
+std::string one_line(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    if (c == '\n')
+      out += "\\n";
+    else if (c == '\r')
+      out += "\\r";
+    else if (c == '\t')
+      out += "\\t";
+    else if (static_cast<unsigned char>(c) < 0x20)
+      out += '?';
+    else
+      out += c;
+  }
+  return out;
+}
+
+int report_error(const std::string& command, int code, const std::string& what) {
+  std::fprintf(stderr, "mdrmap %s: error: %s\n", command.c_str(), one_line(what).c_str());
+  return code;
+}
+
+int report_invalid_input(const std::string& command, const InvalidInput& e) {
+  if (e.option().empty()) return report_error(command, kExitBadInput, e.what());
+  return report_error(command, kExitBadInput, "--" + e.option() + ": " + e.what());
+}
+
+namespace {
+
+/// What a boost::program_options syntax error means, in words.
+std::string syntax_problem(const po::invalid_command_line_syntax& e) {
+  const std::string name = e.get_option_name();
+  switch (e.kind()) {
+  case po::invalid_syntax::missing_parameter:
+    return "needs a value, e.g. " + name + " 1.5";
+  case po::invalid_syntax::empty_adjacent_parameter:
+    return "needs a value after '=', e.g. " + name + "=1.5";
+  case po::invalid_syntax::extra_parameter:
+    return "takes no value";
+  default:
+    return e.what();
+  }
+}
+
+} // namespace
+
+int report_parse_error(const std::string& command) {
+  try {
+    throw;
+  } catch (const InvalidInput& e) {
+    return report_invalid_input(command, e);
+  } catch (const po::multiple_occurrences& e) {
+    return report_error(command, kExitBadInput, e.get_option_name() + ": may be given only once");
+  } catch (const po::invalid_command_line_syntax& e) {
+    return report_error(command, kExitBadInput, e.get_option_name() + ": " + syntax_problem(e));
+  } catch (const po::error_with_option_name& e) {
+    const std::string name = e.get_option_name();
+    return report_error(command, kExitBadInput, name.empty() ? e.what() : name + ": " + e.what());
+  } catch (const po::error& e) {
+    return report_error(command, kExitBadInput, e.what());
+  }
+}
+
+int report_run_error(const std::string& command, const std::string& hint) {
+  try {
+    throw;
+  } catch (const InvalidInput& e) {
+    return report_invalid_input(command, e);
+  } catch (const std::bad_alloc&) {
+    return report_error(command, kExitRuntime, "out of memory (" + hint + ")");
+  } catch (const std::exception& e) {
+    return report_error(command, kExitRuntime, e.what());
+  }
+}
+
+// --- Command line --------------------------------------------------------------
+
+std::string all_option_names(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& o : names)
+    s += "--" + o + ", ";
+  return s + "--help";
+}
+
+po::variables_map option_texts(const std::vector<std::string>& args, const std::string& command,
+                               const std::vector<std::string>& names, const std::string& example) {
+  po::options_description desc;
+  for (const auto& name : names)
+    desc.add_options()(name.c_str(), po::value<std::string>());
+  desc.add_options()("help", "");
+
+  const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
+  const po::parsed_options parsed =
+      po::command_line_parser(args).options(desc).style(style).allow_unregistered().run();
+
+  // Unknown options and stray positional arguments.
+  const std::vector<std::string> stray =
+      po::collect_unrecognized(parsed.options, po::include_positional);
+  if (!stray.empty()) {
+    const std::string& tok = stray.front();
+    if (tok.size() > 1 && tok[0] == '-') {
+      std::string name = tok.substr(0, tok.find('='));
+      name.erase(0, name.find_first_not_of('-'));
+      throw InvalidInput(name, "not an option of mdrmap " + command +
+                                   " (options are case-sensitive: " + all_option_names(names) +
+                                   "), got " + tok);
+    }
+    throw InvalidInput("", "unexpected argument " + shown(tok) +
+                               "; every value must follow its option, e.g. " + example);
+  }
+  po::variables_map vm;
+  po::store(parsed, vm);
+  po::notify(vm);
+  return vm;
+}
+
+OptionTexts given_texts(const po::variables_map& vm, const std::vector<std::string>& names) {
+  OptionTexts texts;
+  for (const auto& name : names)
+    if (vm.count(name)) texts.emplace(name, vm[name].as<std::string>());
+  return texts;
+}
+
+std::string output_option(const po::variables_map& vm) {
+  if (!vm.count("output")) return "";
+  const std::string path = vm["output"].as<std::string>();
+  if (path.empty())
+    throw InvalidInput("output", "must be a file path (or - for stdout), got an empty string");
+  return path;
+}
+
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const auto& arg : args) {
+    if (arg == "--") return false;
+    if (arg == "--help" || arg == "-h") return true;
+  }
+  return false;
+}
+
+int print_help(const std::string& text) {
+  std::fputs(text.c_str(), stdout);
+  return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
+}
+
+// --- Help ----------------------------------------------------------------------
+
+std::string help_entry(const std::string& option, const std::string& text) {
+  constexpr std::size_t kColumn = 17, kWidth = 79;
+  std::string out = "  " + option;
+  if (out.size() + 1 > kColumn)
+    out += "\n" + std::string(kColumn, ' ');
+  else
+    out += std::string(kColumn - out.size(), ' ');
+  std::size_t col = kColumn;
+  std::size_t pos = 0;
+  bool first = true;
+  while (pos < text.size()) {
+    std::size_t end = text.find(' ', pos);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(pos, end - pos);
+    if (!first && col + 1 + word.size() > kWidth) {
+      out += "\n" + std::string(kColumn, ' ');
+      col = kColumn;
+      first = true;
+    }
+    if (!first) out += ' ', ++col;
+    out += word;
+    col += word.size();
+    first = false;
+    pos = end + 1;
+  }
+  return out + "\n";
+}
+
+std::string parameter_entry(const ParamSpec& p) {
+  return help_entry(std::string("--") + p.name + " " + p.symbol, parameter_help_text(p));
+}
+
+std::string rheology_help() {
+  const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
+  const std::string n = std::to_string(kMaxBranches);
+  return help_entry("--prony G1:TAU1,G2:TAU2,...",
+                    "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "
+                    "spring of modulus Gk (" +
+                        std::string(dim_name(g.dim)) + "), " + g.allowed() +
+                        ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) +
+                        "), " + t.allowed() + "; at most " + n +
+                        " terms, absolute values in the units of --G and --tau. With a spectrum "
+                        "--G is the long-term (rubbery) modulus and --tau the parallel dashpot's "
+                        "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
+         help_entry("--prony-file FILE",
+                    "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
+                    "line (at most " +
+                        n +
+                        "); blank lines and lines starting with # are skipped. Give --prony or "
+                        "--prony-file, not both") +
+         help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
+                                "equation (instead of --aT), a finite number > TREF - C2") +
+         help_entry("--wlf C1:C2:TREF",
+                    "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, "
+                    "C2 > 0 (in the unit of T), TREF the reference temperature (aT = 1)");
+}
+
+} // namespace mdrmap::app
