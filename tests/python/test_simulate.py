@@ -171,8 +171,14 @@ def test_stationary_of_each_profile(load):
             mdrmap.stationary(**loading, **bad, tau=2, v=1)
         assert e.value.option == option
     with pytest.raises(mdrmap.InvalidInput) as e:
-        mdrmap.simulate(**loading, profile="cone", beta=10, tau=2, v=1, v1=0.5)
+        mdrmap.simulate(**loading, profile="cone", beta=10, tau=2, v=1, v1=0.5, solver="exact")
     assert e.value.option == "profile"
+    # auto takes it (the spectrum solver): a rise on the plateau, rear face
+    # free, stays at mu = (pi/2) tan(beta) exactly
+    r = mdrmap.simulate(**loading, profile="cone", beta=10, tau=2, v=0.2, v1=2, t_end=0.05,
+                        samples=3)
+    assert r.events[0]["mu_after"] == pytest.approx(cone["mu"], rel=1e-12)
+    assert r.events[0]["mu_end"] == pytest.approx(cone["mu"], rel=1e-12)
 
 
 def test_parameters_are_the_table_of_the_help(exe):

@@ -55,11 +55,13 @@ FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c"}
 SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/map-schema.md)
 
 
-def expected_datasets2(n, k, s, load, timeseries):
+def expected_datasets2(n, k, s, load, timeseries, indenter=("R",)):
     """`load`: the name of the prescribed load's /cases column (F0, or FN in a
-    map written before it was named F0), or None at fixed depth."""
+    map written before it was named F0), or None at fixed depth; `indenter`:
+    the profile's columns (R of the parabola, beta of the cone, n and A of a
+    power law)."""
     q = ["FN", "Fx", "mu", "a2"] + (["d", "a1"] if load else [])
-    d = {f"cases/{c}": ((n,), "f8") for c in [load or "d", "R", "tau", "G", "v"]}
+    d = {f"cases/{c}": ((n,), "f8") for c in [load or "d", *indenter, "tau", "G", "v"]}
     d["cases/w"] = ((n, k), "f8")
     d["cases/T"] = ((n, k), "f8")
     d["results/status"] = ((n,), "i1")
@@ -155,7 +157,8 @@ def check2(f, complete, expect_failed):
     if loading != ("force" if load else "depth"):
         problems.append(f"root attribute loading is {loading!r} but /cases has "
                         f"{load or 'd'}")
-    check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f), problems)
+    indenter = [c for c in ("R", "beta", "n", "A") if f"cases/{c}" in f] or ["R"]
+    check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f, indenter), problems)
     status = check_grid_status(f, n, problems)
     done = status == 1
     if "results/FN_pre" in f and np.any(f["results/FN_pre"][()][done] <= 0):

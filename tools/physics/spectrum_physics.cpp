@@ -3,11 +3,11 @@
 // spectrum"). Prints one table per study and writes its CSV files into --out
 // DIR; tools/plot_spectrum_physics.py makes the README's figures from them.
 //
-//   mdrmap_spectrum_physics --out DIR [--pib FILE] [--part 1..6] [--rtol R]
+//   mdrmap_spectrum_physics --out DIR [--pib FILE] [--part 1..7] [--rtol R]
 //                           [--healing-run 1..9] [--load-material 1..3]
 //
 // One file per study (studies.hpp): 1 sls.cpp, 2 width.cpp, 3 healing.cpp,
-// 4 direct.cpp, 5 creep.cpp, 6 healing_load.cpp; shared: common.* (options,
+// 4 direct.cpp, 5 creep.cpp, 6 healing_load.cpp, 7 profiles.cpp; shared: common.* (options,
 // spectra, cases, CSV), peak.* (curve maxima), shs.* (slide-hold-slide runs).
 // Units (common.hpp): R = 1, G = 1, d = 1 at fixed depth, F0 = 16/3 under load.
 // Not a test and not a benchmark: no pass/fail.
@@ -41,7 +41,7 @@ void set_option(Options& o, const std::string& a, const std::string& v) {
   else if (a == "--pib")
     o.pib = v;
   else if (a == "--part")
-    o.part = int_in("part", v, 1, 6);
+    o.part = int_in("part", v, 1, 7);
   else if (a == "--rtol") {
     o.rtol = std::atof(v.c_str());
     if (!(o.rtol > 0.0 && o.rtol <= 0.1)) bad("rtol", "must be in (0, 0.1]");
@@ -59,7 +59,7 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-h" || a == "--help") {
-      std::printf("usage: mdrmap_spectrum_physics --out DIR [--pib FILE] [--part 1..6] "
+      std::printf("usage: mdrmap_spectrum_physics --out DIR [--pib FILE] [--part 1..7] "
                   "[--rtol R] [--healing-run 1..9] [--load-material 1..3]\n");
       std::exit(0);
     }
@@ -76,8 +76,9 @@ int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   try {
     const std::function<void(const Options&)> studies[] = {
-        study_sls, study_width, study_healing, study_direct, study_creep, study_healing_load};
-    for (int k = 1; k <= 6; ++k)
+        study_sls,   study_width,        study_healing, study_direct,
+        study_creep, study_healing_load, study_profiles};
+    for (int k = 1; k <= 7; ++k)
       if (o.part == 0 || o.part == k) {
         studies[k - 1](o);
         std::fflush(stdout);

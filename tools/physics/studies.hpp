@@ -12,5 +12,6 @@ void study_healing(const Options& o);      ///< 3. healing.cpp: slide-hold-slide
 void study_direct(const Options& o);       ///< 4. direct.cpp: the direct effect without a dashpot
 void study_creep(const Options& o);        ///< 5. creep.cpp: Lee-Radok creep, checked
 void study_healing_load(const Options& o); ///< 6. healing_load.cpp: slide-hold-slide under load
+void study_profiles(const Options& o);     ///< 7. profiles.cpp: cone and power law on Kelvin
 
 } // namespace mdrmap::physics

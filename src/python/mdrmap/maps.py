@@ -128,7 +128,7 @@ def open_h5(path, h5py, warn=None, versions=(1, 2)):
     if version == 1:
         need = ["results/status"] + [f"cases/{c}" for c in _CASE_COLS1]
     else:
-        need = ["results/status", "cases/R", "cases/tau", "cases/v", "cases/w", "cases/T"]
+        need = ["results/status", "cases/tau", "cases/v", "cases/w", "cases/T"]
     for item in need:
         if item not in f:
             f.close()
