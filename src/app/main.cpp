@@ -20,10 +20,11 @@ using mdrmap::app::kExitRuntime;
 std::string usage() {
   return std::string("mdrmap ") + mdrmap::kVersion + " (" + mdrmap::kGitCommit + R"()
 Viscoelastic friction in the method of dimensionality reduction (MDR): the
-response of a sliding parabolic contact on a Kelvin foundation, held at a
-fixed depth or pressed with a prescribed normal force, to changes of the
-sliding velocity (a step, or a history of steps and holds), for one case or
-as parameter maps.
+response of a sliding indenter (a parabola, a cone or a power law) on a
+Kelvin foundation or a material with a relaxation spectrum, held at a fixed
+depth or pressed with a prescribed normal force, to changes of the sliding
+velocity (a step, or a history of steps and holds), for one case or as
+parameter maps.
 
 Usage: mdrmap <subcommand> [options]
        mdrmap --help | --version

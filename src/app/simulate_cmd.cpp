@@ -79,12 +79,12 @@ std::string parameter_help(bool sampling) {
 std::string required_usage() {
   std::string s;
   for (const auto& p : case_parameters()) {
-    if (p.required) s += std::string(" --") + p.name + " " + p.symbol;
+    if (p.required && p.profile == nullptr) s += std::string(" --") + p.name + " " + p.symbol;
     if (!p.one_of) continue;
     const auto members = group_members(p.one_of);
     if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
   }
-  return s;
+  return s + "\n           (--R R | --profile cone --beta DEG | --profile power --n N --A A)";
 }
 
 std::string history_help() {
@@ -181,21 +181,21 @@ std::string simulate_help() {
            (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]
 
 Computes the response of a viscoelastic contact to changes of the sliding
-velocity, in the method of dimensionality reduction (MDR). A rigid parabolic
-indenter (MDR profile x^2/R) is held at indentation depth d (--d, depth
-control) or pressed with the prescribed normal load F0 (--F0, load control:
-the depth follows; --FN is accepted as its old spelling) on a Kelvin
-foundation (shear modulus G, relaxation time tau = eta/G) or a material with
-a relaxation spectrum (--prony), its times shifted by aT (--aT, or --T with
---wlf). It slides steadily at velocity V0 until t = 0, then follows a
-velocity history: one step to V1 (--v1), or segments of constant velocity,
+velocity, in the method of dimensionality reduction (MDR). A rigid indenter (a
+parabola, MDR profile x^2/R; or --profile cone or power) is held at indentation
+depth d (--d, depth control) or pressed with the prescribed normal load F0
+(--F0, load control: the depth follows; --FN is accepted as its old spelling)
+on a Kelvin foundation (shear modulus G, relaxation time tau = eta/G) or a
+material with a relaxation spectrum (--prony), its times shifted by aT (--aT,
+or --T with --wlf). It slides steadily at velocity V0 until t = 0, then follows
+a velocity history: one step to V1 (--v1), or segments of constant velocity,
 holds included (--history). The command prints the stationary state before
 t = 0, event metrics of every velocity change and, at N instants per segment,
-the measured normal force FN, the tangential (friction) force Fx, positive
-when it resists the motion, the friction coefficient mu = Fx/FN, and the
-trailing edge a2 of the contact. In the frame of the indenter the contact
-occupies [-a1, a2], a1 = sqrt(R d); at fixed depth the leading edge stays at
--a1, under load the depth d and a1 are printed too.
+the measured normal force FN, the tangential (friction) force Fx, positive when
+it resists the motion, the friction coefficient mu = Fx/FN, and the trailing
+edge a2 of the contact. In the frame of the indenter the contact occupies [-a1,
+a2], g(a1) = d (a1 = sqrt(R d) for the parabola); at fixed depth the leading
+edge stays at -a1, under load the depth d and a1 are printed too.
 
 Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
 times, velocities length/time; forces come out in units of G * length^2.
