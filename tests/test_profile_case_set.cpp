@@ -39,24 +39,6 @@ const NamedCase& by_name(const std::string& name) {
 
 constexpr double kRtols[] = {1e-3, 1e-4};
 
-/// Runs that fail their check (not run; reported with figures). The standard
-/// linear solid's reslide after a hold: its error depends on where the grid
-/// falls by a factor 3 to 5 (a/dx 32, phases 0 .. 0.88: 6.9e-4 .. 2.5e-3 for
-/// n = 3), and the half-resolution companion at another phase can miss it
-/// (the parabola's SLS drop-hold-reslide varies as much: 2.4e-4 .. 1.4e-3).
-constexpr KnownFailure kKnownFailures[] = {
-    // FAILS: error 2.19e-3 at a/dx 32 with estimate 8.0e-4; at 1e-4 1.29e-4 (a/dx 100)
-    {"depth power n=3 SLS G0/G=10 drop-hold-reslide", 1e-3},
-    {"depth power n=3 SLS G0/G=10 drop-hold-reslide", 1e-4},
-    // FAILS: error 1.35e-4 at a/dx 100 with estimate 5.8e-5 (5.1e-5 at a/dx 60 at 1e-3)
-    {"load cone 10deg SLS G0/G=10 drop-hold-reslide", 1e-4},
-    {"load cone 45deg SLS G0/G=10 drop-hold-reslide", 1e-4},
-};
-
-bool known_failure(const std::string& name, double rtol) {
-  return known_failure(kKnownFailures, name, rtol);
-}
-
 constexpr double kGoal = 1e-5; // the references' own error: rtol / 10 of the finest
 
 class ProfileCases : public ::testing::TestWithParam<std::size_t> {};
@@ -65,19 +47,12 @@ class ProfileCases : public ::testing::TestWithParam<std::size_t> {};
 // third of the true error (and at most rtol).
 TEST_P(ProfileCases, MeetsRtolWithAnHonestEstimate) {
   const NamedCase& nc = cases()[GetParam()];
-  for (const KnownFailure& k : kKnownFailures)
-    ASSERT_NO_THROW(by_name(k.name)) << "the known failures are cases of the set";
   const Reference ref = refine(nc.c, kGoal);
   std::printf("| %s | reference | a/dx %g, ratio %.2f, own error <= %.2e | %.0f ms |\n",
               nc.name.c_str(), ref.cells, ref.ratio, ref.bound, ref.ms);
   EXPECT_LE(ref.bound, kGoal) << nc.name << ": the reference is not refined enough";
-  for (const double rtol : kRtols) {
-    if (known_failure(nc.name, rtol)) {
-      std::printf("| %s | %g | known failure, not run |\n", nc.name.c_str(), rtol);
-      continue;
-    }
+  for (const double rtol : kRtols)
     check_run(nc, rtol, ref.series);
-  }
 }
 
 std::string test_name(const ::testing::TestParamInfo<std::size_t>& info) {

@@ -20,6 +20,7 @@
 
 #include "cases/case_set.hpp"
 #include "cases/load_case_set.hpp"
+#include "core/metrics/error_metric.hpp"
 #include "core/metrics/profile_stationary.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
@@ -383,6 +384,25 @@ TEST(ProfileModel, OnlyTheSpectrumSolverTakesOtherProfiles) {
   EXPECT_THROW(mdrmap::run_mdr(c, mdrmap::MdrOptions{}), mdrmap::InvalidInput);
   EXPECT_TRUE(mdrmap::solver_handles(mdrmap::SolverKind::Exact,
                                      mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
+}
+
+// The error metric with a floor (the estimate's: two runs compared) measures
+// a cone's and a power law's F_x and mu on their Scales::friction. With the
+// parabola's sqrt(d/R) at R = 0 the floor was infinite and every F_x and mu
+// difference read 0: the estimates of these profiles saw F_N and a2 only.
+TEST(ProfileModel, TheEstimatesMetricSeesFrictionOfEveryProfile) {
+  for (const Case& c : {cone_case(10.0, 0.01, 1.0, 0.01), power_case(3.0, 1.0, 0.01, 1.0, 0.01),
+                        under_load(cone_case(10.0, 0.01, 1.0, 0.01), 1e-3)}) {
+    const mdrmap::RunResult r = mdrmap::run_case(c, mdrmap::SolverKind::Auto, 1e-3);
+    mdrmap::Series other = r.series;
+    for (std::size_t k = 0; k < other.size(); ++k) {
+      other.Fx[k] *= 1.0 + 1e-3;
+      other.mu[k] *= 1.0 + 1e-3;
+    }
+    const mdrmap::CaseError e = mdrmap::case_error(other, r.series, c, 1e-12);
+    EXPECT_NEAR(e.Fx, 1e-3, 1e-9) << mdrmap::profile_name(c.indenter.profile);
+    EXPECT_NEAR(e.mu, 1e-3, 1e-9) << mdrmap::profile_name(c.indenter.profile);
+  }
 }
 
 // A transient in closed form: on the Kelvin foundation at fixed depth a rise

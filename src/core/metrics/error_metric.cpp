@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/model/scales.hpp"
+
 namespace mdrmap {
 namespace {
 
@@ -56,8 +58,16 @@ void load_errors(const Series& run, const Series& ref, const Case& c, CaseError&
 CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel) {
   CaseError e = case_error(run, ref, c.edge_scale());
   if (c.loading.by_force()) load_errors(run, ref, c, e);
-  const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
-  const double mu_scale = std::sqrt(d_scale / c.indenter.R);
+  // the friction scale: the parabola's as it always was, any other profile's
+  // from its Scales (with R = 0 the parabola's would be infinite: a floor
+  // that hid every F_x and mu difference of a cone or a power law)
+  double mu_scale = 0.0;
+  if (c.indenter.parabolic()) {
+    const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
+    mu_scale = std::sqrt(d_scale / c.indenter.R);
+  } else {
+    mu_scale = scales(c).friction;
+  }
   double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     fn_max = std::max(fn_max, std::abs(ref.FN[k]));

@@ -17,7 +17,8 @@ CaseError case_error(const Series& run, const Series& ref, double a1);
 
 /// The same metric where a reference that is identically zero (tau = 0:
 /// F_x = mu = 0) is measured on its natural scale (max|F_N| sqrt(d/R) for
-/// F_x, sqrt(d/R) for mu) instead of dividing by zero. With floor_rel > 0 the
+/// F_x, sqrt(d/R) for mu; another profile's Scales::friction for sqrt(d/R))
+/// instead of dividing by zero. With floor_rel > 0 the
 /// F_x and mu denominators are also at least floor_rel times those scales:
 /// comparing two runs whose F_x is rounding noise over zero then stays
 /// meaningful (each element term carries ~1e-16 of the scale).
