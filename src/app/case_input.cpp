@@ -1,4 +1,5 @@
 #include "app/case_input.hpp"
+#include "app/text.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -90,12 +91,6 @@ void check_as(const std::string& option, const ParamSpec& spec, double x) {
 }
 
 // --- History -------------------------------------------------------------------
-
-std::string trimmed(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
 
 std::vector<std::string> split_commas(const std::string& text) {
   std::vector<std::string> items;

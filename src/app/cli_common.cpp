@@ -7,7 +7,7 @@
 #include <boost/program_options.hpp>
 
 #include "app/case_input.hpp"
-#include "app/simulate_cmd.hpp"
+#include "app/exit_codes.hpp"
 
 namespace po = boost::program_options;
 

@@ -1,4 +1,5 @@
 #include "app/prony_input.hpp"
+#include "app/text.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -13,12 +14,6 @@
 
 namespace mdrmap::app {
 namespace {
-
-std::string trimmed(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
 
 /// One value of term k (1-based): `spec` is the branch's modulus or time;
 /// the key in a message is its name with k (G3, tau3). Throws

@@ -3,13 +3,9 @@
 #include <string>
 #include <vector>
 
-namespace mdrmap::app {
+#include "app/exit_codes.hpp"
 
-/// Exit codes of every subcommand.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitRuntime = 1;  ///< the solver or the output failed
-inline constexpr int kExitBadInput = 2; ///< bad command line; one line on stderr names the option
-inline constexpr int kExitInterrupted = 3; ///< study stopped by a signal; resumable
+namespace mdrmap::app {
 
 /// The text of `mdrmap simulate --help`.
 std::string simulate_help();

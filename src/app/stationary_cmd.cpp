@@ -1,4 +1,5 @@
 #include "app/stationary_cmd.hpp"
+#include "app/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,9 +15,9 @@
 #include "app/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
+#include "app/exit_codes.hpp"
 #include "app/output_file.hpp"
 #include "app/prony_input.hpp"
-#include "app/simulate_cmd.hpp" // the exit codes
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
@@ -59,12 +60,6 @@ std::vector<std::string> option_names() {
 }
 
 // --- Velocities ----------------------------------------------------------------
-
-std::string trimmed(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> items;

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/simulate_cmd.hpp"
+#include "app/exit_codes.hpp"
 #include "core/model/params.hpp"
 #include "mdrmap/version.hpp"
 #include "study/runner.hpp"
