@@ -18,6 +18,10 @@ State unshifted_stationary(const Case& c, double w) {
 
 } // namespace
 
+double stationary_load_depth(const Case& c, double w) {
+  return c.indenter.parabolic() ? spectrum_stationary_depth(c, w) : profile_stationary_depth(c, w);
+}
+
 State stationary_state(const Case& c, double w) {
   if (c.rheology.aT == 1.0) return unshifted_stationary(c, w);
   Case shifted = c;

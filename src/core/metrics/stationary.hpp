@@ -14,4 +14,10 @@ namespace mdrmap {
 /// those of profile_stationary.hpp.
 State stationary_state(const Case& c, double w);
 
+/// The depth of stationary sliding at w > 0 under the case's load F0:
+/// spectrum_stationary_depth for the parabola (the Kelvin foundation its
+/// N = 0 case), profile_stationary_depth for the other profiles; the times as
+/// the case gives them (a solver passes its shifted case).
+double stationary_load_depth(const Case& c, double w);
+
 } // namespace mdrmap

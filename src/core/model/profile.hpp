@@ -53,6 +53,9 @@ struct Indenter {
     if (parabolic()) return std::sqrt(R) * std::sqrt(d);
     return std::pow(d / coefficient(), 1.0 / exponent());
   }
+  /// The same as the element-row solvers form it: sqrt(R d) for the parabola
+  /// (their arithmetic since the seed, bit for bit), contact_radius otherwise.
+  double leading_edge(double d) const { return parabolic() ? std::sqrt(R * d) : contact_radius(d); }
   /// Elastic normal force of the full contact [-a, a] at depth g(a) on a
   /// foundation of modulus G: 4 G int (g(a) - g) = 8 G c n/(n + 1) a^(n + 1)
   /// (the parabola: 16/3 G a^3 / R).

@@ -8,8 +8,7 @@
 
 #include <boost/math/tools/toms748_solve.hpp>
 
-#include "core/metrics/profile_stationary.hpp"
-#include "core/metrics/spectrum_stationary.hpp"
+#include "core/metrics/stationary.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
@@ -99,24 +98,15 @@ struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
 };
 
-// The stationary depth under load at w, and the contact radius at depth d
-// (the parabola's arithmetic as before the profiles, bit for bit).
-double load_depth(const Case& c, double w) {
-  return c.indenter.parabolic() ? spectrum_stationary_depth(c, w) : profile_stationary_depth(c, w);
-}
-double radius_at(const Case& c, double d) {
-  return c.indenter.parabolic() ? std::sqrt(c.indenter.R * d) : c.indenter.contact_radius(d);
-}
-
 LoadGeometry load_geometry(const Case& c) {
   LoadGeometry g;
-  g.d_pre = load_depth(c, c.history.v0);
-  g.a_ref = radius_at(c, g.d_pre);
+  g.d_pre = stationary_load_depth(c, c.history.v0);
+  g.a_ref = c.indenter.leading_edge(g.d_pre);
   double amax = std::max(c.a0(), g.a_ref);
   g.t_min = g.a_ref / c.history.v0;
   for (const auto& seg : c.history.segments) {
     if (!(seg.w > 0.0)) continue;
-    const double a = radius_at(c, load_depth(c, seg.w));
+    const double a = c.indenter.leading_edge(stationary_load_depth(c, seg.w));
     g.a_ref = std::min(g.a_ref, a);
     amax = std::max(amax, a);
     g.t_min = std::min(g.t_min, a / seg.w);

@@ -7,27 +7,12 @@
 #include <vector>
 
 #include "core/metrics/error_metric.hpp"
-#include "core/metrics/profile_stationary.hpp"
-#include "core/metrics/spectrum_stationary.hpp"
+#include "core/metrics/stationary.hpp"
 
 namespace mdrmap {
 namespace {
 
 constexpr const char* kName = "spectrum-baseline";
-
-/// The leading edge a1 at depth d, g(a1) = d: the parabola's as this solver
-/// has always formed it (sqrt(R d), bit for bit), any other profile's by
-/// Indenter::contact_radius.
-double leading_edge(const Indenter& ind, double d) {
-  return ind.parabolic() ? std::sqrt(ind.R * d) : ind.contact_radius(d);
-}
-
-/// The depth of stationary sliding at w under the case's load: the spectrum's
-/// closed form for the parabola (the Kelvin foundation its N = 0 case), the
-/// profile's stationary state otherwise.
-double start_depth(const Case& c, double w) {
-  return c.indenter.parabolic() ? spectrum_stationary_depth(c, w) : profile_stationary_depth(c, w);
-}
 
 /// The element row over the whole travel path: u, q_1..q_N per element.
 struct Row {
@@ -45,7 +30,7 @@ struct Row {
   void set_depth(double dn, double rate) {
     d = dn;
     dd = rate;
-    a1 = leading_edge(c.indenter, d);
+    a1 = c.indenter.leading_edge(d);
   }
   double xi(std::size_t i, double s) const { return x0 + static_cast<double>(i) * dx + s; }
   double force(std::size_t i, double x, double w) const { // per 4 dx
@@ -203,8 +188,8 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
                        "spectrum-baseline needs cells_per_a1 >= 2, spin-up >= 2.5 a1");
   const bool load = c.loading.by_force();
   const double v0 = c.history.v0;
-  const double d_start = load ? start_depth(c, v0) : c.loading.d;
-  const double a1 = leading_edge(c.indenter, d_start), dx = a1 / o.cells_per_a1;
+  const double d_start = load ? stationary_load_depth(c, v0) : c.loading.d;
+  const double a1 = c.indenter.leading_edge(d_start), dx = a1 / o.cells_per_a1;
   const double aw = load ? 1.1 * std::max(a1, c.a0()) : a1; // (a1 <= a0 under load)
   double wmax = v0;
   for (const auto& seg : c.history.segments)

@@ -86,7 +86,7 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
     const double p_right = past_tip(tip_pressure(jt, -1));
     profile_piece_forces(ja, jb, xl, bl, 0.0, tip_rest(jt, -1), FN, Fx);
     FN += 0.5 * e * (p_right + pe); // linear over the sliver [0, e]
-    Fx -= 0.5 * e * (p_right * ind_.slope(0.5 * e) + pe * ind_.slope(e));
+    Fx -= 0.5 * e * (p_right * slope(0.5 * e) + pe * slope(e));
     return;
   }
   const int side = e <= 0.0 ? -1 : 1;
@@ -139,7 +139,7 @@ void Row::profile_piece_forces(long long ja, long long jb, double xl, double bl,
   const KnownForces k = known_forces(xl, xr);
   FN += k.N;
   add_piece(ja, jb, dx_, x, xl, bl, xr, br, b, FN);
-  Fx += k.X - b0 * (ind_.g(xr) - ind_.g(xl));
+  Fx += k.X - b0 * (g(xr) - g(xl));
   add_piece(
       ja, jb, dx_, x, xl, (bl - b0) * down(xl), xr, (br - b0) * down(xr),
       [&](long long j) { return (b(j) - b0) * down(xi(j)); }, Fx);
@@ -147,8 +147,8 @@ void Row::profile_piece_forces(long long ja, long long jb, double xl, double bl,
 
 // g'(x), at the tip its limit from `side`.
 double Row::side_slope(double x, int side) const {
-  if (x != 0.0) return ind_.slope(x);
-  return ind_.exponent() == 1.0 ? side * ind_.coefficient() : 0.0;
+  if (x != 0.0) return slope(x);
+  return gn_ == 1.0 ? side * gc_ : 0.0;
 }
 
 // A(x) = G0 h + G tau (dd - w g') (per 4), at the tip from `side`.
@@ -160,7 +160,7 @@ double Row::known_p(double x, int side) const {
 // antiderivatives of g = c|x|^n and g'^2 = c^2 n^2 |x|^(2n-2) (continuous
 // through the tip), int g' = g(r) - g(l), int g g' = (g(r)^2 - g(l)^2)/2.
 Row::KnownForces Row::known_forces(double l, double r) const {
-  const double n = ind_.exponent(), c = ind_.coefficient();
+  const double n = gn_, c = gc_;
   auto G1 = [&](double t) {
     return std::copysign(c * std::pow(std::fabs(t), n + 1.0) / (n + 1.0), t);
   };
@@ -168,7 +168,7 @@ Row::KnownForces Row::known_forces(double l, double r) const {
     return std::copysign(c * c * n * n * std::pow(std::fabs(t), 2.0 * n - 1.0) / (2.0 * n - 1.0),
                          t);
   };
-  const double L = r - l, gl = ind_.g(l), gr = ind_.g(r);
+  const double L = r - l, gl = g(l), gr = g(r);
   const double Ig = G1(r) - G1(l), Igp = gr - gl, Iggp = 0.5 * (gr * gr - gl * gl),
                Igp2 = G2(r) - G2(l);
   const double G0 = law_.G0(), eta = law_.G() * law_.tau();
@@ -212,8 +212,8 @@ double Row::tip_pressure(long long jt, int side) const {
 // 2 G tau c w (the branches' states and u are continuous); other profiles'
 // slopes are continuous.
 double Row::past_tip(double p_ahead) const {
-  if (parab_ || ind_.exponent() != 1.0) return p_ahead;
-  return p_ahead - 2.0 * law_.tau() * law_.G() * ind_.coefficient() * w_;
+  if (parab_ || gn_ != 1.0) return p_ahead;
+  return p_ahead - 2.0 * law_.tau() * law_.G() * gc_ * w_;
 }
 
 State Row::measure() const {

@@ -37,9 +37,10 @@ Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, doubl
 
 Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, double phase,
          double sub_travel, double edge_tol, const RunControl& control, const char* name)
-    : law_(law), control_(control), name_(name), ind_(c.indenter), parab_(c.indenter.parabolic()),
-      exact_force_(parab_ || c.indenter.exponent() == 1.0 || c.indenter.exponent() == 2.0),
-      R_(c.indenter.R), d_(d), dx_(dx), aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
+    : law_(law), control_(control), name_(name), parab_(c.indenter.parabolic()),
+      gc_(c.indenter.coefficient()), gn_(c.indenter.exponent()),
+      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.R), d_(d), dx_(dx),
+      aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8;
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
@@ -474,9 +475,9 @@ double Row::trailing_edge(long long jb, double& pe) const {
 // else the quadratic through u at 0, h/2 and h.
 Row::Forcing Row::forcing(double x, double w, double h, const Path& q) const {
   if (parab_) return {depth(x, q.d), q.r - lift(x, w), q.k - w * w / R_};
-  const double c = ind_.coefficient();
+  const double c = gc_;
   if (!(w > 0.0)) return {depth(x, q.d), q.r, q.k};
-  if (exact_force_ && ind_.exponent() == 1.0)
+  if (exact_force_ && gn_ == 1.0)
     return {depth(x, q.d), q.r - (x + 0.5 * w * h < 0.0 ? -c : c) * w, q.k};
   if (exact_force_) return {depth(x, q.d), q.r - 2.0 * c * x * w, q.k - c * w * w};
   const double u0 = depth(x, q.d), um = depth(x + 0.5 * w * h, q.at(0.5 * h)),

@@ -200,11 +200,20 @@ private:
 
   // The profile (the parabola's arithmetic as the seed's, bit for bit).
   double depth(double x) const { return depth(x, d_); }
-  double depth(double x, double d) const { return parab_ ? d - x * x / R_ : d - ind_.g(x); }
+  double depth(double x, double d) const { return parab_ ? d - x * x / R_ : d - g(x); }
   /// g'(x) w: how fast the indenter rises under a point at x moving at w.
-  double lift(double x, double w) const { return parab_ ? 2.0 * x * w / R_ : ind_.slope(x) * w; }
-  double radius(double d) const { return parab_ ? std::sqrt(R_ * d) : ind_.contact_radius(d); }
-  bool inside(double x, double d) const { return parab_ ? x * x <= R_ * d : ind_.g(x) <= d; }
+  double lift(double x, double w) const { return parab_ ? 2.0 * x * w / R_ : slope(x) * w; }
+  double radius(double d) const {
+    return parab_ ? std::sqrt(R_ * d) : std::pow(d / gc_, 1.0 / gn_);
+  }
+  bool inside(double x, double d) const { return parab_ ? x * x <= R_ * d : g(x) <= d; }
+  /// Another profile's g = c |x|^n and g' (Indenter::g, slope, bit for bit,
+  /// with c and n formed once: the hot path asks at every sub-step).
+  double g(double x) const { return gc_ * std::pow(std::fabs(x), gn_); }
+  double slope(double x) const {
+    const double s = gn_ * gc_ * std::pow(std::fabs(x), gn_ - 1.0);
+    return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
+  }
   /// The largest travel of a sub-step where the contact is a: sub_travel a,
   /// and at most kSubCells dx where the forcing is interpolated.
   double sub_length(double a) const;
@@ -217,8 +226,8 @@ private:
   const Law& law_;
   const RunControl& control_;
   const char* name_;
-  Indenter ind_;
   bool parab_;       // the parabola: Taylor forcing, no tip
+  double gc_, gn_;   // the profile's g = gc_ |x|^gn_ (Indenter::coefficient, exponent)
   bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
   double R_, d_, dx_, aw_, phase_, sub_travel_;
   double dd_ = 0.0; // depth rate now (load control)
