@@ -26,6 +26,7 @@
 #include "core/model/case.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/exact.hpp"
+#include "core/solvers/load.hpp"
 #include "core/solvers/mdr.hpp"
 
 namespace {
@@ -384,6 +385,34 @@ TEST(ProfileModel, OnlyTheSpectrumSolverTakesOtherProfiles) {
   EXPECT_THROW(mdrmap::run_mdr(c, mdrmap::MdrOptions{}), mdrmap::InvalidInput);
   EXPECT_TRUE(mdrmap::solver_handles(mdrmap::SolverKind::Exact,
                                      mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
+}
+
+// The reduction of the transients: the power law n = 2, A = 1/(2R) through
+// the spectrum solver's profile path (tip cut, forces split at the tip) is
+// the parabola. On the Kelvin history set at fixed depth against the
+// continuum solution of the parabola (exact), and on three load-set cases
+// against the Kelvin load solver: within rtol 1e-3, the estimate at least a
+// third of the error.
+TEST(ProfileTransient, PowerTwoIsTheParabola) {
+  std::vector<mdrmap::NamedCase> set = mdrmap::history_case_set(21);
+  const std::vector<mdrmap::NamedCase> load = mdrmap::load_case_set(21);
+  set.insert(set.end(), load.begin(), load.begin() + 3);
+  for (const auto& nc : set) {
+    const Case p = as_power(nc.c);
+    mdrmap::RunResult ref;
+    if (nc.c.loading.by_force()) {
+      mdrmap::LoadOptions lo;
+      lo.rtol = 1e-7;
+      ref = mdrmap::run_load(nc.c, lo);
+    } else {
+      ref = mdrmap::run_exact(nc.c, 1e-12);
+    }
+    const mdrmap::RunResult r = mdrmap::run_case(p, mdrmap::SolverKind::Auto, 1e-3);
+    ASSERT_EQ(r.info.solver, "spectrum");
+    const double err = mdrmap::case_error(r.series, ref.series, nc.c).max();
+    EXPECT_LE(err, 1e-3) << nc.name;
+    EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name;
+  }
 }
 
 // The error metric with a floor (the estimate's: two runs compared) measures
