@@ -29,7 +29,7 @@ double run_difference(const Series& coarse, const Series& fine, const Case& c) {
 
 Reference refine(const Case& c, double goal) {
   const bool load = c.loading.by_force();
-  const double n0 = load ? 32.0 : 256.0, n_max = load ? 256.0 : 8192.0;
+  const double n0 = load ? 32.0 : 256.0, n_max = load ? 1024.0 : 8192.0;
   Reference ref;
   const double t0 = cpu_ms();
   std::vector<Series> runs;

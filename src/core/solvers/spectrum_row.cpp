@@ -121,10 +121,10 @@ void Row::change_material(Mode& md, double* y, double x, double w, double d, dou
   md = Mode::Free;
 }
 
-Row::Grid Row::grid(double dt, double w) const {
+Row::Grid Row::grid(double dt, double w, double a) const {
   Grid g;
   g.dt = dt;
-  g.D = w > 0.0 ? std::min(dt, sub_length(a1_now()) / w) : dt;
+  g.D = w > 0.0 ? std::min(dt, sub_length(a) / w) : dt;
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
@@ -151,19 +151,13 @@ void Row::advance(double dt, double d1, double dd1) {
   if (!(dt > 0.0)) return;
   ++steps_;
   const double d0 = d_, s = d1 > 0.0 ? (d1 - d0) / dt : 0.0;
-  // with a dashpot the path ends at the rate dd1 (the force sees it): the
-  // parabola through the step's ends with that slope at dd1's end
-  const double k = d1 > 0.0 && law_.tau() > 0.0 ? (dd1 - s) / dt : 0.0;
+  // the path ends at the rate dd1 (a dashpot's force sees it): the parabola
+  // through the step's ends with that slope at dd1's end
+  const double k = d1 > 0.0 ? (dd1 - s) / dt : 0.0;
   const long long lo0 = jlo_, hi0 = jhi_;
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
-  Entry en{dt, w_, P_, grid(dt, w_), d0, s, k};
-  if (s != 0.0) { // sub-steps: the contact's travel at the smaller a1 of the step
-    const double amin = radius(std::min(d0, d1));
-    en.g.D = w_ > 0.0 ? std::min(dt, sub_length(amin) / w_) : dt;
-    en.g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / en.g.D)));
-    law_.coef(dt - static_cast<double>(en.g.K - 1) * en.g.D, en.g.first);
-    law_.coef(en.g.D, en.g.full);
-  }
+  // sub-steps: the contact's travel at the smaller a1 of the step
+  Entry en{dt, w_, P_, grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k};
   log_.push_back(en);
   const Grid& g = log_.back().g;
   const long before = updates_;

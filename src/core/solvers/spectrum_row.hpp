@@ -156,7 +156,7 @@ private:
     Material m;
   };
   void set_position(long double P);
-  Grid grid(double dt, double w) const;
+  Grid grid(double dt, double w, double a) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
                      const Path& p) const;
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
