@@ -291,11 +291,48 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
     } else if (mt.mode != Mode::Fresh || x > -radius(deepest(e))) {
       gone = x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact;
       if (gone) break;
-      step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
+      const auto last = mt.mode == Mode::Fresh ? it : at_rest_until(it, end);
+      if (last == it) {
+        step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
+      } else { // entries at rest at one depth: one exact step
+        Grid g;
+        g.dt = g.D = total_time(it, last);
+        law_.coef(g.dt, g.first);
+        step_material(mt.mode, mt.y, x, g.dt, 0.0, g, Path{e.d0, 0.0, 0.0});
+        it = last;
+      }
       ++done;
     }
   }
   return done;
+}
+
+// The last of the entries from `it` on that hold the indenter at rest at one
+// depth (it itself where the next does not): over them a material point
+// moves as over one step of their total time, exactly (its switches located
+// within it; the live row checks for them at each entry's end, a replay once:
+// a point that would let go and touch again within one hold is the one case
+// they could tell apart). A hold sampled 60 times is replayed in one step.
+std::vector<Row::Entry>::const_iterator
+Row::at_rest_until(std::vector<Entry>::const_iterator it,
+                   std::vector<Entry>::const_iterator end) const {
+  auto at_rest = [&](const Entry& e) {
+    return e.dt > 0.0 && e.w == 0.0 && e.s == 0.0 && e.k == 0.0 && e.d0 == it->d0;
+  };
+  if (!at_rest(*it)) return it;
+  auto last = it;
+  while (last + 1 != end && at_rest(*(last + 1)))
+    ++last;
+  return last;
+}
+
+double Row::total_time(std::vector<Entry>::const_iterator first,
+                       std::vector<Entry>::const_iterator last) {
+  double T = 0.0;
+  for (auto e = first;; ++e) {
+    T += e->dt;
+    if (e == last) return T;
+  }
 }
 
 // The cached tracer at J (a new one, fresh before the log, in the place of the

@@ -163,6 +163,10 @@ private:
                  bool may_switch, const Path& q) const;
   void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
   static double deepest(const Entry& e);
+  std::vector<Entry>::const_iterator at_rest_until(std::vector<Entry>::const_iterator it,
+                                                   std::vector<Entry>::const_iterator end) const;
+  static double total_time(std::vector<Entry>::const_iterator first,
+                           std::vector<Entry>::const_iterator last);
   long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
   Material replay(long double J) const;
   Tracer& tracer(long double J) const;
