@@ -415,6 +415,25 @@ TEST(ProfileTransient, PowerTwoIsTheParabola) {
   }
 }
 
+// The sliver behind the tip. After a drop from 1e8 v0 the rear face of the
+// power law n = 2 lets go 3.2e-4 a1 behind the tip, inside the tip's cell
+// until a1/dx ~ 200. The sliver's forces were a trapezoid of p g' taken at
+// e/2 and e (50% over on F_x for a constant p): mu erred 1.4e-5 at every rtol
+// from 1e-3 to 1e-4 (estimate 4.1e-7 at 1e-4). A exactly and B linear there:
+// 1.5e-8 at rtol 1e-4.
+TEST(ProfileTransient, TheSliverBehindTheTipIsIntegratedExactly) {
+  for (const auto& nc : mdrmap::history_case_set(21)) {
+    if (nc.name != "ratio 1e8 then 1e-8") continue;
+    const mdrmap::RunResult ref = mdrmap::run_exact(nc.c, 1e-12);
+    const mdrmap::RunResult r = mdrmap::run_case(as_power(nc.c), mdrmap::SolverKind::Auto, 1e-4);
+    const double err = mdrmap::case_error(r.series, ref.series, nc.c).max();
+    EXPECT_LE(err, 1e-5);
+    EXPECT_GE(r.info.error_estimate, err / 3.0);
+    return;
+  }
+  FAIL() << "no case 'ratio 1e8 then 1e-8' in the history set";
+}
+
 // The error metric with a floor (the estimate's: two runs compared) measures
 // a cone's and a power law's F_x and mu on their Scales::friction. With the
 // parabola's sqrt(d/R) at R = 0 the floor was infinite and every F_x and mu

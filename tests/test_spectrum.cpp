@@ -277,13 +277,14 @@ TEST(SpectrumCaseSet, BruteForceConvergesToTheReferenceAtFirstOrder) {
   }
 }
 
-// The window: memory does not grow with the travel.
+// The window: memory does not grow with the travel (2 a1/dx, 5 nodes past it
+// whose gaps predict an edge near a1, and a ring margin of 8).
 TEST(SpectrumWindow, MemoryIsIndependentOfTravel) {
   const Rheology six = prony(1.0, 0.0, -3.0, 2.0, 1.0, 1.0);
   const RunResult a = fixed(spectrum_case(six, 1.0, {{0.1, 2.0}}), 64, 1e-6);
   const RunResult b = fixed(spectrum_case(six, 1.0, {{0.1, 2.0}, {1.0, 200.0}}), 64, 1e-6);
   EXPECT_EQ(a.info.elements, b.info.elements);
-  EXPECT_LE(a.info.elements, 2 * 64 + 8);
+  EXPECT_LE(a.info.elements, 2 * 64 + 13);
 }
 
 // Done-criterion 4: inputs the solvers do not take (load control they take:

@@ -82,16 +82,24 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
     profile_piece_forces(jt + 1, jb, 0.0, tip_rest(jt + 1, 1), e, pe - known_p(e, 1), FN, Fx);
     return;
   }
-  if (jb == jt && e > 0.0) { // the edge behind the tip, within the last cell
-    const double p_right = past_tip(tip_pressure(jt, -1));
-    profile_piece_forces(ja, jb, xl, bl, 0.0, tip_rest(jt, -1), FN, Fx);
-    FN += 0.5 * e * (p_right + pe); // linear over the sliver [0, e]
-    Fx -= 0.5 * e * (p_right * slope(0.5 * e) + pe * slope(e));
+  if (jb == jt && e > 0.0) {            // the edge behind the tip, within the last cell
+    const double b0 = tip_rest(jt, -1); // B is continuous through the tip
+    profile_piece_forces(ja, jb, xl, bl, 0.0, b0, FN, Fx);
+    sliver_forces(e, b0, pe - known_p(e, 1), FN, Fx);
     return;
   }
   const int side = e <= 0.0 ? -1 : 1;
   profile_piece_forces(ja, jb, xl, bl, e, e == 0.0 ? tip_rest(jb, -1) : pe - known_p(e, side), FN,
                        Fx);
+}
+
+// The sliver [0, e] behind the tip with no node in it: A exactly, B linear
+// from b0 at the tip to be at e (int_0^e x g' = e g(e) - int_0^e g).
+void Row::sliver_forces(double e, double b0, double be, double& FN, double& Fx) const {
+  const KnownForces k = known_forces(0.0, e);
+  const double ge = g(e), Ig = gc_ * std::pow(e, gn_ + 1.0) / (gn_ + 1.0);
+  FN += k.N + 0.5 * e * (b0 + be);
+  Fx += k.X - (b0 * ge + (be - b0) * (ge - Ig / e));
 }
 
 // The last node left of the tip x = 0.

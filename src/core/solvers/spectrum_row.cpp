@@ -15,6 +15,7 @@ namespace {
 constexpr int kMaxEvents = 8;           // contact switches of one element within one step
 constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
 constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
+constexpr long long kPast = 5; // nodes kept past the window: four free ones predict an edge there
 
 // Root of f on [0, hi] with f(0) > 0 > f(hi); the end itself when the sign
 // condition fails there (rounding at a tangency).
@@ -42,7 +43,7 @@ Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, doubl
       exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.R), d_(d), dx_(dx),
       aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
-  cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8;
+  cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8 + static_cast<std::size_t>(kPast);
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
   y_.assign(cap_ * stride_, 0.0);
   mode_.assign(cap_, Mode::Fresh);
@@ -88,8 +89,8 @@ void Row::set_position(long double P) {
   theta_ = static_cast<double>(P - fl);
   const double c = aw_ / dx_;
   jlo_ = static_cast<long long>(std::ceil(-c - theta_ - phase_)) - m_;
-  // two nodes past the window: the gap of the free material there locates an edge
-  jhi_ = static_cast<long long>(std::floor(c - theta_ - phase_)) - m_ + 2;
+  // nodes past the window: the gaps of the free material there predict an edge
+  jhi_ = static_cast<long long>(std::floor(c - theta_ - phase_)) - m_ + kPast;
 }
 
 void Row::start_stationary(double v0) {

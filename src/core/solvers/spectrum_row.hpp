@@ -190,6 +190,7 @@ private:
                     double& FN, double& Fx) const;
   void profile_piece_forces(long long ja, long long jb, double xl, double bl, double xr, double br,
                             double& FN, double& Fx) const;
+  void sliver_forces(double e, double b0, double be, double& FN, double& Fx) const;
   long long last_before_tip() const;
   double side_slope(double x, int side) const;
   double known_p(double x, int side) const;
