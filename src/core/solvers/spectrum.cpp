@@ -212,10 +212,13 @@ private:
       row_.restore(snap_);
       row_.advance(h, x, slope.a * x + slope.b);
     }
-    if (n_ >= kOrder) { // the predictor's miss against eps^3 (see StepRule)
-      const double r = std::abs(x - extrapolated(h)) / (eps_ * eps_ * eps_ * x);
-      h_err_ = h * std::clamp(0.9 / std::cbrt(r), 0.2, 2.0);
-      if (r > 1.0 && h > 1e-6 * t_min) {
+    if (n_ >= kOrder) { // the predictor's miss against eps^3 d (see StepRule)
+      // (at least 100 times the balance's own noise, and never below the
+      // shortest step: a miss made of the secant's tolerance shortens nothing)
+      const double miss = std::abs(x - extrapolated(h)) / x, h_min = 1e-6 * t_min;
+      const double r = miss / std::max(eps_ * eps_ * eps_, 100.0 * ftol_);
+      h_err_ = std::max(h_min, h * std::clamp(0.9 / std::cbrt(r), 0.2, 2.0));
+      if (r > 1.0 && h > h_min) {
         row_.restore(snap_);
         return false;
       }
