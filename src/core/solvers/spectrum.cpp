@@ -190,28 +190,21 @@ private:
     if (n_ == 0) restart();
     const double F0 = c_.loading.F0, d0 = row_.depth_now();
     const Slope slope = end_slope(h);
+    // trials measure the edge where the nodes predict it (no replays); the
+    // accepted depth balances the forces with the confirmed edge
+    spectrum::Edge edge = spectrum::Edge::Predicted;
     auto f = [&](double d1) {
       row_.restore(snap_);
       row_.advance(h, d1, slope.a * d1 + slope.b);
-      return row_.measure().FN - F0;
+      return row_.measure(edge).FN - F0;
     };
     const double guess = std::max(0.5 * d0, extrapolated(h));
     if (!(k_ > 0.0)) k_ = 2.0 * c_.loading.F0 / d0; // Hertz: F ~ d^1.5
-    // secant iterations from the extrapolated depth; the row is left at the
-    // accepted one (|F_N - F0| <= ftol), else a bracketed root
-    const double ftol = ftol_ * F0;
     double x = guess, fx = f(x);
-    for (int n = 0; n < 6 && std::abs(fx) > ftol; ++n) {
-      const double xn = std::max(0.5 * x, x - fx / k_), fn = f(xn);
-      if (xn != x && (fn - fx) / (xn - x) > 0.0) k_ = (fn - fx) / (xn - x);
-      x = xn;
-      fx = fn;
-    }
-    if (std::abs(fx) > ftol) {
-      x = increasing_root(f, guess, k_, tol_ * d0, 0.0);
-      row_.restore(snap_);
-      row_.advance(h, x, slope.a * x + slope.b);
-    }
+    balance(f, x, fx, guess, d0);
+    edge = spectrum::Edge::Confirmed;
+    fx = row_.measure(edge).FN - F0;
+    balance(f, x, fx, x, d0);
     if (n_ >= kOrder) { // the predictor's miss against eps^3 d (see StepRule)
       // (at least 100 times the balance's own noise, and never below the
       // shortest step: a miss made of the secant's tolerance shortens nothing)
@@ -225,6 +218,23 @@ private:
     }
     push(h, x);
     return true;
+  }
+
+  /// Secant iterations on f from x (f(x) = fx, the row advanced to x); the row
+  /// is left at the accepted depth (|F_N - F0| <= ftol), else at a bracketed
+  /// root from `from`.
+  template <class F> void balance(F& f, double& x, double& fx, double from, double d0) {
+    const double ftol = ftol_ * c_.loading.F0;
+    for (int n = 0; n < 6 && std::abs(fx) > ftol; ++n) {
+      const double xn = std::max(0.5 * x, x - fx / k_), fn = f(xn);
+      if (xn != x && (fn - fx) / (xn - x) > 0.0) k_ = (fn - fx) / (xn - x);
+      x = xn;
+      fx = fn;
+    }
+    if (std::abs(fx) > ftol) {
+      x = increasing_root(f, from, k_, tol_ * d0, 0.0);
+      fx = f(x);
+    }
   }
 
   /// The depth rate at the step's end is a d1 + b: the derivative there of the

@@ -67,13 +67,14 @@ void add_piece(long long ja, long long jb, double dx, X x, double xl, double fl,
 // Forces (per 4, as sums of p dx) of the contact run ja..jb; the trailing
 // edge e. Another profile's run is integrated on either side of a tip inside
 // it (the parabola's force density is smooth there).
-void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const {
+void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double& e,
+                     Edge edge) const {
   const bool leading = ja == jlo_ || mode_[slot(ja - 1)] == Mode::Fresh;
   const double a1 = a1_now();
   const double xl = leading ? -a1 : xi(ja) - 0.5 * dx_;
   const double pl = leading ? law_.tau() * law_.G() * (dd_ + lift(a1, w_)) : node_p(ja);
   double pe = 0.0;
-  e = trailing_edge(jb, pe);
+  e = trailing_edge(jb, pe, edge);
   if (parab_) return piece_forces(ja, jb, xl, pl, e, pe, FN, Fx);
   const double bl = leading ? 0.0 : node_rest(ja); // fresh material: q_k = 0
   const long long jt = last_before_tip();
@@ -224,7 +225,7 @@ double Row::past_tip(double p_ahead) const {
   return p_ahead - 2.0 * law_.tau() * law_.G() * gc_ * w_;
 }
 
-State Row::measure() const {
+State Row::measure(Edge edge) const {
   control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
   ++measures_;
   State st;
@@ -236,7 +237,7 @@ State Row::measure() const {
     const long long ja = j;
     while (j + 1 <= jhi_ && mode_[slot(j + 1)] == Mode::Contact)
       ++j;
-    run_forces(ja, j, FN, Fx, st.a2);
+    run_forces(ja, j, FN, Fx, st.a2, edge);
   }
   st.FN = 4.0 * FN;
   st.Fx = 4.0 * Fx;

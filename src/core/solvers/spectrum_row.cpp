@@ -453,13 +453,15 @@ double Row::predicted_edge(long long jb, bool contact) const {
 // near, and their replays continue from the cache); else TOMS 748 on the
 // bracket left (bisection where s jumps, superlinear where it is smooth). pe:
 // the force of the outermost point found in contact.
-double Row::trailing_edge(long long jb, double& pe) const {
+double Row::trailing_edge(long long jb, double& pe, Edge edge) const {
   const double xb = xi(jb), a1 = a1_now();
   pe = node_p(jb);
   if (jb + 1 > jhi_) return std::min(xb + 0.5 * dx_, a1); // (contact past a1: never)
   const std::size_t next = slot(jb + 1);
   const double s1 = edge_sign(mode_[next], &y_[next * stride_], xb + dx_);
   if (!(s1 < 0.0)) return std::min(xb + dx_, a1); // (the next node is in contact: never)
+  double e = 0.0;
+  if (edge == Edge::Predicted && predicted_only(jb, e, pe)) return std::min(e, a1);
   double best = 0.0;
   auto s = [&](double frac) {
     const Material mt = replay(static_cast<long double>(jb) + static_cast<long double>(frac));
@@ -500,6 +502,21 @@ double Row::trailing_edge(long long jb, double& pe) const {
       s, lo, hi, slo, shi, [tol](double l, double h) { return h - l <= tol; }, iters);
   pe = std::max(0.0, pe);
   return std::min(xb + r.first * dx_, a1);
+}
+
+// The edge after node jb where the contact forces alone predict it, without
+// a replay: the zero of their cubic, pe = 0 (where that is the edge, the
+// confirmed search returns the same); false where they predict none or the
+// tip lies in the cell. (The free gaps' prediction is not taken: the force
+// at a re-touch front comes from a replayed point.)
+bool Row::predicted_only(long long jb, double& e, double& pe) const {
+  const double xb = xi(jb);
+  if (!parab_ && xb < 0.0 && xb + dx_ > 0.0) return false;
+  const double tc = predicted_edge(jb, true);
+  if (!(tc >= 0.0 && tc <= 1.0)) return false;
+  e = xb + tc * dx_;
+  pe = 0.0;
+  return true;
 }
 
 // The contact forcing of a sub-step of h from x: the parabola's Taylor form

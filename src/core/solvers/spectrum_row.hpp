@@ -67,6 +67,11 @@ namespace mdrmap::spectrum {
 
 enum class Mode : unsigned char { Fresh, Contact, Free };
 
+/// How measure() finds a trailing edge: confirmed by replayed material points
+/// (to the edge tolerance), or where the nodes alone predict it (the trials of
+/// a load step; the confirmed search where there is no prediction).
+enum class Edge : unsigned char { Confirmed, Predicted };
+
 class Row {
 public:
   /// Depth control: depth c.loading.d, dx = a1 / cells_per_a1, window [-a1, a1].
@@ -112,7 +117,7 @@ public:
   double rate_now() const { return dd_; }
   double a1_now() const { return radius(d_); }
   /// Forces and trailing edge now.
-  State measure() const;
+  State measure(Edge edge = Edge::Confirmed) const;
 
   std::size_t capacity() const { return cap_; }
   long updates() const { return updates_; }
@@ -175,8 +180,9 @@ private:
   double node_p(long long j) const;
   double edge_sign(Mode md, const double* y, double x) const;
   double predicted_edge(long long jb, bool contact) const;
-  double trailing_edge(long long jb, double& pe) const;
-  void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e) const;
+  double trailing_edge(long long jb, double& pe, Edge edge) const;
+  bool predicted_only(long long jb, double& e, double& pe) const;
+  void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e, Edge edge) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
