@@ -198,7 +198,10 @@ private:
       row_.advance(h, d1, slope.a * d1 + slope.b);
       return row_.measure(edge).FN - F0;
     };
-    const double guess = std::max(0.5 * d0, extrapolated(h));
+    // (on a segment's first step from the rate just after the change: a
+    // dashpot's balance there; from d0 alone the cone at zeta0 2.3 after a
+    // tenfold step up found no balance, F_N 0.75% over F0)
+    const double guess = std::max(0.5 * d0, n_ > 1 ? extrapolated(h) : d0 + h * row_.rate_now());
     if (!(k_ > 0.0)) k_ = 2.0 * c_.loading.F0 / d0; // Hertz: F ~ d^1.5
     double x = guess, fx = f(x);
     balance(f, x, fx, guess, d0);
