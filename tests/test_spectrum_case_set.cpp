@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <ctime>
 #include <limits>
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,9 +42,7 @@ const std::vector<NamedCase>& cases() {
 }
 
 const NamedCase& by_name(const std::string& name) {
-  for (const auto& nc : cases())
-    if (nc.name == name) return nc;
-  throw std::invalid_argument("no case " + name);
+  return named_case(cases(), name);
 }
 
 /// Runs of today's solver that fail their check or cannot be afforded here

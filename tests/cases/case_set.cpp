@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace mdrmap {
@@ -110,6 +112,12 @@ std::vector<NamedCase> history_case_set(long samples) {
   add(history("long hold 1e4 tau in a sequence", 0.3, 1e-3,
               {{0.1, 1.0}, {0.0, 1e4}, {0.3, 3.0}, {3.0, 2.0}}));
   return out;
+}
+
+const NamedCase& named_case(const std::vector<NamedCase>& set, const std::string& name) {
+  for (const NamedCase& nc : set)
+    if (nc.name == name) return nc;
+  throw std::invalid_argument("no case '" + name + "' in the set");
 }
 
 } // namespace mdrmap

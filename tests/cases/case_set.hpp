@@ -24,4 +24,7 @@ std::vector<NamedCase> hard_case_set();
 /// ratios 1e-8 to 1e8, tau = 0, d/R from 1e-12 to 0.3. `samples` per segment.
 std::vector<NamedCase> history_case_set(long samples = 61);
 
+/// The case of `set` called `name` (std::invalid_argument where there is none).
+const NamedCase& named_case(const std::vector<NamedCase>& set, const std::string& name);
+
 } // namespace mdrmap

@@ -201,7 +201,8 @@ private:
     // (on a segment's first step from the rate just after the change: a
     // dashpot's balance there; from d0 alone the cone at zeta0 2.3 after a
     // tenfold step up found no balance, F_N 0.75% over F0)
-    const double guess = std::max(0.5 * d0, n_ > 1 ? extrapolated(h) : d0 + h * row_.rate_now());
+    const double pred = extrapolated(h);
+    const double guess = std::max(0.5 * d0, n_ > 1 ? pred : d0 + h * row_.rate_now());
     if (!(k_ > 0.0)) k_ = 2.0 * c_.loading.F0 / d0; // Hertz: F ~ d^1.5
     double x = guess, fx = f(x);
     balance(f, x, fx, guess, d0);
@@ -211,7 +212,7 @@ private:
     if (n_ >= kOrder) { // the predictor's miss against eps^3 d (see StepRule)
       // (at least 100 times the balance's own noise, and never below the
       // shortest step: a miss made of the secant's tolerance shortens nothing)
-      const double miss = std::abs(x - extrapolated(h)) / x, h_min = 1e-6 * t_min;
+      const double miss = std::abs(x - pred) / x, h_min = 1e-6 * t_min;
       const double r = miss / std::max(eps_ * eps_ * eps_, 100.0 * ftol_);
       h_err_ = std::max(h_min, h * std::clamp(0.9 / std::cbrt(r), 0.2, 2.0));
       if (r > 1.0 && h > h_min) {
@@ -247,30 +248,27 @@ private:
     double a, b;
   };
   Slope end_slope(double h) const {
-    const std::size_t m = n_;
-    const double tn = t_[0] + h; // nodes t_[0] (latest) .. t_[m-1]
+    const double tn = t_[0] + h; // nodes t_[0] (latest) .. t_[n_-1]
     Slope s{0.0, 0.0};
-    for (std::size_t i = 0; i < m; ++i)
-      s.a += 1.0 / (tn - t_[i]);
-    for (std::size_t j = 0; j < m; ++j) {
-      double l = 1.0 / (t_[j] - tn);
-      for (std::size_t i = 0; i < m; ++i)
-        if (i != j) l *= (tn - t_[i]) / (t_[j] - t_[i]);
-      s.b += l * d_[j];
+    for (std::size_t j = 0; j < n_; ++j) {
+      s.a += 1.0 / (tn - t_[j]);
+      s.b += basis(j, tn) / (t_[j] - tn) * d_[j];
     }
     return s;
   }
   /// The depth at the step's end extrapolated from the segment's last depths.
   double extrapolated(double h) const {
-    const double tn = t_[0] + h;
     double sum = 0.0;
-    for (std::size_t j = 0; j < n_; ++j) {
-      double l = 1.0;
-      for (std::size_t i = 0; i < n_; ++i)
-        if (i != j) l *= (tn - t_[i]) / (t_[j] - t_[i]);
-      sum += l * d_[j];
-    }
+    for (std::size_t j = 0; j < n_; ++j)
+      sum += basis(j, t_[0] + h) * d_[j];
     return sum;
+  }
+  /// The Lagrange basis polynomial of node j over the segment's last nodes, at t.
+  double basis(std::size_t j, double t) const {
+    double l = 1.0;
+    for (std::size_t i = 0; i < n_; ++i)
+      if (i != j) l *= (t - t_[i]) / (t_[j] - t_[i]);
+    return l;
   }
   void push(double h, double d1) {
     const double t1 = t_[0] + h;
