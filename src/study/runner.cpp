@@ -281,6 +281,7 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
       throw InvalidInput("resume", "'" + req.output + "' is damaged (" + e.what() +
                                        "); refusing to touch it");
     }
+    lock.announce(); // (each HDF5 close drops the PID's lock: announced again at once)
     if (status.size() != n_cases)
       throw InvalidInput("resume", "'" + req.output + "' holds " + std::to_string(status.size()) +
                                        " cases, the study " + std::to_string(n_cases) +
