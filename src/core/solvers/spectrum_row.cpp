@@ -296,10 +296,10 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
       if (last == it) {
         step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
       } else { // entries at rest at one depth: one exact step
-        Grid g;
-        g.dt = g.D = total_time(it, last);
-        law_.coef(g.dt, g.first);
-        step_material(mt.mode, mt.y, x, g.dt, 0.0, g, Path{e.d0, 0.0, 0.0});
+        // (grid() forms both coefficient sets: a point that switches
+        // within rounding of the span's start goes on with the full one)
+        const double T = total_time(it, last);
+        step_material(mt.mode, mt.y, x, T, 0.0, grid(T, 0.0, 0.0), Path{e.d0, 0.0, 0.0});
         it = last;
       }
       ++done;
