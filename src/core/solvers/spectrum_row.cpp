@@ -431,18 +431,30 @@ double Row::predicted_edge(long long jb, bool contact) const {
     const double x = xi(j0 + i);
     f[i] = contact ? pressure_at(&y_[sl * stride_], x) : depth(x) - law_.free_u(&y_[sl * stride_]);
   }
+  // the cubic through (t0 + i, f[i]) in powers of u = t - t0 (Horner)
+  const double c0 = f[0], c1 = (-11.0 * f[0] + 18.0 * f[1] - 9.0 * f[2] + 2.0 * f[3]) / 6.0,
+               c2 = (2.0 * f[0] - 5.0 * f[1] + 4.0 * f[2] - f[3]) / 2.0,
+               c3 = (-f[0] + 3.0 * f[1] - 3.0 * f[2] + f[3]) / 6.0;
   const double t0 = static_cast<double>(j0 - jb);
-  auto cubic = [&](double t) { // Lagrange on t0 .. t0 + 3
+  auto cubic = [&](double t) {
     const double u = t - t0;
-    return (-f[0] * (u - 1) * (u - 2) * (u - 3) + 3 * f[1] * u * (u - 2) * (u - 3) -
-            3 * f[2] * u * (u - 1) * (u - 3) + f[3] * u * (u - 1) * (u - 2)) /
-           6.0;
+    return ((c3 * u + c2) * u + c1) * u + c0;
   };
   double lo = 0.0, hi = 1.0;
   if (!(cubic(lo) >= 0.0 && cubic(hi) < 0.0)) return std::nan("");
-  for (int it = 0; it < 50; ++it)
+  // bisection to 2^-10, then Newton kept inside the bracket to rounding
+  for (int it = 0; it < 10; ++it)
     (cubic(0.5 * (lo + hi)) >= 0.0 ? lo : hi) = 0.5 * (lo + hi);
-  return 0.5 * (lo + hi);
+  double t = 0.5 * (lo + hi);
+  for (int it = 0; it < 8; ++it) {
+    const double u = t - t0, v = cubic(t), dv = (3.0 * c3 * u + 2.0 * c2) * u + c1;
+    (v >= 0.0 ? lo : hi) = t;
+    const double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
+    const double next = tn > lo && tn < hi ? tn : 0.5 * (lo + hi);
+    if (std::abs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon()) return next;
+    t = next;
+  }
+  return t;
 }
 
 // The trailing edge of a contact run ending at node jb: the end of the
