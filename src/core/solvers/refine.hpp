@@ -62,6 +62,13 @@ struct Refinement {
   /// Added to every estimate: the error the solver's own tolerances leave,
   /// which the companion shares (0: none).
   double tolerance_floor = 0.0;
+  /// Where the difference to the companion lies in (rtol, 2 rtol], run a
+  /// third resolution (a quarter, another phase) and credit the order the
+  /// three show: with r the ratio of the coarser pair's difference to the
+  /// finer pair's, the estimate is the difference over min(2, r - 1)
+  /// (Richardson: at order p the fine run errs by the difference over
+  /// 2^p - 1), unchanged where r <= 2 (order 1 or less observed).
+  bool observed_order = false;
 };
 
 /// Phase of the companion: shifted by a non-commensurate fraction of a cell,
@@ -69,8 +76,9 @@ struct Refinement {
 /// shared by both runs.
 double companion_phase(double phase);
 
-/// Runs `once` at r.cells (and the companion at r.cells / 2, companion_phase)
-/// and refines while adaptive and the estimate is above r.rtol: the series of
+/// Runs `once` at r.cells (and the companion at r.cells / 2, companion_phase;
+/// with observed_order, where it decides, a third at r.cells / 4) and refines
+/// while adaptive and the estimate is above r.rtol: the series of
 /// the finest run and its RunInfo (solver, rtol, error_estimate,
 /// cells_per_a1, elements; steps, element_updates of all runs; refinements).
 /// `c` is the case the estimate measures the series on (case_error). Throws

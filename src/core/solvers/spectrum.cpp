@@ -372,6 +372,7 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   r.adaptive = adaptive;
   r.estimate = o.estimate_error;
   r.tolerance_floor = kEdgeFloor * o.rtol;
+  r.observed_order = true;
   const RunControl own;
   const RunControl& control = o.control != nullptr ? *o.control : own;
   return refine(c, r, [&](double n, double ph) {
