@@ -172,6 +172,46 @@ TEST(SpectrumLaw, FreeAndContactUpdatesMatchAFineIntegration) {
 
 // A branch far faster than the step: the exact update is its quasi-static
 // limit, q = u - tau_k u' + tau_k^2 u'' (no instability, no overshoot).
+// The rates that steer the switch location (Row::locate's Newton): the
+// contact force's rate along a quadratic path and the free depression's rate,
+// against central differences of the exact updates over +-1e-5.
+TEST(SpectrumLaw, ForceAndFreeRatesAreTheUpdatesDerivatives) {
+  for (const Rheology& r :
+       {material(1.0, 0.4, {{3.0, 0.2}, {1.0, 2.0}}), prony(0.1, 0.0, -3.0, 2.0, 1.0, 1.0)}) {
+    const spectrum::Law law(r);
+    const std::size_t N = law.branches(), m = law.free_dim();
+    const double h0 = 0.9, h1 = -0.7, h2 = 0.3, t = 0.05, e = 1e-5;
+    std::vector<double> q0(N), z0(m);
+    for (std::size_t k = 0; k < N; ++k)
+      q0[k] = 0.3 + 0.2 * static_cast<double>(k);
+    for (std::size_t i = 0; i < m; ++i)
+      z0[i] = 0.5 - 0.1 * static_cast<double>(i);
+    auto force = [&](double s) { // the contact force after s along u = h0 + h1 s + h2 s^2
+      std::vector<double> q = q0;
+      spectrum::StepCoef c;
+      law.coef(s, c, spectrum::Part::Contact);
+      law.contact_step(q.data(), h0, h1, h2, c);
+      return std::make_pair(law.pressure(h0 + (h1 + h2 * s) * s, h1 + 2.0 * h2 * s, q.data()), q);
+    };
+    auto free_u = [&](double s) {
+      std::vector<double> z = z0;
+      spectrum::StepCoef c;
+      law.coef(s, c, spectrum::Part::Free);
+      law.free_step(z.data(), c);
+      return std::make_pair(law.free_u(z.data()), z);
+    };
+    const auto [p, q] = force(t);
+    const double dp = (force(t + e).first - force(t - e).first) / (2.0 * e);
+    const double u = h0 + (h1 + h2 * t) * t, du = h1 + 2.0 * h2 * t;
+    EXPECT_NEAR(law.pressure_rate(u, du, 2.0 * h2, q.data()), dp, 1e-7 * (std::abs(dp) + 1.0));
+    const auto [uf, z] = free_u(t);
+    const double duf = (free_u(t + e).first - free_u(t - e).first) / (2.0 * e);
+    EXPECT_NEAR(law.free_rate(z.data()), duf, 1e-7 * (std::abs(duf) + 1.0));
+    (void)p;
+    (void)uf;
+  }
+}
+
 TEST(SpectrumLaw, StiffBranchesAreStableAndExact) {
   const spectrum::Law law(material(1.0, 0.0, {{5.0, 1e-9}}));
   spectrum::StepCoef c;

@@ -164,6 +164,20 @@ double Law::pressure(double u, double du, const double* q) const {
   return s;
 }
 
+double Law::pressure_rate(double u, double du, double ddu, const double* q) const {
+  double s = G0_ * du + G_ * tau_ * ddu;
+  for (std::size_t k = 0; k < n_; ++k)
+    s -= Gk_[k] * (u - q[k]) / tk_[k];
+  return s;
+}
+
+double Law::free_rate(const double* z) const {
+  double r = 0.0;
+  for (std::size_t i = 0; i < m_; ++i)
+    r -= cu_[i] * rate_[i] * z[i];
+  return r;
+}
+
 void Law::free_step(double* z, const StepCoef& c) const {
   for (std::size_t i = 0; i < m_; ++i)
     z[i] *= c.modal[i];

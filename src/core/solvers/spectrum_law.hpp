@@ -56,10 +56,15 @@ public:
   void contact_step(double* q, double h0, double h1, double h2, const StepCoef& c) const;
   /// Contact force per 4 dx for depth u, rate du, branch states q.
   double pressure(double u, double du, const double* q) const;
+  /// The contact force's rate along a path with depth u, rate du and
+  /// acceleration ddu (the branches' rates (u - q_k) / tau_k).
+  double pressure_rate(double u, double du, double ddu, const double* q) const;
   /// Free update in modal coordinates: z_i *= exp(L_i dt).
   void free_step(double* z, const StepCoef& c) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
+  /// Its rate (each mode decays at its rate).
+  double free_rate(const double* z) const;
 
   /// Contact (u = h, branch states q) -> free modal state z.
   void to_modal(double h, const double* q, double* z) const;

@@ -29,6 +29,29 @@ template <class F> double solve(F f, double hi) {
   return 0.5 * (r.first + r.second);
 }
 
+// Root in (0, h) of f, with f(0) = f0 > 0 > f(h) (else 0 or h, as solve):
+// Newton from the secant's point, kept inside the bracket (bisection where
+// it would leave it or the slope is not negative), until a step is within 4
+// ulps of h. f(t, v, dv) gives the value and its slope.
+template <class F> double bracketed_newton(F f, double f0, double h) {
+  if (!(f0 > 0.0)) return 0.0;
+  double v = 0.0, dv = 0.0;
+  f(h, v, dv);
+  if (!(v < 0.0)) return h;
+  double lo = 0.0, hi = h, t = h * f0 / (f0 - v);
+  const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
+  for (int it = 0; it < 100; ++it) {
+    f(t, v, dv);
+    if (v == 0.0) return t;
+    (v > 0.0 ? lo : hi) = t;
+    double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
+    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
+    if (std::abs(tn - t) <= tiny || hi - lo <= tiny) return tn;
+    t = tn;
+  }
+  return 0.5 * (lo + hi);
+}
+
 } // namespace
 
 Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
@@ -372,31 +395,34 @@ Row::Material Row::replay(long double J) const {
 }
 
 // Time within a sub-step of length h (from position x, state y) where a
-// contact element's force turns negative, or a free element touches.
+// contact element's force turns negative, or a free element touches: Newton
+// on the exact update's force (gap), with its time derivative from the
+// element's law (bracketed_newton).
 double Row::locate(bool contact, const double* y, double x, double h, double w,
                    const Path& q) const {
   StepCoef c;
   double tmp[kMaxBranches + 1];
   if (contact) {
     const Forcing u = forcing(x, w, h, q);
-    return solve(
-        [&](double tau) {
-          std::copy(y, y + law_.branches(), tmp);
-          law_.coef(tau, c, Part::Contact);
-          law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
-          const double xn = x + w * tau;
-          return law_.pressure(depth(xn, q.at(tau)), q.rate(tau) - lift(xn, w), tmp);
-        },
-        h);
+    auto f = [&](double tau, double& v, double& dv) {
+      std::copy(y, y + law_.branches(), tmp);
+      law_.coef(tau, c, Part::Contact);
+      law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
+      const double xn = x + w * tau, un = depth(xn, q.at(tau)), du = q.rate(tau) - lift(xn, w);
+      v = law_.pressure(un, du, tmp);
+      dv = law_.pressure_rate(un, du, 2.0 * u.h2, tmp);
+    };
+    return bracketed_newton(f, law_.pressure(depth(x, q.d), q.r - lift(x, w), y), h);
   }
-  return solve(
-      [&](double tau) {
-        std::copy(y, y + law_.free_dim(), tmp);
-        law_.coef(tau, c, Part::Free);
-        law_.free_step(tmp, c);
-        return law_.free_u(tmp) - depth(x + w * tau, q.at(tau));
-      },
-      h);
+  auto f = [&](double tau, double& v, double& dv) {
+    std::copy(y, y + law_.free_dim(), tmp);
+    law_.coef(tau, c, Part::Free);
+    law_.free_step(tmp, c);
+    const double xn = x + w * tau;
+    v = law_.free_u(tmp) - depth(xn, q.at(tau));
+    dv = law_.free_rate(tmp) - (q.rate(tau) - lift(xn, w));
+  };
+  return bracketed_newton(f, law_.free_u(y) - depth(x, q.d), h);
 }
 
 double Row::pressure_at(const double* q, double x) const {
