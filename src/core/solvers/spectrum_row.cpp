@@ -213,7 +213,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
     md = Mode::Contact;
     std::fill(y, y + stride_, 0.0);
   }
-  StepCoef local;
+  StepCoef& local = coef_scratch_[0];
   int events = 0;
   while (t < dt) {
     const long long i = std::max(0LL, static_cast<long long>(std::ceil((dt - t) / g.D)) - 1);
@@ -251,7 +251,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
 double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
                     bool may_switch, const Path& q) const {
   double tmp[kMaxBranches + 1];
-  StepCoef at;
+  StepCoef& at = coef_scratch_[1];
   const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
     const Forcing u = forcing(x, w, h, q);
@@ -400,7 +400,7 @@ Row::Material Row::replay(long double J) const {
 // element's law (bracketed_newton).
 double Row::locate(bool contact, const double* y, double x, double h, double w,
                    const Path& q) const {
-  StepCoef c;
+  StepCoef& c = coef_scratch_[2];
   double tmp[kMaxBranches + 1];
   if (contact) {
     const Forcing u = forcing(x, w, h, q);

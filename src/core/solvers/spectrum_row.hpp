@@ -253,7 +253,10 @@ private:
   double w_ = 0.0;
   mutable long updates_ = 0;
   long steps_ = 0;
-  double edge_tol_ = 1e-9;                // the trailing edge's tolerance, in a1
+  double edge_tol_ = 1e-9; // the trailing edge's tolerance, in a1
+  // coefficient sets of a partial sub-step, a switch and a switch's search
+  // (kept: their vectors are allocated once)
+  mutable StepCoef coef_scratch_[3];
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
