@@ -466,21 +466,14 @@ double Row::predicted_edge(long long jb, bool contact) const {
     const double u = t - t0;
     return ((c3 * u + c2) * u + c1) * u + c0;
   };
-  double lo = 0.0, hi = 1.0;
-  if (!(cubic(lo) >= 0.0 && cubic(hi) < 0.0)) return std::nan("");
-  // bisection to 2^-10, then Newton kept inside the bracket to rounding
-  for (int it = 0; it < 10; ++it)
-    (cubic(0.5 * (lo + hi)) >= 0.0 ? lo : hi) = 0.5 * (lo + hi);
-  double t = 0.5 * (lo + hi);
-  for (int it = 0; it < 8; ++it) {
-    const double u = t - t0, v = cubic(t), dv = (3.0 * c3 * u + 2.0 * c2) * u + c1;
-    (v >= 0.0 ? lo : hi) = t;
-    const double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
-    const double next = tn > lo && tn < hi ? tn : 0.5 * (lo + hi);
-    if (std::abs(next - t) <= 4.0 * std::numeric_limits<double>::epsilon()) return next;
-    t = next;
-  }
-  return t;
+  if (!(cubic(0.0) >= 0.0 && cubic(1.0) < 0.0)) return std::nan("");
+  return bracketed_newton(
+      [&](double t, double& v, double& dv) {
+        const double u = t - t0;
+        v = cubic(t);
+        dv = (3.0 * c3 * u + 2.0 * c2) * u + c1;
+      },
+      cubic(0.0), 1.0);
 }
 
 // The trailing edge of a contact run ending at node jb: the end of the
