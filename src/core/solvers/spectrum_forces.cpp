@@ -2,7 +2,8 @@
 // over their nodes and the partial cells at their ends; for a profile other
 // than the parabola, on either side of the tip, with the part of the pressure
 // known in closed form integrated exactly (docs/design.md, "Indenter
-// profiles").
+// profiles"); and on either side of the seams inside a run (docs/design.md,
+// "Seams").
 #include <algorithm>
 #include <cmath>
 
@@ -11,40 +12,74 @@
 namespace mdrmap::spectrum {
 namespace {
 
-// Integral over [lo, hi] of the cubic through (x_i, f_i), i < 4 (2-point
-// Gauss: exact for cubics); 0 for an empty interval.
-double cubic_integral(const double* x, const double* f, double lo, double hi) {
+// Integral over [lo, hi] of the polynomial through (x_i, f_i), i < k <= 4
+// (2-point Gauss: exact for cubics); 0 for an empty interval.
+double poly_integral(const double* x, const double* f, int k, double lo, double hi) {
   if (!(hi > lo)) return 0.0;
-  auto cubic = [&](double t) {
+  auto poly = [&](double t) {
     double s = 0.0;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < k; ++i) {
       double l = 1.0;
-      for (int k = 0; k < 4; ++k)
-        if (k != i) l *= (t - x[k]) / (x[i] - x[k]);
+      for (int j = 0; j < k; ++j)
+        if (j != i) l *= (t - x[j]) / (x[i] - x[j]);
       s += f[i] * l;
     }
     return s;
   };
   const double mid = 0.5 * (lo + hi), off = 0.5 * (hi - lo) / std::sqrt(3.0);
-  return 0.5 * (hi - lo) * (cubic(mid - off) + cubic(mid + off));
+  return 0.5 * (hi - lo) * (poly(mid - off) + poly(mid + off));
+}
+
+double cubic_integral(const double* x, const double* f, double lo, double hi) {
+  return poly_integral(x, f, 4, lo, hi);
+}
+
+/// A piece with fewer than 8 nodes: on each interval between its points (the
+/// ends and the nodes; an end within rounding of a node is that node) the
+/// cubic through the four nearest points (fewer points: their polynomial).
+template <class X, class F>
+double few_nodes(long long ja, long long jb, double dx, X x, double xl, double fl, double xr,
+                 double fr, F f) {
+  double px[10], pf[10];
+  int m = 0;
+  const double tiny = 1e-9 * dx;
+  if (!(x(ja) - xl <= tiny)) {
+    px[m] = xl;
+    pf[m++] = fl;
+  }
+  for (long long k = ja; k <= jb; ++k) {
+    px[m] = x(k);
+    pf[m++] = f(k);
+  }
+  if (!(xr - x(jb) <= tiny)) {
+    px[m] = xr;
+    pf[m++] = fr;
+  }
+  const int k = std::min(m, 4);
+  double sum = 0.0;
+  for (int i = 0; i + 1 < m; ++i) {
+    const int s0 = std::clamp(i - 1, 0, m - k);
+    sum += poly_integral(px + s0, pf + s0, k, px[i], px[i + 1]);
+  }
+  return sum;
 }
 
 /// Adds to `acc` the integral over [xl, xr] of the function with values f(k)
 /// at the nodes x(ja) .. x(jb) (spacing dx) and fl, fr at the ends: the
 /// 4th-order Gregory rule over the nodes and the partial cells on the cubic
-/// through the end value and the three nearest nodes (few nodes: trapezoid,
-/// linear end cells).
+/// through the end value and the three nearest nodes (few nodes: few_nodes;
+/// none: the trapezoid over the ends).
 template <class X, class F>
 void add_piece(long long ja, long long jb, double dx, X x, double xl, double fl, double xr,
                double fr, F f, double& acc) {
   const long long n = jb - ja + 1;
+  if (n <= 0) { // no node: the trapezoid over the ends
+    acc += 0.5 * (xr - xl) * (fl + fr);
+    return;
+  }
   const double xa = x(ja), xb = x(jb);
   if (n < 8) {
-    double s = 0.0;
-    for (long long k = ja; k <= jb; ++k)
-      s += ((k == ja || k == jb) ? 0.5 : 1.0) * f(k);
-    if (n == 1) s = 0.0;
-    acc += dx * s + 0.5 * (xa - xl) * (fl + f(ja)) + 0.5 * (xr - xb) * (f(jb) + fr);
+    acc += few_nodes(ja, jb, dx, x, xl, fl, xr, fr, f);
     return;
   }
   long double s = 0.0L;
@@ -64,6 +99,78 @@ void add_piece(long long ja, long long jb, double dx, X x, double xl, double fl,
 
 } // namespace
 
+// What a part's quadrature takes of material in contact at x: p, or with
+// `rest` the part B = -sum G_k q_k.
+double Row::part_value(const Material& m, double x, bool rest) const {
+  return rest ? law_.pressure(0.0, 0.0, m.y) : pressure_at(m.y, x);
+}
+
+// Integrates [xl, xr] (nodes ja..jb, values vl and vr at its ends) by `piece`
+// over the parts between the seams inside (in contact), each seam's value
+// from its replay. A part has two nodes at least (with its ends a cubic: the
+// force density of a quadratic p is one), except the leading one (`leading`:
+// xl is the leading edge), which a seam bounds for a few cells' travel after
+// a change: there a replayed point at the middle of its widest gap makes up
+// the cubic (fresh material: a short replay). A seam nearer an end stays
+// inside that end's cells.
+template <class Piece>
+void Row::across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
+                       bool rest, bool leading, Piece piece) const {
+  std::pair<double, long double> in[kMaxSeams];
+  std::size_t n = 0;
+  for (const Seam& m : seams_) {
+    const double x = position(m.J);
+    if (x > xl && x < xr && n < kMaxSeams) in[n++] = {x, m.J};
+  }
+  std::sort(in, in + n);
+  auto nodes = [&](long long a, long long b) {
+    scratch_x_.clear();
+    scratch_v_.clear();
+    for (long long k = a; k <= b; ++k) {
+      scratch_x_.push_back(xi(k));
+      scratch_v_.push_back(rest ? node_rest(k) : node_p(k));
+    }
+  };
+  auto at = [&](double x) {
+    return replay(static_cast<long double>(x) / static_cast<long double>(dx_) - P_ -
+                  static_cast<long double>(phase_));
+  };
+  double x0 = xl, v0 = vl;
+  long long j0 = ja;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = in[i].first;
+    long long j1 = static_cast<long long>(std::floor(x / dx_ - theta_ - phase_)) - m_;
+    while (j1 + 1 <= jb && xi(j1 + 1) < x)
+      ++j1;
+    while (j1 >= j0 && !(xi(j1) < x))
+      --j1;
+    const bool short_lead = leading && j0 == ja && j1 < j0 + 1;
+    if ((j1 < j0 + 1 && !short_lead) || j1 > jb - 2) continue;
+    const Material m = replay(in[i].second);
+    if (m.mode != Mode::Contact) continue;
+    const double v = part_value(m, x, rest);
+    nodes(j0, j1);
+    if (short_lead) { // the middle of the widest gap between x0, the node and x
+      const double a = j1 == j0 ? scratch_x_[0] : x;
+      const double mid = j1 == j0 && a - x0 < x - a ? 0.5 * (a + x) : 0.5 * (x0 + a);
+      const Material mm = at(mid);
+      if (mm.mode != Mode::Contact) continue;
+      const auto pos = mid < (j1 == j0 ? scratch_x_[0] : x) ? 0 : scratch_x_.size();
+      scratch_x_.insert(scratch_x_.begin() + static_cast<std::ptrdiff_t>(pos), mid);
+      scratch_v_.insert(scratch_v_.begin() + static_cast<std::ptrdiff_t>(pos),
+                        part_value(mm, mid, rest));
+    }
+    piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())},
+          x0, v0, x, v);
+    j0 = j1 + 1;
+    x0 = x;
+    v0 = v;
+  }
+  nodes(j0, jb);
+  piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())}, x0,
+        v0, xr, vr);
+}
+
 // Forces (per 4, as sums of p dx) of the contact run ja..jb; the trailing
 // edge e. Another profile's run is integrated on either side of a tip inside
 // it (the parabola's force density is smooth there).
@@ -75,23 +182,29 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
   const double pl = leading ? law_.tau() * law_.G() * (dd_ + lift(a1, w_)) : node_p(ja);
   double pe = 0.0;
   e = trailing_edge(jb, pe, edge);
-  if (parab_) return piece_forces(ja, jb, xl, pl, e, pe, FN, Fx);
+  auto p_piece = [&](const Points& pts, double l, double vl, double r, double vr) {
+    piece_forces(pts, l, vl, r, vr, FN, Fx);
+  };
+  auto b_piece = [&](const Points& pts, double l, double vl, double r, double vr) {
+    profile_piece_forces(pts, l, vl, r, vr, FN, Fx);
+  };
+  if (parab_) return across_seams(ja, jb, xl, pl, e, pe, false, leading, p_piece);
   const double bl = leading ? 0.0 : node_rest(ja); // fresh material: q_k = 0
   const long long jt = last_before_tip();
   if (ja <= jt && jt < jb) {
-    profile_piece_forces(ja, jt, xl, bl, 0.0, tip_rest(jt, -1), FN, Fx);
-    profile_piece_forces(jt + 1, jb, 0.0, tip_rest(jt + 1, 1), e, pe - known_p(e, 1), FN, Fx);
+    across_seams(ja, jt, xl, bl, 0.0, tip_rest(jt, -1), true, leading, b_piece);
+    across_seams(jt + 1, jb, 0.0, tip_rest(jt + 1, 1), e, pe - known_p(e, 1), true, false, b_piece);
     return;
   }
   if (jb == jt && e > 0.0) {            // the edge behind the tip, within the last cell
     const double b0 = tip_rest(jt, -1); // B is continuous through the tip
-    profile_piece_forces(ja, jb, xl, bl, 0.0, b0, FN, Fx);
+    across_seams(ja, jb, xl, bl, 0.0, b0, true, leading, b_piece);
     sliver_forces(e, b0, pe - known_p(e, 1), FN, Fx);
     return;
   }
   const int side = e <= 0.0 ? -1 : 1;
-  profile_piece_forces(ja, jb, xl, bl, e, e == 0.0 ? tip_rest(jb, -1) : pe - known_p(e, side), FN,
-                       Fx);
+  across_seams(ja, jb, xl, bl, e, e == 0.0 ? tip_rest(jb, -1) : pe - known_p(e, side), true,
+               leading, b_piece);
 }
 
 // The sliver [0, e] behind the tip with no node in it: A exactly, B linear
@@ -113,19 +226,16 @@ long long Row::last_before_tip() const {
   return jt;
 }
 
-// The parabola's run: its nodes' pressures and force densities p (-g').
-void Row::piece_forces(long long ja, long long jb, double xl, double pl, double xr, double pr,
-                       double& FN, double& Fx) const {
-  scratch_.resize(static_cast<std::size_t>(jb - ja + 1));
-  for (long long k = ja; k <= jb; ++k)
-    scratch_[static_cast<std::size_t>(k - ja)] = node_p(k);
-  auto x = [&](long long k) { return xi(k); };
-  auto p = [&](long long k) { return scratch_[static_cast<std::size_t>(k - ja)]; };
+// The parabola's run: its points' pressures and force densities p (-g').
+void Row::piece_forces(const Points& pts, double xl, double pl, double xr, double pr, double& FN,
+                       double& Fx) const {
+  auto x = [&](long long k) { return pts.x[k]; };
+  auto p = [&](long long k) { return pts.v[k]; };
   auto fx = [&](double at, double v) { return v * -lift(at, 1.0); };
-  add_piece(ja, jb, dx_, x, xl, pl, xr, pr, p, FN);
+  add_piece(0, pts.n - 1, dx_, x, xl, pl, xr, pr, p, FN);
   add_piece(
-      ja, jb, dx_, x, xl, fx(xl, pl), xr, fx(xr, pr), [&](long long k) { return fx(xi(k), p(k)); },
-      Fx);
+      0, pts.n - 1, dx_, x, xl, fx(xl, pl), xr, fx(xr, pr),
+      [&](long long k) { return fx(pts.x[k], pts.v[k]); }, Fx);
 }
 
 // Another profile's run on one side of the tip (or touching it). The
@@ -135,23 +245,20 @@ void Row::piece_forces(long long ja, long long jb, double xl, double pl, double 
 // h). A and A (-g') are integrated exactly; B by the rule, B (-g') as
 // B_tip (-g') exactly plus (B - B_tip)(-g') by the rule, where the run
 // touches the tip. bl, br: B at the ends.
-void Row::profile_piece_forces(long long ja, long long jb, double xl, double bl, double xr,
-                               double br, double& FN, double& Fx) const {
+void Row::profile_piece_forces(const Points& pts, double xl, double bl, double xr, double br,
+                               double& FN, double& Fx) const {
   const int side = xr <= 0.0 ? -1 : 1;
   const double b0 = xr == 0.0 ? br : (xl == 0.0 ? bl : 0.0);
-  scratch_.resize(static_cast<std::size_t>(jb - ja + 1));
-  for (long long k = ja; k <= jb; ++k)
-    scratch_[static_cast<std::size_t>(k - ja)] = node_rest(k);
-  auto x = [&](long long k) { return xi(k); };
-  auto b = [&](long long k) { return scratch_[static_cast<std::size_t>(k - ja)]; };
+  auto x = [&](long long k) { return pts.x[k]; };
+  auto b = [&](long long k) { return pts.v[k]; };
   auto down = [&](double at) { return -side_slope(at, side); }; // -g'
   const KnownForces k = known_forces(xl, xr);
   FN += k.N;
-  add_piece(ja, jb, dx_, x, xl, bl, xr, br, b, FN);
+  add_piece(0, pts.n - 1, dx_, x, xl, bl, xr, br, b, FN);
   Fx += k.X - b0 * (g(xr) - g(xl));
   add_piece(
-      ja, jb, dx_, x, xl, (bl - b0) * down(xl), xr, (br - b0) * down(xr),
-      [&](long long j) { return (b(j) - b0) * down(xi(j)); }, Fx);
+      0, pts.n - 1, dx_, x, xl, (bl - b0) * down(xl), xr, (br - b0) * down(xr),
+      [&](long long j) { return (b(j) - b0) * down(pts.x[j]); }, Fx);
 }
 
 // g'(x), at the tip its limit from `side`.

@@ -210,4 +210,11 @@ void Law::from_modal(const double* z, double* q) const {
   }
 }
 
+double Law::shortest_time() const {
+  double t = std::numeric_limits<double>::infinity();
+  for (const double tk : tk_)
+    t = std::min(t, tk);
+  return t;
+}
+
 } // namespace mdrmap::spectrum

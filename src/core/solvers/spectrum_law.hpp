@@ -46,6 +46,8 @@ public:
   double G() const { return G_; }
   double tau() const { return tau_; }
   double G0() const { return G0_; }
+  /// The shortest branch time (infinity without branches).
+  double shortest_time() const;
   /// Decay rates -L_i of the free modes (> 0).
   const std::vector<double>& rates() const { return rate_; }
 

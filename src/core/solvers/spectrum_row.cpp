@@ -97,6 +97,9 @@ void Row::restore(const Snapshot& s) {
   jlo_ = s.jlo;
   jhi_ = s.jhi;
   log_.resize(s.log);
+  seams_.erase(
+      std::remove_if(seams_.begin(), seams_.end(), [&](const Seam& m) { return m.entry >= s.log; }),
+      seams_.end());
   tracers_.erase(std::remove_if(tracers_.begin(), tracers_.end(),
                                 [&](const Tracer& t) { return t.n > s.log; }),
                  tracers_.end());
@@ -121,6 +124,7 @@ void Row::start_stationary(double v0) {
   dd_ = 0.0;
   log_.clear();
   tracers_.clear();
+  seams_.clear();
   const double dt = (a1_now() + aw_ + 6.0 * dx_) / v0;
   set_position(-static_cast<long double>(v0 * dt / dx_));
   jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
@@ -129,11 +133,31 @@ void Row::start_stationary(double v0) {
 
 void Row::change_velocity(double w, double dd) {
   control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  add_seam(log_.size(), w);
   w_ = w;
   dd_ = dd;
   log_.push_back(Entry{-1.0, w, P_, Grid{}, d_, dd});
   for (long long j = jlo_; j <= jhi_; ++j)
     change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w, d_, dd);
+}
+
+// The seam of a change to w at log entry `entry`, before it acts: the
+// material point at the leading edge, where fresh material starts to enter at
+// w. Fresh material's branches form layers w tau_k wide behind the edge; the
+// kink is a seam only where those are resolved (w tau_k >= dx for every
+// branch): across an unresolved layer the parts on either side are no
+// smoother than the whole. Seams past the window are dropped (that material
+// never touches again), and the oldest beyond kMaxSeams.
+void Row::add_seam(std::size_t entry, double w) {
+  seams_.erase(std::remove_if(seams_.begin(), seams_.end(),
+                              [&](const Seam& m) { return position(m.J) > aw_ + 2.0 * dx_; }),
+               seams_.end());
+  if (!(w * law_.shortest_time() >= dx_)) return;
+  const long double J = static_cast<long double>(-a1_now()) / static_cast<long double>(dx_) - P_ -
+                        static_cast<long double>(phase_);
+  seams_.push_back({entry, J});
+  if (seams_.size() > kMaxSeams)
+    seams_.erase(seams_.begin(), seams_.end() - static_cast<std::ptrdiff_t>(kMaxSeams));
 }
 
 // A contact element whose force at the new velocity is negative lets go.
@@ -168,6 +192,8 @@ void Row::renumber() {
       e.P -= static_cast<long double>(K);
     for (Tracer& t : tracers_)
       t.J += static_cast<long double>(K);
+    for (Seam& m : seams_)
+      m.J += static_cast<long double>(K);
   }
 }
 

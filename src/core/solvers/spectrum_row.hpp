@@ -40,6 +40,12 @@
 // kept until it leaves it. A caller finds the end depth that balances the
 // load by trial steps from a snapshot.
 //
+// Seams. The point at the leading edge when the velocity changes divides
+// material pressed before the change from material that enters after it:
+// p(x) has a kink there, and the forces are integrated on either side of it
+// (spectrum_forces.cpp; only where fresh material's layers w tau_k are
+// resolved by the grid).
+//
 // Trailing edge. Because elements are independent, the state of any material
 // point is its history replayed from the log of steps (a few entries per
 // sample: memory independent of travel). The edge lies between the last
@@ -183,6 +189,26 @@ private:
   double trailing_edge(long long jb, double& pe, Edge edge) const;
   bool predicted_only(long long jb, double& e, double& pe) const;
   void run_forces(long long ja, long long jb, double& FN, double& Fx, double& e, Edge edge) const;
+  /// A seam: the material point that was at the leading edge when the
+  /// velocity changed at log entry `entry`. On either side of it the material
+  /// has had different histories (in contact through the change, or entered
+  /// after it), so p(x) is continuous there but its slope jumps: the forces
+  /// are integrated on either side of it, its own pressure from its replay
+  /// (docs/design.md, "Seams").
+  struct Seam {
+    std::size_t entry;
+    long double J;
+  };
+  static constexpr std::size_t kMaxSeams = 16; // the newest kept (older ones lie further back)
+  void add_seam(std::size_t entry, double w);
+  double position(long double J) const {
+    return static_cast<double>((J + P_ + static_cast<long double>(phase_)) *
+                               static_cast<long double>(dx_));
+  }
+  template <class Piece>
+  void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
+                    bool rest, bool leading, Piece piece) const;
+  double part_value(const Material& m, double x, bool rest) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
@@ -192,9 +218,16 @@ private:
   Forcing forcing(double x, double w, double h, const Path& q) const;
   double next_cut(double x0, double t, double tn, double w) const;
   // Forces (spectrum_forces.cpp).
-  void piece_forces(long long ja, long long jb, double xl, double pl, double xr, double pr,
-                    double& FN, double& Fx) const;
-  void profile_piece_forces(long long ja, long long jb, double xl, double bl, double xr, double br,
+  /// The points of a part of a contact run: positions and values (nodes at
+  /// spacing dx, or a few points of a short part).
+  struct Points {
+    const double* x;
+    const double* v;
+    long long n;
+  };
+  void piece_forces(const Points& pts, double xl, double pl, double xr, double pr, double& FN,
+                    double& Fx) const;
+  void profile_piece_forces(const Points& pts, double xl, double bl, double xr, double br,
                             double& FN, double& Fx) const;
   void sliver_forces(double e, double b0, double be, double& FN, double& Fx) const;
   long long last_before_tip() const;
@@ -258,10 +291,11 @@ private:
   // (kept: their vectors are allocated once)
   mutable StepCoef coef_scratch_[3];
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
+  std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
-  mutable std::vector<double> scratch_;  // a contact run's node values while its forces are summed
-  double psi_tiny_ = 0.0, p_tiny_ = 0.0; // gap and force below rounding
+  mutable std::vector<double> scratch_x_, scratch_v_; // a part's points while its forces are summed
+  double psi_tiny_ = 0.0, p_tiny_ = 0.0;              // gap and force below rounding
 };
 
 } // namespace mdrmap::spectrum
