@@ -152,9 +152,10 @@ void Law::coef(double dt, StepCoef& c, Part part) const {
   }
 }
 
-void Law::contact_step(double* q, double h0, double h1, double h2, const StepCoef& c) const {
+void Law::contact_step(const double* q0, double* q, double h0, double h1, double h2,
+                       const StepCoef& c) const {
   for (std::size_t k = 0; k < n_; ++k)
-    q[k] = h0 + c.e[k] * (q[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
+    q[k] = h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
 }
 
 double Law::pressure(double u, double du, const double* q) const {
@@ -178,9 +179,9 @@ double Law::free_rate(const double* z) const {
   return r;
 }
 
-void Law::free_step(double* z, const StepCoef& c) const {
+void Law::free_step(const double* z0, double* z, const StepCoef& c) const {
   for (std::size_t i = 0; i < m_; ++i)
-    z[i] *= c.modal[i];
+    z[i] = z0[i] * c.modal[i];
 }
 
 double Law::free_u(const double* z) const {

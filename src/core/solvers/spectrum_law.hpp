@@ -55,14 +55,22 @@ public:
   void coef(double dt, StepCoef& c, Part part = Part::Both) const;
 
   /// Contact update of the branch states q over a step (coefficients c).
-  void contact_step(double* q, double h0, double h1, double h2, const StepCoef& c) const;
+  void contact_step(double* q, double h0, double h1, double h2, const StepCoef& c) const {
+    contact_step(q, q, h0, h1, h2, c);
+  }
+  /// The same from q0 into q (q may be q0): a caller that may still need
+  /// the state before the step keeps it without copying it first.
+  void contact_step(const double* q0, double* q, double h0, double h1, double h2,
+                    const StepCoef& c) const;
   /// Contact force per 4 dx for depth u, rate du, branch states q.
   double pressure(double u, double du, const double* q) const;
   /// The contact force's rate along a path with depth u, rate du and
   /// acceleration ddu (the branches' rates (u - q_k) / tau_k).
   double pressure_rate(double u, double du, double ddu, const double* q) const;
   /// Free update in modal coordinates: z_i *= exp(L_i dt).
-  void free_step(double* z, const StepCoef& c) const;
+  void free_step(double* z, const StepCoef& c) const { free_step(z, z, c); }
+  /// The same from z0 into z (z may be z0).
+  void free_step(const double* z0, double* z, const StepCoef& c) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
   /// Its rate (each mode decays at its rate).

@@ -281,30 +281,26 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
   const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
     const Forcing u = forcing(x, w, h, q);
-    std::copy(y, y + law_.branches(), tmp);
-    law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
+    law_.contact_step(y, tmp, u.h0, u.h1, u.h2, c); // (y kept for a switch's search)
     if (!(may_switch && law_.pressure(depth(xn, dn), q.rate(h) - lift(xn, w), tmp) < -p_tiny_)) {
       std::copy(tmp, tmp + law_.branches(), y);
       return h;
     }
     const double tc = locate(true, y, x, h, w, q); // lets go
-    std::copy(y, y + law_.branches(), tmp);
     law_.coef(tc, at, Part::Contact);
-    law_.contact_step(tmp, u.h0, u.h1, u.h2, at);
+    law_.contact_step(y, tmp, u.h0, u.h1, u.h2, at);
     law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
     md = Mode::Free;
     return tc;
   }
-  std::copy(y, y + law_.free_dim(), tmp);
-  law_.free_step(tmp, c);
+  law_.free_step(y, tmp, c);
   if (!(may_switch && depth(xn, dn) - law_.free_u(tmp) > psi_tiny_ && inside(xn, dn))) {
     std::copy(tmp, tmp + law_.free_dim(), y);
     return h;
   }
   const double tc = locate(false, y, x, h, w, q); // touches
   law_.coef(tc, at, Part::Free);
-  law_.free_step(y, at);
-  std::copy(y, y + law_.free_dim(), tmp);
+  law_.free_step(y, tmp, at);
   law_.from_modal(tmp, y);
   md = Mode::Contact;
   return tc;
@@ -431,9 +427,8 @@ double Row::locate(bool contact, const double* y, double x, double h, double w,
   if (contact) {
     const Forcing u = forcing(x, w, h, q);
     auto f = [&](double tau, double& v, double& dv) {
-      std::copy(y, y + law_.branches(), tmp);
       law_.coef(tau, c, Part::Contact);
-      law_.contact_step(tmp, u.h0, u.h1, u.h2, c);
+      law_.contact_step(y, tmp, u.h0, u.h1, u.h2, c);
       const double xn = x + w * tau, un = depth(xn, q.at(tau)), du = q.rate(tau) - lift(xn, w);
       v = law_.pressure(un, du, tmp);
       dv = law_.pressure_rate(un, du, 2.0 * u.h2, tmp);
@@ -441,9 +436,8 @@ double Row::locate(bool contact, const double* y, double x, double h, double w,
     return bracketed_newton(f, law_.pressure(depth(x, q.d), q.r - lift(x, w), y), h);
   }
   auto f = [&](double tau, double& v, double& dv) {
-    std::copy(y, y + law_.free_dim(), tmp);
     law_.coef(tau, c, Part::Free);
-    law_.free_step(tmp, c);
+    law_.free_step(y, tmp, c);
     const double xn = x + w * tau;
     v = law_.free_u(tmp) - depth(xn, q.at(tau));
     dv = law_.free_rate(tmp) - (q.rate(tau) - lift(xn, w));
