@@ -169,14 +169,13 @@ void Row::change_material(Mode& md, double* y, double x, double w, double d, dou
   md = Mode::Free;
 }
 
-Row::Grid Row::grid(double dt, double w, double a) const {
-  Grid g;
+// (In place: a grid that already holds a coefficient set keeps it, Law::coef.)
+void Row::grid(Grid& g, double dt, double w, double a) const {
   g.dt = dt;
   g.D = w > 0.0 ? std::min(dt, sub_length(a) / w) : dt;
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
-  return g;
 }
 
 void Row::renumber() {
@@ -207,9 +206,9 @@ void Row::advance(double dt, double d1, double dd1) {
   const long long lo0 = jlo_, hi0 = jhi_;
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
   // sub-steps: the contact's travel at the smaller a1 of the step
-  Entry en{dt, w_, P_, grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k};
-  log_.push_back(en);
-  const Grid& g = log_.back().g;
+  log_.push_back(Entry{dt, w_, P_, Grid{}, d0, s, k});
+  Grid& g = log_.back().g;
+  grid(g, dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0));
   const long before = updates_;
   for (long long j = jlo_; j <= jhi_; ++j) {
     const std::size_t sl = slot(j);
@@ -344,7 +343,8 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
         // (grid() forms both coefficient sets: a point that switches
         // within rounding of the span's start goes on with the full one)
         const double T = total_time(it, last);
-        step_material(mt.mode, mt.y, x, T, 0.0, grid(T, 0.0, 0.0), Path{e.d0, 0.0, 0.0});
+        grid(rest_, T, 0.0, 0.0);
+        step_material(mt.mode, mt.y, x, T, 0.0, rest_, Path{e.d0, 0.0, 0.0});
         it = last;
       }
       ++done;

@@ -167,7 +167,7 @@ private:
     Material m;
   };
   void set_position(long double P);
-  Grid grid(double dt, double w, double a) const;
+  void grid(Grid& g, double dt, double w, double a) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
                      const Path& p) const;
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
@@ -290,6 +290,10 @@ private:
   // coefficient sets of a partial sub-step, a switch and a switch's search
   // (kept: their vectors are allocated once)
   mutable StepCoef coef_scratch_[3];
+  // the grid of the last span at rest that a replay crossed in one step: the
+  // replays of one measure share its length (every new point crosses the
+  // whole hold so far), so its coefficient sets are formed once per measure
+  mutable Grid rest_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
