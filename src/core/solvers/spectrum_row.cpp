@@ -285,7 +285,7 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
       std::copy(tmp, tmp + law_.branches(), y);
       return h;
     }
-    const double tc = locate(true, y, x, h, w, q); // lets go
+    const double tc = locate(true, y, x, h, w, q, c); // lets go
     law_.coef(tc, at, Part::Contact);
     law_.contact_step(y, tmp, u.h0, u.h1, u.h2, at);
     law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
@@ -297,7 +297,7 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
     std::copy(tmp, tmp + law_.free_dim(), y);
     return h;
   }
-  const double tc = locate(false, y, x, h, w, q); // touches
+  const double tc = locate(false, y, x, h, w, q, c); // touches
   law_.coef(tc, at, Part::Free);
   law_.free_step(y, tmp, at);
   law_.from_modal(tmp, y);
@@ -419,16 +419,21 @@ Row::Material Row::replay(long double J) const {
 // Time within a sub-step of length h (from position x, state y) where a
 // contact element's force turns negative, or a free element touches: Newton
 // on the exact update's force (gap), with its time derivative from the
-// element's law (bracketed_newton).
-double Row::locate(bool contact, const double* y, double x, double h, double w,
-                   const Path& q) const {
-  StepCoef& c = coef_scratch_[2];
+// element's law (bracketed_newton). ch: the sub-step's coefficient set,
+// taken for the search's first point where it is of that time (h, mostly).
+double Row::locate(bool contact, const double* y, double x, double h, double w, const Path& q,
+                   const StepCoef& ch) const {
+  StepCoef& scratch = coef_scratch_[2];
+  auto coef = [&](double tau, Part part) -> const StepCoef& {
+    if (tau == ch.dt && (ch.part == Part::Both || ch.part == part)) return ch;
+    law_.coef(tau, scratch, part);
+    return scratch;
+  };
   double tmp[kMaxBranches + 1];
   if (contact) {
     const Forcing u = forcing(x, w, h, q);
     auto f = [&](double tau, double& v, double& dv) {
-      law_.coef(tau, c, Part::Contact);
-      law_.contact_step(y, tmp, u.h0, u.h1, u.h2, c);
+      law_.contact_step(y, tmp, u.h0, u.h1, u.h2, coef(tau, Part::Contact));
       const double xn = x + w * tau, un = depth(xn, q.at(tau)), du = q.rate(tau) - lift(xn, w);
       v = law_.pressure(un, du, tmp);
       dv = law_.pressure_rate(un, du, 2.0 * u.h2, tmp);
@@ -436,8 +441,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w,
     return bracketed_newton(f, law_.pressure(depth(x, q.d), q.r - lift(x, w), y), h);
   }
   auto f = [&](double tau, double& v, double& dv) {
-    law_.coef(tau, c, Part::Free);
-    law_.free_step(y, tmp, c);
+    law_.free_step(y, tmp, coef(tau, Part::Free));
     const double xn = x + w * tau;
     v = law_.free_u(tmp) - depth(xn, q.at(tau));
     dv = law_.free_rate(tmp) - (q.rate(tau) - lift(xn, w));

@@ -181,7 +181,8 @@ private:
   long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
   Material replay(long double J) const;
   Tracer& tracer(long double J) const;
-  double locate(bool contact, const double* y, double x, double h, double w, const Path& q) const;
+  double locate(bool contact, const double* y, double x, double h, double w, const Path& q,
+                const StepCoef& ch) const;
   double pressure_at(const double* q, double x) const;
   double node_p(long long j) const;
   double edge_sign(Mode md, const double* y, double x) const;
