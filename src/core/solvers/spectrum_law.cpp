@@ -20,7 +20,9 @@ void phis(double z, double e, double& pa, double& pb) {
     for (int n = 1; n < 30; ++n) {
       pa += term * z;
       if (n >= 2) pb -= 2.0 * term; // (-1)^n vs the (-1)^(n+1) of pa
-      if (std::abs(term) < 1e-17 * std::abs(pa / z)) break;
+      // (for z >= 0, |pa / z| <= 1/2: a term of 6e-18 or more is not the
+      // last, and the division is left out while the terms are larger)
+      if ((z < 0.0 || std::abs(term) < 6e-18) && std::abs(term) < 1e-17 * std::abs(pa / z)) break;
       term *= -z / static_cast<double>(n + 2);
     }
     return;
