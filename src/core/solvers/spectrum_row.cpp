@@ -382,20 +382,22 @@ double Row::total_time(std::vector<Entry>::const_iterator first,
 }
 
 // The cached tracer at J (a new one, fresh before the log, in the place of the
-// least recently used where the cache is full).
+// least recently used where the cache is full: the first of the least
+// used, found in the same pass as the search, since most points are new).
 Row::Tracer& Row::tracer(long double J) const {
-  for (Tracer& t : tracers_)
+  Tracer* lru = nullptr;
+  for (Tracer& t : tracers_) {
     if (t.J == J && t.n <= log_.size()) return t;
-  Tracer fresh;
-  fresh.J = J;
-  if (tracers_.size() < kMaxTracers) {
-    tracers_.push_back(fresh);
-    return tracers_.back();
+    if (!lru || t.used < lru->used) lru = &t;
   }
-  Tracer& old = *std::min_element(tracers_.begin(), tracers_.end(),
-                                  [](const Tracer& a, const Tracer& b) { return a.used < b.used; });
-  old = fresh;
-  return old;
+  Tracer& t = tracers_.size() < kMaxTracers ? tracers_.emplace_back() : *lru;
+  t.J = J;
+  t.n = 0;
+  t.gone = false;
+  t.used = 0;
+  t.m.mode = Mode::Fresh;
+  std::fill(t.m.y, t.m.y + stride_, 0.0); // (the rest of y is never read)
+  return t;
 }
 
 // The state now of the material point at J: its tracer carried to the part of
