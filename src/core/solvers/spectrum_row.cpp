@@ -136,7 +136,7 @@ void Row::change_velocity(double w, double dd) {
   add_seam(log_.size(), w);
   w_ = w;
   dd_ = dd;
-  log_.push_back(Entry{-1.0, w, P_, Grid{}, d_, dd});
+  log_.push_back(Entry{-1.0, w, P_, nullptr, d_, dd});
   for (long long j = jlo_; j <= jhi_; ++j)
     change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w, d_, dd);
 }
@@ -172,10 +172,26 @@ void Row::change_material(Mode& md, double* y, double x, double w, double d, dou
 // (In place: a grid that already holds a coefficient set keeps it, Law::coef.)
 void Row::grid(Grid& g, double dt, double w, double a) const {
   g.dt = dt;
-  g.D = w > 0.0 ? std::min(dt, sub_length(a) / w) : dt;
+  g.D = full_substep(dt, w, a);
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
+}
+
+double Row::full_substep(double dt, double w, double a) const {
+  return w > 0.0 ? std::min(dt, sub_length(a) / w) : dt;
+}
+
+// The grid of a step of dt at w where the contact is a: the last log
+// entry's where that has the same sub-steps (the steps of a hold, or at one
+// velocity and depth, share one: its coefficient sets are formed and their
+// vectors allocated once, not at every step).
+std::shared_ptr<const Row::Grid> Row::step_grid(double dt, double w, double a) const {
+  const Grid* last = log_.empty() ? nullptr : log_.back().g.get();
+  if (last && last->dt == dt && last->D == full_substep(dt, w, a)) return log_.back().g;
+  auto g = std::make_shared<Grid>();
+  grid(*g, dt, w, a);
+  return g;
 }
 
 void Row::renumber() {
@@ -206,9 +222,9 @@ void Row::advance(double dt, double d1, double dd1) {
   const long long lo0 = jlo_, hi0 = jhi_;
   set_position(P_ + static_cast<long double>(w_ * dt / dx_));
   // sub-steps: the contact's travel at the smaller a1 of the step
-  log_.push_back(Entry{dt, w_, P_, Grid{}, d0, s, k});
-  Grid& g = log_.back().g;
-  grid(g, dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0));
+  log_.push_back(
+      Entry{dt, w_, P_, step_grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k});
+  const Grid& g = *log_.back().g;
   const long before = updates_;
   for (long long j = jlo_; j <= jhi_; ++j) {
     const std::size_t sl = slot(j);
@@ -338,7 +354,7 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
       if (gone) break;
       const auto last = mt.mode == Mode::Fresh ? it : at_rest_until(it, end);
       if (last == it) {
-        step_material(mt.mode, mt.y, x, e.dt, e.w, e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
+        step_material(mt.mode, mt.y, x, e.dt, e.w, *e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
       } else { // entries at rest at one depth: one exact step
         // (grid() forms both coefficient sets: a point that switches
         // within rounding of the span's start goes on with the full one)

@@ -62,6 +62,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/model/case.hpp"
@@ -142,9 +143,9 @@ private:
   struct Entry {
     double dt, w;
     long double P;
-    Grid g;
-    double d0 = 0.0, s = 0.0; // depth at the start, its rate over the step (a change: d, dd)
-    double k = 0.0;           // the depth's curvature: d0 + s t + k t (t - dt)
+    std::shared_ptr<const Grid> g; // (consecutive steps with the same grid share it)
+    double d0 = 0.0, s = 0.0;      // depth at the start, its rate over the step (a change: d, dd)
+    double k = 0.0;                // the depth's curvature: d0 + s t + k t (t - dt)
   };
   /// The depth along a (sub-)step from its start: d + r t + k t^2.
   struct Path {
@@ -168,6 +169,8 @@ private:
   };
   void set_position(long double P);
   void grid(Grid& g, double dt, double w, double a) const;
+  double full_substep(double dt, double w, double a) const;
+  std::shared_ptr<const Grid> step_grid(double dt, double w, double a) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
                      const Path& p) const;
   double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
