@@ -193,6 +193,13 @@ double Law::free_u(const double* z) const {
   return u;
 }
 
+double Law::free_u(const double* z0, const StepCoef& c) const {
+  double u = 0.0;
+  for (std::size_t i = 0; i < m_; ++i)
+    u += cu_[i] * (z0[i] * c.modal[i]);
+  return u;
+}
+
 void Law::to_modal(double h, const double* q, double* z) const {
   const std::size_t o = m_ - n_;
   for (std::size_t i = 0; i < m_; ++i) {

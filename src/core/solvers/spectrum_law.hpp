@@ -73,6 +73,9 @@ public:
   void free_step(const double* z0, double* z, const StepCoef& c) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
+  /// The free depression after a free update of z0 by c (bit for bit
+  /// free_u of free_step's result, which a caller need not store to test).
+  double free_u(const double* z0, const StepCoef& c) const;
   /// Its rate (each mode decays at its rate).
   double free_rate(const double* z) const;
 

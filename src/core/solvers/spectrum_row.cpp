@@ -308,9 +308,10 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
     md = Mode::Free;
     return tc;
   }
-  law_.free_step(y, tmp, c);
-  if (!(may_switch && depth(xn, dn) - law_.free_u(tmp) > psi_tiny_ && inside(xn, dn))) {
-    std::copy(tmp, tmp + law_.free_dim(), y);
+  // (the end's gap from y, which a switch's search still needs: stepped in
+  // place where the element does not touch)
+  if (!(may_switch && depth(xn, dn) - law_.free_u(y, c) > psi_tiny_ && inside(xn, dn))) {
+    law_.free_step(y, c);
     return h;
   }
   const double tc = locate(false, y, x, h, w, q, c); // touches
