@@ -100,6 +100,7 @@ void Row::restore(const Snapshot& s) {
   seams_.erase(
       std::remove_if(seams_.begin(), seams_.end(), [&](const Seam& m) { return m.entry >= s.log; }),
       seams_.end());
+  rest_.to = 0; // (the entries from s.log on are replaced: no span kept)
   tracers_.erase(std::remove_if(tracers_.begin(), tracers_.end(),
                                 [&](const Tracer& t) { return t.n > s.log; }),
                  tracers_.end());
@@ -125,6 +126,7 @@ void Row::start_stationary(double v0) {
   log_.clear();
   tracers_.clear();
   seams_.clear();
+  rest_.to = 0;
   const double dt = (a1_now() + aw_ + 6.0 * dx_) / v0;
   set_position(-static_cast<long double>(v0 * dt / dx_));
   jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
@@ -356,12 +358,8 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
       const auto last = mt.mode == Mode::Fresh ? it : at_rest_until(it, end);
       if (last == it) {
         step_material(mt.mode, mt.y, x, e.dt, e.w, *e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
-      } else { // entries at rest at one depth: one exact step
-        // (grid() forms both coefficient sets: a point that switches
-        // within rounding of the span's start goes on with the full one)
-        const double T = total_time(it, last);
-        grid(rest_, T, 0.0, 0.0);
-        step_material(mt.mode, mt.y, x, T, 0.0, rest_, Path{e.d0, 0.0, 0.0});
+      } else { // entries at rest at one depth: one exact step (its grid in rest_)
+        step_material(mt.mode, mt.y, x, rest_.g.dt, 0.0, rest_.g, Path{e.d0, 0.0, 0.0});
         it = last;
       }
       ++done;
@@ -376,6 +374,10 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
 // within it; the live row checks for them at each entry's end, a replay once:
 // a point that would let go and touch again within one hold is the one case
 // they could tell apart). A hold sampled 60 times is replayed in one step.
+// A span past `it` is kept in rest_ with the grid of that step (grid()
+// forms both coefficient sets: a point that switches within rounding of the
+// span's start goes on with the full one): the new points replayed in one
+// measure all cross the same span, the whole hold so far.
 std::vector<Row::Entry>::const_iterator
 Row::at_rest_until(std::vector<Entry>::const_iterator it,
                    std::vector<Entry>::const_iterator end) const {
@@ -383,9 +385,19 @@ Row::at_rest_until(std::vector<Entry>::const_iterator it,
     return e.dt > 0.0 && e.w == 0.0 && e.s == 0.0 && e.k == 0.0 && e.d0 == it->d0;
   };
   if (!at_rest(*it)) return it;
+  const auto from = static_cast<std::size_t>(it - log_.begin()),
+             to = static_cast<std::size_t>(end - log_.begin());
+  if (rest_.from == from && rest_.to == to)
+    return log_.begin() + static_cast<std::ptrdiff_t>(rest_.last);
   auto last = it;
   while (last + 1 != end && at_rest(*(last + 1)))
     ++last;
+  if (last != it) {
+    rest_.from = from;
+    rest_.to = to;
+    rest_.last = static_cast<std::size_t>(last - log_.begin());
+    grid(rest_.g, total_time(it, last), 0.0, 0.0);
+  }
   return last;
 }
 

@@ -294,10 +294,14 @@ private:
   // coefficient sets of a partial sub-step, a switch and a switch's search
   // (kept: their vectors are allocated once)
   mutable StepCoef coef_scratch_[3];
-  // the grid of the last span at rest that a replay crossed in one step: the
-  // replays of one measure share its length (every new point crosses the
-  // whole hold so far), so its coefficient sets are formed once per measure
-  mutable Grid rest_;
+  // the last span of log entries at rest a replay crossed in one step:
+  // entries [from, last] found from `from` within [from, to), and the grid
+  // of the step over them (its coefficient sets formed once per span)
+  struct RestSpan {
+    std::size_t from = 0, to = 0, last = 0; // (to = 0: none)
+    Grid g;
+  };
+  mutable RestSpan rest_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
