@@ -154,19 +154,6 @@ void Law::coef(double dt, StepCoef& c, Part part) const {
   }
 }
 
-void Law::contact_step(const double* q0, double* q, double h0, double h1, double h2,
-                       const StepCoef& c) const {
-  for (std::size_t k = 0; k < n_; ++k)
-    q[k] = h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
-}
-
-double Law::pressure(double u, double du, const double* q) const {
-  double s = G0_ * u + G_ * tau_ * du;
-  for (std::size_t k = 0; k < n_; ++k)
-    s -= Gk_[k] * q[k];
-  return s;
-}
-
 double Law::pressure_rate(double u, double du, double ddu, const double* q) const {
   double s = G0_ * du + G_ * tau_ * ddu;
   for (std::size_t k = 0; k < n_; ++k)
@@ -179,25 +166,6 @@ double Law::free_rate(const double* z) const {
   for (std::size_t i = 0; i < m_; ++i)
     r -= cu_[i] * rate_[i] * z[i];
   return r;
-}
-
-void Law::free_step(const double* z0, double* z, const StepCoef& c) const {
-  for (std::size_t i = 0; i < m_; ++i)
-    z[i] = z0[i] * c.modal[i];
-}
-
-double Law::free_u(const double* z) const {
-  double u = 0.0;
-  for (std::size_t i = 0; i < m_; ++i)
-    u += cu_[i] * z[i];
-  return u;
-}
-
-double Law::free_u(const double* z0, const StepCoef& c) const {
-  double u = 0.0;
-  for (std::size_t i = 0; i < m_; ++i)
-    u += cu_[i] * (z0[i] * c.modal[i]);
-  return u;
 }
 
 void Law::to_modal(double h, const double* q, double* z) const {

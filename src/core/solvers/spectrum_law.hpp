@@ -93,6 +93,40 @@ private:
   std::vector<double> cu_;       // u = cu . z
 };
 
+// The per-sub-step operations, inline: a replay or step makes several calls
+// of a few operations each per sub-step (the same arithmetic, in order).
+inline void Law::contact_step(const double* q0, double* q, double h0, double h1, double h2,
+                              const StepCoef& c) const {
+  for (std::size_t k = 0; k < n_; ++k)
+    q[k] = h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
+}
+
+inline double Law::pressure(double u, double du, const double* q) const {
+  double s = G0_ * u + G_ * tau_ * du;
+  for (std::size_t k = 0; k < n_; ++k)
+    s -= Gk_[k] * q[k];
+  return s;
+}
+
+inline void Law::free_step(const double* z0, double* z, const StepCoef& c) const {
+  for (std::size_t i = 0; i < m_; ++i)
+    z[i] = z0[i] * c.modal[i];
+}
+
+inline double Law::free_u(const double* z) const {
+  double u = 0.0;
+  for (std::size_t i = 0; i < m_; ++i)
+    u += cu_[i] * z[i];
+  return u;
+}
+
+inline double Law::free_u(const double* z0, const StepCoef& c) const {
+  double u = 0.0;
+  for (std::size_t i = 0; i < m_; ++i)
+    u += cu_[i] * (z0[i] * c.modal[i]);
+  return u;
+}
+
 /// Eigen-decomposition of a symmetric matrix a (n x n, row-major, destroyed)
 /// by cyclic Jacobi with the relative stopping test |a_pq| <= eps
 /// sqrt(|a_pp a_qq|) (high relative accuracy for scaled definite matrices):
