@@ -64,6 +64,11 @@ public:
                     const StepCoef& c) const;
   /// Contact force per 4 dx for depth u, rate du, branch states q.
   double pressure(double u, double du, const double* q) const;
+  /// The contact force after a contact update of q0 (forcing h0, h1, h2,
+  /// coefficients c): bit for bit pressure() of contact_step's result, which
+  /// a caller need not store to test.
+  double pressure(double u, double du, const double* q0, double h0, double h1, double h2,
+                  const StepCoef& c) const;
   /// The contact force's rate along a path with depth u, rate du and
   /// acceleration ddu (the branches' rates (u - q_k) / tau_k).
   double pressure_rate(double u, double du, double ddu, const double* q) const;
@@ -105,6 +110,14 @@ inline double Law::pressure(double u, double du, const double* q) const {
   double s = G0_ * u + G_ * tau_ * du;
   for (std::size_t k = 0; k < n_; ++k)
     s -= Gk_[k] * q[k];
+  return s;
+}
+
+inline double Law::pressure(double u, double du, const double* q0, double h0, double h1, double h2,
+                            const StepCoef& c) const {
+  double s = G0_ * u + G_ * tau_ * du;
+  for (std::size_t k = 0; k < n_; ++k)
+    s -= Gk_[k] * (h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2);
   return s;
 }
 

@@ -305,9 +305,11 @@ double Row::substep(Mode& md, double* y, double x, double h, double w, const Ste
   const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
     const Forcing u = forcing(x, w, h, q);
-    law_.contact_step(y, tmp, u.h0, u.h1, u.h2, c); // (y kept for a switch's search)
-    if (!(may_switch && law_.pressure(depth(xn, dn), q.rate(h) - lift(xn, w), tmp) < -p_tiny_)) {
-      std::copy(tmp, tmp + law_.branches(), y);
+    // (the end's force from y, which a switch's search still needs: stepped
+    // in place where the element does not let go)
+    if (!(may_switch && law_.pressure(depth(xn, dn), q.rate(h) - lift(xn, w), y, u.h0, u.h1, u.h2,
+                                      c) < -p_tiny_)) {
+      law_.contact_step(y, u.h0, u.h1, u.h2, c);
       return h;
     }
     const double tc = locate(true, y, x, h, w, q, c); // lets go
