@@ -99,10 +99,10 @@ void add_piece(long long ja, long long jb, double dx, X x, double xl, double fl,
 
 } // namespace
 
-// What a part's quadrature takes of material in contact at x: p, or with
-// `rest` the part B = -sum G_k q_k.
-double Row::part_value(const Material& m, double x, bool rest) const {
-  return rest ? law_.pressure(0.0, 0.0, m.y) : pressure_at(m.y, x);
+// What a part's quadrature takes of material in contact at x with branch
+// states y: p, or with `rest` the part B = -sum G_k q_k.
+double Row::part_value(const double* y, double x, bool rest) const {
+  return rest ? law_.pressure(0.0, 0.0, y) : pressure_at(y, x);
 }
 
 // Integrates [xl, xr] (nodes ja..jb, values vl and vr at its ends) by `piece`
@@ -128,12 +128,8 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     scratch_v_.clear();
     for (long long k = a; k <= b; ++k) {
       scratch_x_.push_back(xi(k));
-      scratch_v_.push_back(rest ? node_rest(k) : node_p(k));
+      scratch_v_.push_back(part_value(&y_[slot(k) * stride_], xi(k), rest));
     }
-  };
-  auto at = [&](double x) {
-    return replay(static_cast<long double>(x) / static_cast<long double>(dx_) - P_ -
-                  static_cast<long double>(phase_));
   };
   double x0 = xl, v0 = vl;
   long long j0 = ja;
@@ -148,17 +144,17 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     if ((j1 < j0 + 1 && !short_lead) || j1 > jb - 2) continue;
     const Material m = replay(in[i].second);
     if (m.mode != Mode::Contact) continue;
-    const double v = part_value(m, x, rest);
+    const double v = part_value(m.y, x, rest);
     nodes(j0, j1);
     if (short_lead) { // the middle of the widest gap between x0, the node and x
       const double a = j1 == j0 ? scratch_x_[0] : x;
       const double mid = j1 == j0 && a - x0 < x - a ? 0.5 * (a + x) : 0.5 * (x0 + a);
-      const Material mm = at(mid);
+      const Material mm = replay(label(mid));
       if (mm.mode != Mode::Contact) continue;
       const auto pos = mid < (j1 == j0 ? scratch_x_[0] : x) ? 0 : scratch_x_.size();
       scratch_x_.insert(scratch_x_.begin() + static_cast<std::ptrdiff_t>(pos), mid);
       scratch_v_.insert(scratch_v_.begin() + static_cast<std::ptrdiff_t>(pos),
-                        part_value(mm, mid, rest));
+                        part_value(mm.y, mid, rest));
     }
     piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())},
           x0, v0, x, v);

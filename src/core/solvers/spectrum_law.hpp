@@ -90,6 +90,10 @@ public:
   void from_modal(const double* z, double* q) const;
 
 private:
+  /// Branch k's state after a contact update of q0 (contact_step's one term).
+  double stepped(std::size_t k, const double* q0, double h0, double h1, double h2,
+                 const StepCoef& c) const;
+
   std::size_t n_ = 0, m_ = 0;
   double G_, tau_, G0_;
   std::vector<double> Gk_, tk_;
@@ -100,10 +104,15 @@ private:
 
 // The per-sub-step operations, inline: a replay or step makes several calls
 // of a few operations each per sub-step (the same arithmetic, in order).
+inline double Law::stepped(std::size_t k, const double* q0, double h0, double h1, double h2,
+                           const StepCoef& c) const {
+  return h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
+}
+
 inline void Law::contact_step(const double* q0, double* q, double h0, double h1, double h2,
                               const StepCoef& c) const {
   for (std::size_t k = 0; k < n_; ++k)
-    q[k] = h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2;
+    q[k] = stepped(k, q0, h0, h1, h2, c);
 }
 
 inline double Law::pressure(double u, double du, const double* q) const {
@@ -117,7 +126,7 @@ inline double Law::pressure(double u, double du, const double* q0, double h0, do
                             const StepCoef& c) const {
   double s = G0_ * u + G_ * tau_ * du;
   for (std::size_t k = 0; k < n_; ++k)
-    s -= Gk_[k] * (h0 + c.e[k] * (q0[k] - h0) + c.a[k] * h1 + c.b[k] * h2);
+    s -= Gk_[k] * stepped(k, q0, h0, h1, h2, c);
   return s;
 }
 

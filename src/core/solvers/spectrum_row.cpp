@@ -162,9 +162,7 @@ void Row::add_seam(std::size_t entry, double w) {
                               [&](const Seam& m) { return position(m.J) > aw_ + 2.0 * dx_; }),
                seams_.end());
   if (!(w * law_.shortest_time() >= dx_)) return;
-  const long double J = static_cast<long double>(-a1_now()) / static_cast<long double>(dx_) - P_ -
-                        static_cast<long double>(phase_);
-  seams_.push_back({entry, J});
+  seams_.push_back({entry, label(-a1_now())});
   if (seams_.size() > kMaxSeams)
     seams_.erase(seams_.begin(), seams_.end() - static_cast<std::ptrdiff_t>(kMaxSeams));
 }

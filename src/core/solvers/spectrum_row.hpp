@@ -209,10 +209,15 @@ private:
     return static_cast<double>((J + P_ + static_cast<long double>(phase_)) *
                                static_cast<long double>(dx_));
   }
+  /// The material point at x now (position's inverse).
+  long double label(double x) const {
+    return static_cast<long double>(x) / static_cast<long double>(dx_) - P_ -
+           static_cast<long double>(phase_);
+  }
   template <class Piece>
   void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
                     bool rest, bool leading, Piece piece) const;
-  double part_value(const Material& m, double x, bool rest) const;
+  double part_value(const double* y, double x, bool rest) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
