@@ -19,6 +19,7 @@ build): one loader for the package and the tools.
 Not a script: the tools import it from their own directory.
 """
 import argparse
+import importlib
 import importlib.util
 import math
 import os
@@ -29,8 +30,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def _load_maps():
     """src/python/mdrmap/maps.py, the Python package's map reader, as a module
-    (loaded from the source tree: the tools need no build)."""
+    (loaded from the source tree: the tools need no build); installed tools
+    (share/mdrmap/tools, no source tree) import the installed package's."""
     path = os.path.join(HERE, os.pardir, "src", "python", "mdrmap", "maps.py")
+    if not os.path.isfile(path):
+        return importlib.import_module("mdrmap.maps")
     spec = importlib.util.spec_from_file_location("mdrmap_maps", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)

@@ -104,8 +104,10 @@ job_inputs() {
   local c
   if [[ -z "$MDRMAP" ]]; then
     # the submission directory first (Slurm and PBS run a copy of the job
-    # script elsewhere), then the checkout this file belongs to
-    for c in "$PWD/build/src/mdrmap" "$STUDY_JOB_LIB_DIR/../../build/src/mdrmap"; do
+    # script elsewhere), then the checkout this file belongs to, then the
+    # prefix it is installed in (PREFIX/share/mdrmap/jobs/lib: PREFIX/bin)
+    for c in "$PWD/build/src/mdrmap" "$STUDY_JOB_LIB_DIR/../../build/src/mdrmap" \
+      "$STUDY_JOB_LIB_DIR/../../../../bin/mdrmap"; do
       if [[ -x "$c" ]]; then
         MDRMAP=$c
         break

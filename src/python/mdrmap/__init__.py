@@ -20,8 +20,22 @@ every core.
 """
 
 import numbers
+import os
+import sys
 
-from . import _core
+try:
+    from . import _core
+except ImportError as _error:  # not built (for this Python), or does not load
+    import importlib.machinery
+    _here = __path__[0]
+    _why = "is not built for Python %d.%d in %s" % (sys.version_info[:2] + (_here,))
+    if any(os.path.exists(os.path.join(_here, "_core" + s))
+           for s in importlib.machinery.EXTENSION_SUFFIXES):
+        _why = "in %s does not load (%s)" % (_here, _error)
+    raise ImportError("mdrmap: the extension mdrmap._core " + _why + ": build it with "
+                      "`cmake --build build --target mdrmap_python` and set "
+                      "PYTHONPATH=build/python, or install with "
+                      "`pip install --no-build-isolation --no-index .`") from None
 from ._core import InvalidInput
 from .maps import MapError, open_map, to_grid
 

@@ -1,0 +1,132 @@
+#!/usr/bin/env bash
+# The two ways to install mdrmap, each into a fresh place under WORKDIR:
+#
+#   bash tests/install/test_install.sh cmake SRCDIR WORKDIR BUILD_DIR PYTHON
+#   bash tests/install/test_install.sh pip   SRCDIR WORKDIR PYTHON
+#
+# cmake: `cmake --install BUILD_DIR --prefix WORKDIR/prefix` (a built tree),
+#   then PREFIX/bin/mdrmap --version; a step run by PREFIX/bin/mdrmap and by
+#   the installed package (PYTHONPATH=PREFIX/lib/python3.X/*-packages) gives
+#   the same numbers bit for bit; the job scripts and tools are under
+#   PREFIX/share/mdrmap, and an installed map tool runs (--help) from there.
+# pip: a copy of the source tree (git's tracked and untracked, not ignored
+#   files; no build directories), a venv made by PYTHON with
+#   --system-site-packages (numpy, setuptools, wheel from the system), and
+#   `pip install --no-build-isolation --no-index COPY` (offline), then the
+#   venv's console script `mdrmap` (--version, the step) and its `import
+#   mdrmap` (the same step, from the venv's site-packages, bit for bit).
+#   CMAKE_ARGS gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when ccache is on
+#   PATH; CMAKE_BUILD_PARALLEL_LEVEL defaults to 2.
+# Exits 0 when every check passes, 1 naming the first that fails.
+set -euo pipefail
+
+mode=${1:?usage: test_install.sh cmake|pip SRCDIR WORKDIR ...}
+SRCDIR=$(cd "${2:?SRCDIR}" && pwd)
+WORKDIR=${3:?WORKDIR}
+fail() {
+  echo "test_install ($mode): FAIL: $*" >&2
+  exit 1
+}
+log() { echo "test_install ($mode): $*"; }
+
+rm -rf "$WORKDIR"
+mkdir -p "$WORKDIR"
+WORKDIR=$(cd "$WORKDIR" && pwd)
+cd "$WORKDIR"
+unset PYTHONPATH
+export PYTHONDONTWRITEBYTECODE=1
+
+# A step with a history (the MDR solver) and a few samples.
+STEP=(--d 0.01 --R 1 --tau 1 --v 1 --history "0.1:1,1:1" --samples 3)
+
+# check_step PROGRAM PYTHON: the program's CSV and the module's arrays of the
+# same step are equal bit for bit (both print and carry the shortest
+# round-tripping doubles).
+check_step() {
+  local program=$1 python=$2
+  "$program" simulate "${STEP[@]}" --output "$WORKDIR/step.csv" ||
+    fail "$program simulate ${STEP[*]} failed"
+  "$python" - "$WORKDIR/step.csv" <<'EOF' || fail "the module's step differs from the program's"
+import sys
+import mdrmap
+r = mdrmap.simulate(d=0.01, R=1, tau=1, v=1, history=[(0.1, 1), (1, 1)], samples=3)
+with open(sys.argv[1]) as f:
+    lines = [line.strip() for line in f if line.strip() and not line.startswith("#")]
+header, rows = lines[0].split(","), [[float(x) for x in line.split(",")] for line in lines[1:]]
+assert len(rows) == len(r.t) > 0, (len(rows), len(r.t))
+for name in ("t", "FN", "Fx", "mu", "a2"):
+    column = [row[header.index(name)] for row in rows]
+    assert column == list(getattr(r, name)), (name, column, list(getattr(r, name)))
+print(f"module {mdrmap.__file__}: {len(rows)} samples equal the program's")
+EOF
+}
+
+install_cmake() {
+  local build=${4:?BUILD_DIR} python=${5:?PYTHON} prefix=$WORKDIR/prefix
+  log "cmake --install $build --prefix $prefix"
+  cmake --install "$build" --prefix "$prefix" >"$WORKDIR/install.log" ||
+    fail "cmake --install failed (see $WORKDIR/install.log)"
+  [[ -x "$prefix/bin/mdrmap" ]] || fail "no $prefix/bin/mdrmap"
+  "$prefix/bin/mdrmap" --version || fail "$prefix/bin/mdrmap --version failed"
+  local init
+  init=$(find "$prefix/lib" -path '*-packages/mdrmap/__init__.py' | head -n 1)
+  [[ -n "$init" ]] || fail "no package mdrmap under $prefix/lib"
+  export PYTHONPATH=${init%/mdrmap/__init__.py}
+  check_step "$prefix/bin/mdrmap" "$python"
+  local share=$prefix/share/mdrmap f
+  for f in jobs/study.sbatch jobs/study.pbs jobs/lib/study_job.sh jobs/examples/quick.ini \
+    tools/pyrun tools/map_summary.py tools/maplib.py; do
+    [[ -f "$share/$f" ]] || fail "no $share/$f"
+  done
+  [[ -x "$share/tools/pyrun" ]] ||
+    fail "the installed tools/pyrun is not executable"
+  # maplib loads the package's map reader from the installed package
+  "$python" "$share/tools/map_summary.py" --help >"$WORKDIR/tool.txt" ||
+    fail "the installed tools/map_summary.py --help failed"
+  grep -q -i usage "$WORKDIR/tool.txt" || fail "the installed map_summary.py printed no usage"
+  log "ok"
+}
+
+# copy_source SRC DEST: what a clone with the local edits has, no builds.
+copy_source() {
+  local src=$1 dest=$2
+  mkdir -p "$dest"
+  if git -C "$src" rev-parse --show-toplevel >/dev/null 2>&1; then
+    (cd "$src" && git ls-files -z -c -o --exclude-standard |
+      tar --null -T - --ignore-failed-read -cf - 2>/dev/null) | tar -C "$dest" -xf -
+  else
+    tar -C "$src" --exclude='./build*' --exclude=./out --exclude='*.egg-info' -cf - . |
+      tar -C "$dest" -xf -
+  fi
+  [[ -f "$dest/pyproject.toml" && -f "$dest/CMakeLists.txt" ]] ||
+    fail "the copy of $src in $dest lacks pyproject.toml or CMakeLists.txt"
+}
+
+install_pip() {
+  local python=${4:?PYTHON} venv=$WORKDIR/venv src=$WORKDIR/src
+  copy_source "$SRCDIR" "$src"
+  "$python" -m venv --system-site-packages "$venv" || fail "$python -m venv failed"
+  if [[ -z "${CMAKE_ARGS:-}" ]] && command -v ccache >/dev/null; then
+    export CMAKE_ARGS=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+  fi
+  export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-2}
+  log "$venv/bin/python -m pip install --no-build-isolation --no-index $src" \
+    "(CMAKE_ARGS=${CMAKE_ARGS:-})"
+  "$venv/bin/python" -m pip install -v --no-cache-dir --no-build-isolation --no-index "$src" >"$WORKDIR/pip.log" 2>&1 ||
+    {
+      tail -n 40 "$WORKDIR/pip.log" >&2
+      fail "pip install failed (see $WORKDIR/pip.log)"
+    }
+  [[ -x "$venv/bin/mdrmap" ]] || fail "pip installed no console script $venv/bin/mdrmap"
+  "$venv/bin/mdrmap" --version || fail "the console script mdrmap --version failed"
+  "$venv/bin/python" -c 'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
+    fail "import mdrmap in the venv does not load the installed package"
+  check_step "$venv/bin/mdrmap" "$venv/bin/python"
+  log "ok"
+}
+
+case $mode in
+cmake) install_cmake "$@" ;;
+pip) install_pip "$@" ;;
+*) fail "unknown mode $mode (cmake or pip)" ;;
+esac
