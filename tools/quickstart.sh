@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
-# Sets up, builds mdrmap and runs the main job on the built-in example study:
-# a slide-hold-slide study under load (jobs/examples/shs_holds.ini) on all
-# local cores, written to out/shs_holds.h5, and its healing curve
+# Sets up, builds mdrmap (the program and the Python module, whose import it
+# checks) and runs the main job on the built-in example study: a
+# slide-hold-slide study under load (jobs/examples/shs_holds.ini) on all local
+# cores, written to out/shs_holds.h5, and its healing curve
 # (out/healing.png); then the seed's friction map and single cases as CSV.
 #
 #   bash tools/quickstart.sh
 #
 # Environment: as tools/build.sh (BUILD_DIR, BUILD_TYPE, JOBS), and
 #   OUT_DIR=out   where the example output goes (relative to the repository root)
+#   MDRMAP_PYTHON=ON  builds the Python module too (target mdrmap_python: needs
+#                 pybind11-dev python3-dev python3-numpy) and checks that
+#                 `import mdrmap` works with PYTHONPATH=BUILD_DIR/python;
+#                 OFF: the program only
 # To add an example: add a line to the "Examples" section at the bottom.
 set -euo pipefail
 
@@ -19,10 +24,28 @@ OUT_DIR=${OUT_DIR:-out}
 export BUILD_DIR
 
 bash tools/setup.sh
-BUILD_TARGETS=${BUILD_TARGETS:-mdrmap} bash tools/build.sh
+if [[ "${MDRMAP_PYTHON:-ON}" == OFF ]]; then
+  BUILD_TARGETS=${BUILD_TARGETS:-mdrmap} bash tools/build.sh -DMDRMAP_PYTHON=OFF
+else
+  BUILD_TARGETS=${BUILD_TARGETS:-mdrmap mdrmap_python} bash tools/build.sh -DMDRMAP_PYTHON=ON
+fi
 
 MDRMAP="$BUILD_DIR/src/mdrmap"
 [[ -x "$MDRMAP" ]] || { echo "quickstart: $MDRMAP was not built" >&2; exit 1; }
+
+# The Python module, imported as a user would: PYTHONPATH=BUILD_DIR/python,
+# with the interpreter it was built for.
+if [[ "${MDRMAP_PYTHON:-ON}" != OFF ]]; then
+  python=$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt")
+  pythonpath=$(cd "$BUILD_DIR" && pwd)/python
+  echo
+  echo "== PYTHONPATH=$pythonpath ${python:-python3} -c 'import mdrmap'"
+  PYTHONPATH="$pythonpath${PYTHONPATH:+:$PYTHONPATH}" "${python:-python3}" -c \
+    'import mdrmap; print("mdrmap", mdrmap.__version__, "from", mdrmap.__file__)' || {
+    echo "quickstart: import mdrmap failed (the build's module: $pythonpath/mdrmap)" >&2
+    exit 1
+  }
+fi
 mkdir -p "$OUT_DIR"
 
 # simulate NAME ARGS...: runs `mdrmap simulate ARGS --output OUT_DIR/NAME.csv`

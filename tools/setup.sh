@@ -30,6 +30,8 @@ PACKAGES=(
   python3-numpy python3-h5py python3-matplotlib python3-xarray python3-h5netcdf
   # the Python module (src/python: pybind11) and its tests and examples
   pybind11-dev python3-dev python3-pytest python3-scipy
+  # pip install . (pyproject.toml: setuptools driving CMake) into a venv
+  python3-pip python3-venv python3-setuptools python3-wheel
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
 )
