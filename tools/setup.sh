@@ -32,6 +32,8 @@ PACKAGES=(
   pybind11-dev python3-dev python3-pytest python3-scipy
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
+  # the user guide under docs/ (Sphinx, MyST Markdown, the furo theme; test docs_site)
+  python3-sphinx python3-myst-parser furo
 )
 SLURM_PACKAGES=(slurmctld slurmd slurm-client munge slurm-wlm-torque)
 if [[ "${MDRMAP_SLURM:-}" == 1 || ( -z "${MDRMAP_SLURM:-}" && "${CI:-}" == true ) ]]; then
