@@ -12,3 +12,5 @@ exclude_patterns = ["_build", "examples"]
 myst_heading_anchors = 4
 html_theme = "furo"
 html_title = "mdrmap"
+# Code blocks without a language (CSV, INI excerpts, output) are not highlighted.
+highlight_language = "none"
