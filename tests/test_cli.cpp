@@ -1729,7 +1729,7 @@ TEST(cli, SimulateUnderLoadElasticIsHertz) {
 
 // --- study -------------------------------------------------------------------
 
-// `study --set` adds a history segment to a config without [history] (README:
+// `study --set` adds a history segment to a config without [history] (docs/studies.md:
 // every override is applied, then the study is checked); half a segment is
 // refused at the command line. Run as an MPI singleton.
 TEST(cli, StudySetAddsTheSegmentOfAConfigWithoutHistory) {

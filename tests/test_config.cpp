@@ -1128,7 +1128,7 @@ TEST(StudyLoading, SolverMustSolveTheLoading) {
 }
 
 // load_config with the command line's overrides applies them all, then checks
-// (README): a file without [history] takes its segment from --set, a problem
+// (docs/studies.md): a file without [history] takes its segment from --set, a problem
 // is located where its key was set.
 TEST(StudyOverride, LoadConfigTakesTheHistoryFromOverrides) {
   const std::string ini = tmp().write("no_history.ini", "[grid]\nd = 1e-3\nR = 1\ntau = 2\n"

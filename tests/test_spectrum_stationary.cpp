@@ -473,7 +473,7 @@ TEST(Creep, ConvolutionWithTheRelaxationModulusIsTime) {
 }
 
 // ---------------------------------------------------------------------------
-// The friction maximum of the standard linear solid under load (README
+// The friction maximum of the standard linear solid under load (docs/physics.md
 // numbers): mu / (a0/R) against v tau1 / a0, a0 from the long-term G. Its peak
 // moves to lower v tau1 / a0 as G0/G grows and tends to the Kelvin bell's
 // (tau_K = tau1 G1 / G) as G1 -> infinity.

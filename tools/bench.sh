@@ -27,8 +27,8 @@
 # --quick      smoke run of a few seconds (short ladders, one call per scene)
 # --no-profile skip step 5
 # --publish    copy bench.md, bench.csv, history.csv, load.csv, work_precision.png
-#              and load_work_precision.png to tools/bench/, where the README's
-#              Performance section takes them from
+#              and load_work_precision.png to tools/bench/, where docs/performance.md
+#              takes them from
 #
 # Environment: BUILD_DIR=build-bench, OUT_DIR=out/bench (relative to the
 # repository root, or absolute), JOBS, CI (as tools/build.sh), SCRATCH (where
@@ -170,7 +170,7 @@ if ((profile)); then
   fi
 fi
 
-# --publish: what the README shows
+# --publish: what docs/performance.md shows
 if ((publish)); then
   cp "$OUT_DIR/bench.md" "$OUT_DIR/bench.csv" "$OUT_DIR/history.csv" "$OUT_DIR/load.csv" \
     "$OUT_DIR/work_precision.png" "$OUT_DIR/load_work_precision.png" tools/bench/

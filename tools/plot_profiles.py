@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
-"""The README's figure of stationary friction against velocity for the indenter
+"""The figure (docs/profiles.md) of stationary friction against velocity for the indenter
 profiles on the Kelvin foundation (docs/design.md, "Indenter profiles").
 
 From profile_friction.csv of mdrmap_spectrum_physics (part 7: closed forms and

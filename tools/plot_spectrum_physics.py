@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's figures of relaxation-spectrum physics, from the CSV files of
+"""The figures of relaxation-spectrum physics (docs/physics.md), from the CSV files of
 mdrmap_spectrum_physics (tools/physics/spectrum_physics.cpp).
 
     build/tools/physics/mdrmap_spectrum_physics --out OUT

@@ -34,6 +34,8 @@ PACKAGES=(
   python3-pip python3-venv python3-setuptools python3-wheel
   # profiling in tools/bench.sh; linting the job scripts in the tests
   valgrind shellcheck
+  # the user guide under docs/ (Sphinx, MyST Markdown, the furo theme; test docs_site)
+  python3-sphinx python3-myst-parser furo
 )
 SLURM_PACKAGES=(slurmctld slurmd slurm-client munge slurm-wlm-torque)
 if [[ "${MDRMAP_SLURM:-}" == 1 || ( -z "${MDRMAP_SLURM:-}" && "${CI:-}" == true ) ]]; then

@@ -1,7 +1,7 @@
 // mdrmap_spectrum_physics: what a relaxation spectrum does to MDR friction,
 // measured (issue 19 item 7; docs/design.md, "Materials with a relaxation
 // spectrum"). Prints one table per study and writes its CSV files into --out
-// DIR; tools/plot_spectrum_physics.py makes the README's figures from them.
+// DIR; tools/plot_spectrum_physics.py makes the figures of docs/physics.md.
 //
 //   mdrmap_spectrum_physics --out DIR [--pib FILE] [--part 1..7] [--rtol R]
 //                           [--healing-run 1..9] [--load-material 1..3]
