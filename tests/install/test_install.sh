@@ -15,8 +15,9 @@
 #   `pip install --no-build-isolation --no-index COPY` (offline), then the
 #   venv's console script `mdrmap` (--version, the step) and its `import
 #   mdrmap` (the same step, from the venv's site-packages, bit for bit).
-#   CMAKE_ARGS gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when ccache is on
-#   PATH; CMAKE_BUILD_PARALLEL_LEVEL defaults to 2.
+#   CMAKE_ARGS (unless set) gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when
+#   ccache is on PATH and -DMDRMAP_WERROR=ON when CI=true (as tools/build.sh);
+#   CMAKE_BUILD_PARALLEL_LEVEL defaults to 2.
 # Exits 0 when every check passes, 1 naming the first that fails.
 set -euo pipefail
 
@@ -106,20 +107,23 @@ install_pip() {
   local python=${4:?PYTHON} venv=$WORKDIR/venv src=$WORKDIR/src
   copy_source "$SRCDIR" "$src"
   "$python" -m venv --system-site-packages "$venv" || fail "$python -m venv failed"
-  if [[ -z "${CMAKE_ARGS:-}" ]] && command -v ccache >/dev/null; then
-    export CMAKE_ARGS=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+  if [[ -z "${CMAKE_ARGS:-}" ]]; then
+    CMAKE_ARGS=""
+    command -v ccache >/dev/null && CMAKE_ARGS="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
+    [[ "${CI:-}" == true ]] && CMAKE_ARGS+=" -DMDRMAP_WERROR=ON" # as tools/build.sh
+    export CMAKE_ARGS
   fi
   export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-2}
-  log "$venv/bin/python -m pip install --no-build-isolation --no-index $src" \
-    "(CMAKE_ARGS=${CMAKE_ARGS:-})"
-  "$venv/bin/python" -m pip install -v --no-cache-dir --no-build-isolation --no-index "$src" >"$WORKDIR/pip.log" 2>&1 ||
-    {
-      tail -n 40 "$WORKDIR/pip.log" >&2
-      fail "pip install failed (see $WORKDIR/pip.log)"
-    }
+  local pip=("$venv/bin/python" -m pip install -v --no-cache-dir --no-build-isolation --no-index)
+  log "${pip[*]} $src (CMAKE_ARGS=$CMAKE_ARGS)"
+  "${pip[@]}" "$src" >"$WORKDIR/pip.log" 2>&1 || {
+    tail -n 40 "$WORKDIR/pip.log" >&2
+    fail "pip install failed (see $WORKDIR/pip.log)"
+  }
   [[ -x "$venv/bin/mdrmap" ]] || fail "pip installed no console script $venv/bin/mdrmap"
   "$venv/bin/mdrmap" --version || fail "the console script mdrmap --version failed"
-  "$venv/bin/python" -c 'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
+  "$venv/bin/python" -c \
+    'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
     fail "import mdrmap in the venv does not load the installed package"
   check_step "$venv/bin/mdrmap" "$venv/bin/python"
   log "ok"
