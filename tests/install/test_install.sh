@@ -8,7 +8,9 @@
 #   then PREFIX/bin/mdrmap --version; a step run by PREFIX/bin/mdrmap and by
 #   the installed package (PYTHONPATH=PREFIX/lib/python3.X/*-packages) gives
 #   the same numbers bit for bit; the job scripts and tools are under
-#   PREFIX/share/mdrmap, and an installed map tool runs (--help) from there.
+#   PREFIX/share/mdrmap, an installed map tool runs (--help) from there, and
+#   the installed jobs/study.sbatch (no Slurm: mpirun -np 1, the 40 cases of
+#   jobs/examples/quick.ini) finds and runs PREFIX/bin/mdrmap.
 # pip: a copy of the source tree (git's tracked and untracked, not ignored
 #   files; no build directories), a venv made by PYTHON with
 #   --system-site-packages (numpy, setuptools, wheel from the system), and
@@ -85,6 +87,15 @@ install_cmake() {
   "$python" "$share/tools/map_summary.py" --help >"$WORKDIR/tool.txt" ||
     fail "the installed tools/map_summary.py --help failed"
   grep -q -i usage "$WORKDIR/tool.txt" || fail "the installed map_summary.py printed no usage"
+  # the installed job script, run outside a checkout, runs PREFIX/bin/mdrmap
+  if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+  CONFIG=$share/jobs/examples/quick.ini OUTPUT=$WORKDIR/quick.h5 NP=1 MDRMAP='' \
+    bash "$share/jobs/study.sbatch" >"$WORKDIR/job.log" 2>&1 ||
+    fail "the installed jobs/study.sbatch failed (see $WORKDIR/job.log)"
+  grep -q "running: .* $share/jobs/lib/../../../../bin/mdrmap study" "$WORKDIR/job.log" ||
+    fail "the installed jobs/study.sbatch did not run $prefix/bin/mdrmap (see $WORKDIR/job.log)"
+  grep -q "the map is complete" "$WORKDIR/job.log" ||
+    fail "the installed jobs/study.sbatch did not complete the map (see $WORKDIR/job.log)"
   log "ok"
 }
 
