@@ -66,9 +66,33 @@ class CMakeBuild(build_ext):
             raise RuntimeError("setup.py: CMake built no " + built + " (is it the extension for "
                                + sys.executable + "?)")
         shutil.copy2(built, core)
-        program_dir = os.path.join(os.path.dirname(core), "bin")
-        os.makedirs(program_dir, exist_ok=True)
-        shutil.copy2(os.path.join(build_dir, "src", "mdrmap"), os.path.join(program_dir, "mdrmap"))
+        program = self._program_paths()[0]
+        os.makedirs(os.path.dirname(program), exist_ok=True)
+        shutil.copy2(os.path.join(build_dir, "src", "mdrmap"), program)
+
+    # The program is an output besides the extension: built into build_lib,
+    # and (pip install -e, build_ext --inplace) copied into the source tree.
+    def _program_paths(self):
+        """(in build_lib, in the source tree) paths of mdrmap/bin/mdrmap."""
+        package_dir = self.get_finalized_command("build_py").get_package_dir("mdrmap")
+        return (os.path.join(self.build_lib, "mdrmap", "bin", "mdrmap"),
+                os.path.join(package_dir, "bin", "mdrmap"))
+
+    def copy_extensions_to_source(self):
+        super().copy_extensions_to_source()
+        built, inplace = self._program_paths()
+        os.makedirs(os.path.dirname(inplace), exist_ok=True)
+        self.copy_file(built, inplace, level=self.verbose)
+
+    def get_outputs(self):
+        return super().get_outputs() + [self._program_paths()[0]]
+
+    def get_output_mapping(self):
+        mapping = dict(getattr(super(), "get_output_mapping", dict)())
+        if self.inplace:
+            built, inplace = self._program_paths()
+            mapping[built] = inplace
+        return mapping
 
 
 setup(

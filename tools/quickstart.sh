@@ -36,7 +36,8 @@ MDRMAP="$BUILD_DIR/src/mdrmap"
 # The Python module, imported as a user would: PYTHONPATH=BUILD_DIR/python,
 # with the interpreter it was built for.
 if [[ "${MDRMAP_PYTHON:-ON}" != OFF ]]; then
-  python=$(sed -n 's/^Python_EXECUTABLE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt")
+  # (FindPython's cache entry; Python_EXECUTABLE itself when given with -D)
+  python=$(sed -n 's/^_\{0,1\}Python_EXECUTABLE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt" | tail -n 1)
   pythonpath=$(cd "$BUILD_DIR" && pwd)/python
   echo
   echo "== PYTHONPATH=$pythonpath ${python:-python3} -c 'import mdrmap'"

@@ -8,15 +8,18 @@
 #   then PREFIX/bin/mdrmap --version; a step run by PREFIX/bin/mdrmap and by
 #   the installed package (PYTHONPATH=PREFIX/lib/python3.X/*-packages) gives
 #   the same numbers bit for bit; the job scripts and tools are under
-#   PREFIX/share/mdrmap, and an installed map tool runs (--help) from there.
+#   PREFIX/share/mdrmap, an installed map tool runs (--help) from there, and
+#   the installed jobs/study.sbatch (no Slurm: mpirun -np 1, the 40 cases of
+#   jobs/examples/quick.ini) finds and runs PREFIX/bin/mdrmap.
 # pip: a copy of the source tree (git's tracked and untracked, not ignored
 #   files; no build directories), a venv made by PYTHON with
 #   --system-site-packages (numpy, setuptools, wheel from the system), and
 #   `pip install --no-build-isolation --no-index COPY` (offline), then the
 #   venv's console script `mdrmap` (--version, the step) and its `import
 #   mdrmap` (the same step, from the venv's site-packages, bit for bit).
-#   CMAKE_ARGS gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when ccache is on
-#   PATH; CMAKE_BUILD_PARALLEL_LEVEL defaults to 2.
+#   CMAKE_ARGS (unless set) gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when
+#   ccache is on PATH and -DMDRMAP_WERROR=ON when CI=true (as tools/build.sh);
+#   CMAKE_BUILD_PARALLEL_LEVEL defaults to 2.
 # Exits 0 when every check passes, 1 naming the first that fails.
 set -euo pipefail
 
@@ -84,6 +87,15 @@ install_cmake() {
   "$python" "$share/tools/map_summary.py" --help >"$WORKDIR/tool.txt" ||
     fail "the installed tools/map_summary.py --help failed"
   grep -q -i usage "$WORKDIR/tool.txt" || fail "the installed map_summary.py printed no usage"
+  # the installed job script, run outside a checkout, runs PREFIX/bin/mdrmap
+  if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
+  CONFIG=$share/jobs/examples/quick.ini OUTPUT=$WORKDIR/quick.h5 NP=1 MDRMAP='' \
+    bash "$share/jobs/study.sbatch" >"$WORKDIR/job.log" 2>&1 ||
+    fail "the installed jobs/study.sbatch failed (see $WORKDIR/job.log)"
+  grep -q "running: .* $share/jobs/lib/../../../../bin/mdrmap study" "$WORKDIR/job.log" ||
+    fail "the installed jobs/study.sbatch did not run $prefix/bin/mdrmap (see $WORKDIR/job.log)"
+  grep -q "the map is complete" "$WORKDIR/job.log" ||
+    fail "the installed jobs/study.sbatch did not complete the map (see $WORKDIR/job.log)"
   log "ok"
 }
 
@@ -106,20 +118,23 @@ install_pip() {
   local python=${4:?PYTHON} venv=$WORKDIR/venv src=$WORKDIR/src
   copy_source "$SRCDIR" "$src"
   "$python" -m venv --system-site-packages "$venv" || fail "$python -m venv failed"
-  if [[ -z "${CMAKE_ARGS:-}" ]] && command -v ccache >/dev/null; then
-    export CMAKE_ARGS=-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+  if [[ -z "${CMAKE_ARGS:-}" ]]; then
+    CMAKE_ARGS=""
+    command -v ccache >/dev/null && CMAKE_ARGS="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
+    [[ "${CI:-}" == true ]] && CMAKE_ARGS+=" -DMDRMAP_WERROR=ON" # as tools/build.sh
+    export CMAKE_ARGS
   fi
   export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-2}
-  log "$venv/bin/python -m pip install --no-build-isolation --no-index $src" \
-    "(CMAKE_ARGS=${CMAKE_ARGS:-})"
-  "$venv/bin/python" -m pip install -v --no-cache-dir --no-build-isolation --no-index "$src" >"$WORKDIR/pip.log" 2>&1 ||
-    {
-      tail -n 40 "$WORKDIR/pip.log" >&2
-      fail "pip install failed (see $WORKDIR/pip.log)"
-    }
+  local pip=("$venv/bin/python" -m pip install -v --no-cache-dir --no-build-isolation --no-index)
+  log "${pip[*]} $src (CMAKE_ARGS=$CMAKE_ARGS)"
+  "${pip[@]}" "$src" >"$WORKDIR/pip.log" 2>&1 || {
+    tail -n 40 "$WORKDIR/pip.log" >&2
+    fail "pip install failed (see $WORKDIR/pip.log)"
+  }
   [[ -x "$venv/bin/mdrmap" ]] || fail "pip installed no console script $venv/bin/mdrmap"
   "$venv/bin/mdrmap" --version || fail "the console script mdrmap --version failed"
-  "$venv/bin/python" -c 'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
+  "$venv/bin/python" -c \
+    'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
     fail "import mdrmap in the venv does not load the installed package"
   check_step "$venv/bin/mdrmap" "$venv/bin/python"
   log "ok"
