@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/metrics/analytic.hpp"
+#include "core/metrics/load_stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/mdr.hpp"
@@ -31,10 +32,11 @@ Case depth_case(std::vector<Segment> segments, double d = 1e-3, double R = 1.0, 
   return c;
 }
 
-Case load_case(std::vector<Segment> segments, long samples = 11) {
-  Case c = depth_case(std::move(segments), 1e-3, 1.0, 1.0, 1.0, samples);
+Case load_case(std::vector<Segment> segments, long samples = 11, double F0 = 16.0 / 3.0,
+               double R = 1.0) {
+  Case c = depth_case(std::move(segments), 1e-3, R, 1.0, 1.0, samples);
   c.loading.d = 0.0;
-  c.loading.F0 = 16.0 / 3.0; // a0 = 1
+  c.loading.F0 = F0; // a0 = 1 by default
   return c;
 }
 
@@ -74,10 +76,99 @@ TEST(Extremes, OutOfRangeScalesAreRefusedNamingTheirOption) {
       // under load the contact shrinks as 1/sqrt(zeta0): a1 = 1.6e-154 (never returned)
       {"under load a segment's W shrinks the contact to 1e-154", load_case({{5e307, 1.0}}),
        "history"},
+      // a0 = 0.72: 3 zeta0 overflowed, the bracket started at 0 and never grew (a hang)
+      {"under load W = 5e307 at a0 = 0.72", load_case({{5e307, 1.0}}, 11, 0.2, 10.0), "history"},
+      {"under load W = 7e307 at a0 = 0.72", load_case({{7e307, 1.0}}, 11, 0.2, 10.0), "history"},
+      // a hang too; with the bracket mended, zeta0 + hypot overflowed and the
+      // root a1 = 1.3 a0 of the elastic terms alone was taken (accepted)
+      {"under load W = 1e308 at a0 = 0.72", load_case({{1e308, 1.0}}, 11, 0.2, 10.0), "history"},
   };
   for (const Row& r : rows) {
     SCOPED_TRACE(r.label);
     EXPECT_EQ(refused_option(r.c), r.option);
+  }
+}
+
+/// The SLS of issue 32 (G = G1 = 1, tau1 = 1, no dashpot) at depth 0.1 on R = 10.
+Case sls_case(std::vector<Segment> segments, double v = 1.0) {
+  Case c = depth_case(std::move(segments), 0.1, 10.0, 0.0, v, 3);
+  c.rheology.branches = {{1.0, 1.0}};
+  return c;
+}
+
+Case with_profile(Case c, Profile p, double beta_or_A, double n = 0.0) {
+  c.indenter = Indenter{};
+  c.indenter.profile = p;
+  (p == Profile::Cone ? c.indenter.beta : c.indenter.A) = beta_or_A;
+  c.indenter.n = n;
+  c.loading.d = 0.01;
+  return c;
+}
+
+// The element row's number range (issue 32): beyond it w^2 overflowed into
+// rows of NaN with exit 0, a later segment ended in a root finder's "do not
+// bracket", a shift of 1e300 in "a free mode does not decay", and a cone of
+// 1e-300 degrees was blamed on R.
+TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
+  Case shifted = sls_case({{0.1, 1.0}});
+  shifted.rheology.branches = {{1.0, 1.0}, {1.0, 1e-5}};
+  shifted.rheology.aT = 1e300;
+  Case tiny_branch = sls_case({{0.1, 1.0}});
+  tiny_branch.rheology.branches = {{1.0, 1.0}, {1e-13, 1e-5}};
+  Case long_branch = sls_case({{0.1, 1.0}});
+  long_branch.rheology.branches = {{1.0, 1e200}};
+  Case long_dashpot = with_profile(depth_case({{0.1, 1.0}}), Profile::Cone, 10.0);
+  long_dashpot.rheology.tau = 1e200;
+  const struct {
+    const char* label;
+    Case c;
+    const char* option;
+  } rows[] = {
+      {"v0 = 1e155 (rows of NaN, exit 0)", sls_case({{0.1, 1.0}}, 1e155), "v"},
+      {"v0 = 1e-145", sls_case({{0.1, 1.0}}, 1e-145), "v"},
+      {"a segment at 1e155 (do not bracket)", sls_case({{0.0, 1.0}, {1e155, 1e-170}}), "history"},
+      {"aT = 1e300 (a free mode does not decay)", shifted, "aT"},
+      {"G2 = 1e-13 G0 without a dashpot", tiny_branch, "prony"},
+      {"tau1 = 1e200", long_branch, "prony"},
+      {"a cone's dashpot of 1e200", long_dashpot, "tau"},
+      {"cone of 1e-300 degrees (was blamed on R)",
+       with_profile(sls_case({{0.1, 1.0}}), Profile::Cone, 1e-300), "beta"},
+      {"power law of A = 1e200", with_profile(sls_case({{0.1, 1.0}}), Profile::Power, 1e200, 1.5),
+       "A"},
+      {"power law of n = 200", with_profile(sls_case({{0.1, 1.0}}), Profile::Power, 1.0, 200.0),
+       "n"},
+  };
+  for (const auto& r : rows) {
+    SCOPED_TRACE(r.label);
+    EXPECT_EQ(refused_option(r.c), r.option);
+  }
+  // the Kelvin parabola asked of the spectrum solver: the same limits
+  EXPECT_THROW(run_case(depth_case({{1e155, 1e-170}}), SolverKind::Spectrum, 1e-3), InvalidInput);
+}
+
+// At the edges of that range the row runs, finite: the SLS sliding at
+// v0 tau1 / a1 = 1e149 is the elastic contact of the glassy modulus G0 = 2,
+// F_N = 16/3 G0 a1^3 / R (a1 = sqrt(R d) = 1), at 1e-139 that of G = 1.
+TEST(Extremes, ElementRowRunsAtTheEdgesOfItsRange) {
+  const Case fast = sls_case({{1e149, 1e-150}}, 1e149);
+  ASSERT_EQ(refused_option(fast), "");
+  const RunResult r = run_case(fast, SolverKind::Auto, 1e-3);
+  ASSERT_TRUE(all_finite(r.series));
+  const double glassy = 16.0 / 3.0 * 2.0 / 10.0;
+  EXPECT_NEAR(r.series.FN.back(), glassy, 1e-3 * glassy);
+  const Case slow = sls_case({{1e-139, 1.0}}, 1e-139); // fully relaxed: G = 1
+  ASSERT_EQ(refused_option(slow), "");
+  const RunResult s = run_case(slow, SolverKind::Auto, 1e-3);
+  ASSERT_TRUE(all_finite(s.series));
+  EXPECT_NEAR(s.series.FN.back(), glassy / 2.0, 1e-3 * glassy);
+}
+
+// Under load at zeta0 -> infinity the viscous term carries the load:
+// alpha^2 zeta0 -> 4/3 (corrections ~ zeta0^-3/2), up to the largest double.
+TEST(Extremes, LoadedContactAtTheLargestSpeedsKeepsItsLimit) {
+  for (double z : {1e12, 6.93e307, 9.7e307, 1.38e308, 1.7976931348623157e308}) {
+    const double alpha = stationary_alpha(z);
+    EXPECT_NEAR(alpha * alpha * z, 4.0 / 3.0, 1e-13) << z;
   }
 }
 

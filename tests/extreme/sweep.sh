@@ -56,6 +56,10 @@ done
 add "depth sample time overflow" 0 "$DEPTH --tau 1 --history 0:1e306,1:1"
 add "depth 1e308 at a1 = 1" 2:history "--d 1 --R 1 --v 1 --tau 1 --history 1e308:1"
 add "load 5e307" 2:history "$LOAD --tau 1 --history 5e307:1"
+# issue 32: at a0 = 0.72 these ran for ever (3 zeta0 overflowed in the bracket)
+for W in 5e307 7e307 1e308; do
+  add "load $W at a0 0.72" 2:history "--F0 0.2 --R 10 --v 1 --tau 1 --history $W:1 --samples 5"
+done
 add "load hold 1e12 tau" any "$LOAD --tau 1 --history 0:1e12,1:1 --samples 11"
 add "load hold 1e18 tau" any "$LOAD --tau 1 --history 0:1e18,1:1 --samples 11"
 add "load hold 3e10 tau" any "$LOAD --tau 1 --history 0:3e10,1:1 --samples 11"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
@@ -13,10 +14,19 @@ namespace {
 
 // Left side minus 4/3 of the equation for alpha (see the header), written as
 // sums of non-negative terms: alpha - beta = 2 alpha z / (alpha + z + hypot).
+// Where z >= alpha the same divided through by z (hypot + z overflows near
+// the largest double).
 double residual(double alpha, double z) {
-  const double hyp = std::hypot(z, alpha);
-  const double beta = alpha * (alpha / (hyp + z));
-  const double diff = 2.0 * alpha * (z / (alpha + z + hyp));
+  double beta = 0.0, diff = 0.0;
+  if (z >= alpha) {
+    const double r = alpha / z, s = 1.0 + std::hypot(1.0, r);
+    beta = alpha * (r / s);
+    diff = 2.0 * alpha / (r + s);
+  } else {
+    const double hyp = std::hypot(z, alpha);
+    beta = alpha * (alpha / (hyp + z));
+    diff = 2.0 * alpha * (z / (alpha + z + hyp));
+  }
   const double sum = alpha + beta;
   return sum * sum * (2.0 * alpha - beta) / 3.0 + z * diff * sum - 4.0 / 3.0;
 }
@@ -27,13 +37,18 @@ double stationary_alpha(double zeta0) {
   if (!(zeta0 >= 0.0) || !std::isfinite(zeta0))
     throw std::invalid_argument("stationary_alpha: zeta0 must be finite and >= 0");
   if (zeta0 == 0.0) return 1.0;
-  // bracket around the better of the two limits
-  double lo = std::min(1.0, std::sqrt(4.0 / (3.0 * zeta0)));
+  // bracket around the better of the two limits (4/3 / zeta0, not 4 / (3
+  // zeta0): 3 zeta0 overflows above 6e307, and a zero start never grows)
+  double lo = std::min(1.0, std::sqrt(4.0 / 3.0 / zeta0));
   double hi = lo;
-  while (residual(lo, zeta0) > 0.0)
+  // residual(0) = -4/3 and residual(1) > 0: each loop ends within the
+  // exponent range (2100 halvings or doublings; the bound guards NaN only)
+  for (int i = 0; i < 2100 && residual(lo, zeta0) > 0.0; ++i)
     lo *= 0.5;
-  while (residual(hi, zeta0) < 0.0)
+  for (int i = 0; i < 2100 && residual(hi, zeta0) < 0.0; ++i)
     hi *= 2.0;
+  if (!(residual(lo, zeta0) <= 0.0) || !(residual(hi, zeta0) >= 0.0))
+    throw std::domain_error("stationary_alpha: no bracket at zeta0 = " + std::to_string(zeta0));
   if (lo == hi) return lo;
   std::uintmax_t iters = 200;
   const auto r =

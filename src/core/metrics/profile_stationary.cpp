@@ -6,17 +6,16 @@
 #include <stdexcept>
 #include <vector>
 
-#include <boost/math/quadrature/tanh_sinh.hpp>
 #include <boost/math/tools/toms748_solve.hpp>
 
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/metrics/profile_branches.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
 
-// Derivation: docs/design.md, "Indenter profiles". Every integral is split
-// at the tip x = 0, where g' of the cone jumps and |x|^(n-1) is not smooth,
-// so that tanh-sinh sees the kinks and the branches' boundary layers (width
-// lambda_k behind the leading edge and behind the tip) at its end points.
+// Derivation: docs/design.md, "Indenter profiles". The branches' integrals
+// (split into glassy part and remainder where that keeps the digits, each
+// piece between kinks and layers): profile_branches.hpp.
 
 namespace mdrmap {
 namespace {
@@ -30,13 +29,14 @@ struct Term {
 struct Contact {
   double n = 2.0, c = 1.0, a1 = 0.0, L = 0.0, G = 0.0;
   std::vector<Term> terms;
+  profile::BranchContact shape; // n, c, a1 and the evaluation budget of the branches
 };
 
 struct Edge {
   double a2, delta; // trailing edge and a1 - a2, each without cancellation
 };
 
-Contact make_contact(const Case& c, double a1, double w) {
+Contact make_contact(const Case& c, double a1, double w, profile::Budget& budget) {
   Contact k;
   k.n = c.indenter.exponent();
   k.c = c.indenter.coefficient();
@@ -45,6 +45,10 @@ Contact make_contact(const Case& c, double a1, double w) {
   k.G = c.rheology.G;
   for (const Branch& b : c.rheology.branches)
     if (w * b.tau > 0.0) k.terms.push_back({b.G, w * b.tau});
+  k.shape.n = k.n;
+  k.shape.c = k.c;
+  k.shape.a1 = a1;
+  k.shape.budget = &budget;
   return k;
 }
 
@@ -55,21 +59,12 @@ template <class F> double root(F f, double lo, double hi) {
   return 0.5 * (r.first + r.second);
 }
 
-template <class F> double integral(F f, double lo, double hi) {
-  if (!(hi > lo)) return 0.0;
-  thread_local boost::math::quadrature::tanh_sinh<double> rule; // grows its tables: per thread
-  return rule.integrate(f, lo, hi, 1e-13);
-}
-
 /// |g'| at distance y >= 0 from the tip: c n y^(n-1).
 double slope_mag(const Contact& k, double y) {
-  return k.n == 1.0 ? k.c : k.c * k.n * std::pow(y, k.n - 1.0);
+  return k.shape.slope_mag(y);
 }
 
-/// a1^n - (a1 - delta)^n without cancellation.
-double pow_diff(double a1, double delta, double n) {
-  return std::pow(a1, n) * -std::expm1(n * std::log1p(-delta / a1));
-}
+using profile::pow_diff;
 
 /// The Kelvin trailing edge: the root of a1^n - a2^n = L n a2^(n-1).
 Edge kelvin_edge(const Contact& k) {
@@ -99,30 +94,13 @@ void kelvin_brackets(const Contact& k, const Edge& e, double& N, double& X) {
       k.L * n * n * (std::pow(a1, 2.0 * n - 1.0) + std::pow(a2, 2.0 * n - 1.0)) / (2.0 * n - 1.0);
 }
 
-/// The stress r of a branch of length lambda at x: int exp(-(x - x')/lambda)
-/// (-g'(x')) dx' from the leading edge (the kernel below e^-40 dropped).
-double branch_stress(const Contact& k, double x, double lam) {
-  const double lo = std::max(-k.a1, x - 40.0 * lam);
-  double r = integral([&](double t) { return std::exp(-(x - t) / lam) * slope_mag(k, -t); }, lo,
-                      std::min(x, 0.0));
-  if (x > 0.0)
-    r -= integral([&](double t) { return std::exp(-(x - t) / lam) * slope_mag(k, t); },
-                  std::max(lo, 0.0), x);
-  return r;
-}
-
-/// sum_k G_k r_k(x).
-double branches(const Contact& k, double x) {
-  double s = 0.0;
-  for (const Term& t : k.terms)
-    s += t.G * branch_stress(k, x, t.lam);
-  return s;
-}
-
 /// p / 4 at x >= 0 of the contact (behind the tip: g' > 0), x = a1 - delta.
 double pressure_behind(const Contact& k, double x, double delta) {
   const double h = k.c * pow_diff(k.a1, delta, k.n); // d - g(x)
-  return k.G * (h - k.L * slope_mag(k, x)) + branches(k, x);
+  double p = k.G * (h - k.L * slope_mag(k, x));
+  for (const Term& t : k.terms)
+    p += t.G * profile::branch_stress(k.shape, t.lam, x, delta);
+  return p;
 }
 
 Edge spectrum_edge(const Contact& k) {
@@ -139,24 +117,20 @@ Edge spectrum_edge(const Contact& k) {
   return {x, a1 - x};
 }
 
-/// sum_k G_k int r_k over the contact, one integral per branch (the order
-/// of integration swapped): lambda int (-g'(x')) (1 - exp(-(a2 - x')/lambda)) dx'.
+/// sum_k G_k int r_k over the contact.
 double branch_normal(const Contact& k, const Edge& e) {
   double s = 0.0;
-  for (const Term& t : k.terms) {
-    auto kernel = [&](double x) { return -std::expm1(-(e.a2 - x) / t.lam); };
-    const double front =
-        integral([&](double x) { return slope_mag(k, -x) * kernel(x); }, -k.a1, 0.0);
-    const double back = integral([&](double x) { return slope_mag(k, x) * kernel(x); }, 0.0, e.a2);
-    s += t.G * t.lam * (front - back);
-  }
+  for (const Term& t : k.terms)
+    s += t.G * profile::branch_normal(k.shape, t.lam, e.a2);
   return s;
 }
 
-/// sum_k G_k int r_k (-g') over the contact: r_k by quadrature at each node.
+/// sum_k G_k int r_k (-g') over the contact.
 double branch_friction(const Contact& k, const Edge& e) {
-  return integral([&](double x) { return branches(k, x) * slope_mag(k, -x); }, -k.a1, 0.0) -
-         integral([&](double x) { return branches(k, x) * slope_mag(k, x); }, 0.0, e.a2);
+  double s = 0.0;
+  for (const Term& t : k.terms)
+    s += t.G * profile::branch_friction(k.shape, t.lam, e.a2, e.delta);
+  return s;
 }
 
 /// The forces of the contact; F_x (and mu) only where `friction` is asked.
@@ -175,8 +149,8 @@ State forces(const Contact& k, const Edge& e, bool friction = true) {
 }
 
 /// The general path at leading edge a1 (depth c a1^n).
-State at_edge(const Case& c, double a1, double w, bool friction = true) {
-  const Contact k = make_contact(c, a1, w);
+State at_edge(const Case& c, double a1, double w, profile::Budget& budget, bool friction = true) {
+  const Contact k = make_contact(c, a1, w, budget);
   State st = forces(k, k.terms.empty() ? kelvin_edge(k) : spectrum_edge(k), friction);
   st.d = k.c * std::pow(a1, k.n);
   return st;
@@ -212,10 +186,10 @@ double cone_kelvin_edge(const Case& c, double w) {
 }
 
 /// The leading edge of stationary sliding under load: F_N grows with a1.
-double load_edge(const Case& c, double w) {
+double load_edge(const Case& c, double w, profile::Budget& budget) {
   if (c.indenter.profile == Profile::Cone && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
   const double F0 = c.loading.F0;
-  auto f = [&](double a1) { return at_edge(c, a1, w, false).FN / F0 - 1.0; };
+  auto f = [&](double a1) { return at_edge(c, a1, w, budget, false).FN / F0 - 1.0; };
   double lo = c.a0(), hi = lo;
   for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
     lo *= 0.5;
@@ -236,14 +210,16 @@ double profile_stationary_depth(const Case& c, double w) {
   if (!c.loading.by_force())
     throw std::invalid_argument("profile_stationary_depth: the case needs a load F0 > 0");
   if (quadratic(c.indenter)) return parabola_stationary(as_parabola(c), w).d;
-  return c.indenter.g(load_edge(c, w));
+  profile::Budget budget;
+  return c.indenter.g(load_edge(c, w, budget));
 }
 
 State profile_stationary(const Case& c, double w) {
   check_velocity(w);
   if (quadratic(c.indenter)) return parabola_stationary(as_parabola(c), w);
-  const double a1 = c.loading.by_force() ? load_edge(c, w) : c.a1();
-  State st = at_edge(c, a1, w);
+  profile::Budget budget; // the whole state's: under load every trial edge charges it
+  const double a1 = c.loading.by_force() ? load_edge(c, w, budget) : c.a1();
+  State st = at_edge(c, a1, w, budget);
   if (!c.loading.by_force()) st.d = c.loading.d;
   return st;
 }
@@ -251,7 +227,8 @@ State profile_stationary(const Case& c, double w) {
 namespace profile_detail {
 State general_stationary(const Case& c, double w) {
   check_velocity(w);
-  State st = at_edge(c, c.a1(), w);
+  profile::Budget budget;
+  State st = at_edge(c, c.a1(), w, budget);
   st.d = c.loading.d;
   return st;
 }

@@ -9,6 +9,7 @@
 #include "core/metrics/load_stationary.hpp"
 #include "core/metrics/profile_stationary.hpp"
 #include "core/model/params.hpp"
+#include "core/model/row_limits.hpp"
 
 namespace mdrmap {
 
@@ -131,6 +132,18 @@ void check_velocities(const Case& c, double a) {
     throw velocity_problem(h, fastest, "gives " + p + "; rescale the units");
 }
 
+/// "with R gives a contact radius sqrt(R d) = " and the like: the words
+/// before the contact radius of the case's loading and profile.
+std::string contact_radius_words(const Case& c) {
+  const bool load = c.loading.by_force();
+  if (c.indenter.parabolic())
+    return load ? "with R and G gives a Hertz radius a0 = "
+                : "with R gives a contact radius sqrt(R d) = ";
+  const std::string p = c.indenter.profile == Profile::Cone ? "beta" : "n and A";
+  return load ? "with G and the profile's " + p + " gives a Hertz radius a0 = "
+              : "with the profile's " + p + " gives a contact radius a1 = ";
+}
+
 // Derived scales must be representable: the contact radius a (a1 = sqrt(R d),
 // or a0 under load) within [1e-75, 1e75], the force scale 16 G d^2 (d0 =
 // a0^2 / R under load), w tau / a for every velocity of the history, and the
@@ -140,10 +153,10 @@ void check_scales(const Case& c) {
   const bool load = c.loading.by_force();
   const char* opt = load ? "F0" : "d";
   const double a = c.edge_scale();
+  const std::string radius = contact_radius_words(c);
   if (!(a > 0.0) || !std::isfinite(a))
-    throw InvalidInput(opt, std::string(load ? "with R and G gives a Hertz radius a0 = "
-                                             : "with R gives a contact radius sqrt(R d) = ") +
-                                format_number(a) + " that is not representable; rescale the units");
+    throw InvalidInput(opt,
+                       radius + format_number(a) + " that is not representable; rescale the units");
   const double d = load ? c.indenter.g(a) : c.loading.d;
   const double force_scale = d * d * c.rheology.G * 16.0;
   if (!std::isfinite(force_scale))
@@ -154,9 +167,7 @@ void check_scales(const Case& c) {
     throw InvalidInput(opt, "with G gives a force scale 16 G d^2 = " + format_number(force_scale) +
                                 " that underflows (below 1e-280); rescale the units");
   if (!(a >= kMinRadius) || !(a <= kMaxRadius))
-    throw InvalidInput(opt, std::string(load ? "with R and G gives a Hertz radius a0 = "
-                                             : "with R gives a contact radius sqrt(R d) = ") +
-                                format_number(a) +
+    throw InvalidInput(opt, radius + format_number(a) +
                                 " outside [1e-75, 1e75], where its powers overflow or underflow; "
                                 "rescale the units");
   if (const std::string p = stationary_contact_problem(c, 0.0); !p.empty())
@@ -218,8 +229,10 @@ const Case& kelvin_bound(const Case& c, Case& storage) {
 void validate(const Case& c) {
   check_groups(c);
   check_parameters(c);
+  check_profile_limits(c.indenter);
   validate(c.rheology);
   check_history(c.history);
+  if (uses_element_row(c)) check_element_row(c);
   Case storage;
   check_scales(kelvin_bound(c, storage));
 }

@@ -151,7 +151,7 @@ const std::vector<ParamSpec>& case_parameters() {
       {"beta", "DEG", Part::Indenter, Dim::Number, 0.0, false, 90.0, true, nullptr, 0.0,
        "angle between the cone's surface and the plane, in degrees (--profile cone)", get_beta,
        set_beta, "cone", false},
-      {"n", "N", Part::Indenter, Dim::Number, 1.0, true, kInf, true, nullptr, 0.0,
+      {"n", "N", Part::Indenter, Dim::Number, 1.0, true, 100.0, true, nullptr, 0.0,
        "exponent of the power-law profile f(r) = A r^n (--profile power)", get_n, set_n, "power"},
       {"A", "A", Part::Indenter, Dim::Number, 0.0, false, kInf, true, nullptr, 0.0,
        "coefficient of the power-law profile f(r) = A r^n, in length^(1-n) (--profile power)",

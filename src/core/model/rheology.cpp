@@ -6,6 +6,7 @@
 
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/row_limits.hpp"
 
 namespace mdrmap {
 
@@ -63,6 +64,7 @@ void validate(const Rheology& r) {
                                  " overflows; a shifted time must be finite");
   if (!std::isfinite(r.G0()))
     throw InvalidInput("prony", "gives a glassy modulus G + sum Gk that overflows");
+  if (!r.branches.empty()) check_spectrum_limits(r); // a spectrum: the element row solves it
 }
 
 } // namespace mdrmap

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/model/row_limits.hpp"
 #include "core/solvers/baseline.hpp"
 #include "core/solvers/exact.hpp"
 #include "core/solvers/load.hpp"
@@ -117,11 +118,14 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
                    const RunControl& control) {
   validate_rtol(rtol);
   require_handled(kind, given.get());
+  // the Kelvin parabola asked of the spectrum solver: its limits too (validate
+  // checked them where the case needs the row anyway)
+  if (kind == SolverKind::Spectrum && !uses_element_row(given.get()))
+    check_element_row(given.get());
   if (given.get().rheology.aT != 1.0) return run_case(given.shifted(), kind, rtol, control);
   const CheckedCase& checked = given;
   const Case& c = checked.get();
-  if (kind == SolverKind::Spectrum ||
-      (kind == SolverKind::Auto && (!c.rheology.kelvin() || !c.indenter.parabolic()))) {
+  if (kind == SolverKind::Spectrum || (kind == SolverKind::Auto && uses_element_row(c))) {
     SpectrumOptions o;
     o.rtol = rtol;
     o.control = &control;
