@@ -255,5 +255,26 @@ TEST(DISABLED_SpectrumLoadBench, MillisecondsPerCase) {
   }
 }
 
+// The work budget under load (issue 32): a branch 1e12 times stiffer than
+// the foundation takes ~1e8 sub-steps per element and step, and the whole
+// step was charged at its end (7.7e9 units at once, 160 s before the refusal
+// of a 1e9 budget). Charged element by element, the case stops within one
+// element's work past its budget.
+TEST(SpectrumLoadBudget, AStiffBranchStopsWithinItsBudget) {
+  Case c;
+  c.indenter.R = 10.0;
+  c.rheology = material(1.0, 0.0, {{1e12, 1.0}});
+  c.loading.F0 = 0.05;
+  c.history.v0 = 1.0;
+  c.history.segments = {Segment{0.1, 3.0}};
+  c.sampling.samples = 5;
+  RunControl small;
+  small.max_work = 1e6;
+  SpectrumOptions o;
+  o.control = &small;
+  EXPECT_THROW(run_spectrum(c, o), CaseAbandoned);
+  EXPECT_LT(small.spent(), 1.1e6);
+}
+
 } // namespace
 } // namespace mdrmap

@@ -64,6 +64,19 @@ bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
 
 namespace {
 
+// The fixed-step baseline runs at one resolution and reports its estimate:
+// like the adaptive solvers, it refuses a case whose estimate is above rtol
+// (it was reported done with an estimate of 18 times rtol).
+RunResult within_rtol(RunResult r, double rtol) {
+  if (!(r.info.error_estimate <= rtol))
+    throw CaseAbandoned(r.info.solver + ": the error estimate " +
+                        format_number(r.info.error_estimate) + " is above rtol " +
+                        format_number(rtol) +
+                        " at its fixed resolution; the case cannot meet rtol with this solver "
+                        "(use --solver auto or mdr)");
+  return r;
+}
+
 // Load control (docs/design.md, "Load control"): auto and mdr run the load
 // solver; exact refuses (it solves depth control only).
 RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
@@ -79,7 +92,7 @@ RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunCo
     // the fixed-step check solver at its default resolution (rtol does not set it)
     LoadBaselineOptions o;
     o.control = &control;
-    return run_load_baseline(c, o);
+    return within_rtol(run_load_baseline(c, o), rtol);
   }
   case SolverKind::Exact:
   case SolverKind::Spectrum:
@@ -143,10 +156,12 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
     return run_mdr(c, o);
   }
   case SolverKind::Baseline: {
-    BaselineOptions o; // first order: a1/dx ~ 1/rtol, within what a fixed-step run can afford
-    o.cells_per_a1 = std::clamp(std::ceil(0.7 / rtol), 16.0, 4000.0);
+    // first order: its estimate is ~4/(a1/dx) on a step (0.056 at a1/dx 70, 3e-3 at 700), so
+    // a1/dx = 5/rtol, within what a fixed-step run can afford
+    BaselineOptions o;
+    o.cells_per_a1 = std::clamp(std::ceil(5.0 / rtol), 16.0, 4000.0);
     o.control = &control;
-    return run_baseline(c, o);
+    return within_rtol(run_baseline(c, o), rtol);
   }
   case SolverKind::Spectrum: // taken above
     break;

@@ -329,7 +329,7 @@ double Row::past_tip(double p_ahead) const {
 }
 
 State Row::measure(Edge edge) const {
-  control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  control_.charge(unit_ * static_cast<double>(jhi_ - jlo_ + 1), name_);
   ++measures_;
   State st;
   st.a1 = a1_now();

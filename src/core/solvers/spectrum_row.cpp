@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -16,6 +17,15 @@ constexpr int kMaxEvents = 8;           // contact switches of one element withi
 constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
 constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
 constexpr long long kPast = 5; // nodes kept past the window: four free ones predict an edge there
+// The row's memory (window, its snapshot, the log of steps and their
+// coefficient sets) is bounded: a case that would need more fails at once
+// instead of growing to gigabytes (32 terms under load: 1.5 GB).
+constexpr double kMaxBytes = 128e6;
+
+/// Bytes a step's coefficient sets hold.
+double coef_bytes(const StepCoef& c) {
+  return 8.0 * static_cast<double>(c.e.size() + c.a.size() + c.b.size() + c.modal.size());
+}
 
 // Root of f on [0, hi] with f(0) > 0 > f(hi); the end itself when the sign
 // condition fails there (rounding at a tangency).
@@ -75,6 +85,13 @@ Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, doubl
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8 + static_cast<std::size_t>(kPast);
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
+  // work units per element sub-step: its cost grows with the branches (one
+  // unit ~ 15-20 ns, as an element update of the Kelvin solvers)
+  unit_ = 1.0 + 0.25 * static_cast<double>(law.free_dim());
+  // the window and the snapshot the load balance keeps of it
+  window_bytes_ = 2.0 * (2.0 * cells + 8.0 + static_cast<double>(kPast)) *
+                  (8.0 * static_cast<double>(stride_) + static_cast<double>(sizeof(Mode)));
+  if (!(window_bytes_ <= kMaxBytes)) too_much_memory();
   y_.assign(cap_ * stride_, 0.0);
   mode_.assign(cap_, Mode::Fresh);
   // switches need a force or gap beyond rounding: a point that let go at a
@@ -103,6 +120,8 @@ void Row::restore(const Snapshot& s) {
   set_position(s.P);
   jlo_ = s.jlo;
   jhi_ = s.jhi;
+  for (std::size_t i = s.log; i < log_.size(); ++i)
+    log_bytes_ -= entry_bytes(i);
   log_.resize(s.log);
   seams_.erase(
       std::remove_if(seams_.begin(), seams_.end(), [&](const Seam& m) { return m.entry >= s.log; }),
@@ -131,6 +150,7 @@ void Row::start_stationary(double v0) {
   w_ = v0;
   dd_ = 0.0;
   log_.clear();
+  log_bytes_ = 0.0;
   tracers_.clear();
   seams_.clear();
   rest_.to = 0;
@@ -141,11 +161,12 @@ void Row::start_stationary(double v0) {
 }
 
 void Row::change_velocity(double w, double dd) {
-  control_.charge(static_cast<double>(jhi_ - jlo_ + 1), name_);
+  control_.charge(unit_ * static_cast<double>(jhi_ - jlo_ + 1), name_);
   add_seam(log_.size(), w);
   w_ = w;
   dd_ = dd;
   log_.push_back(Entry{-1.0, w, P_, nullptr, d_, dd});
+  logged();
   for (long long j = jlo_; j <= jhi_; ++j)
     change_material(mode_[slot(j)], &y_[slot(j) * stride_], xi(j), w, d_, dd);
 }
@@ -231,18 +252,43 @@ void Row::advance(double dt, double d1, double dd1) {
   // sub-steps: the contact's travel at the smaller a1 of the step
   log_.push_back(
       Entry{dt, w_, P_, step_grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k});
+  logged();
   const Grid& g = *log_.back().g;
-  const long before = updates_;
   for (long long j = jlo_; j <= jhi_; ++j) {
     const std::size_t sl = slot(j);
     if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
+    const long before = updates_;
     step_material(mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, Path{d0, s - k * dt, k});
+    // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
+    control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
   }
   if (d1 > 0.0) {
     d_ = d1;
     dd_ = dd1;
   }
-  control_.charge(static_cast<double>(updates_ - before), name_);
+}
+
+double Row::entry_bytes(std::size_t i) const {
+  const Entry& e = log_[i];
+  const bool own = e.g && (i == 0 || log_[i - 1].g != e.g); // (consecutive entries share)
+  return static_cast<double>(sizeof(Entry)) +
+         (own ? static_cast<double>(sizeof(Grid)) + 32.0 + coef_bytes(e.g->first) +
+                    coef_bytes(e.g->full)
+              : 0.0);
+}
+
+void Row::logged() {
+  log_bytes_ += entry_bytes(log_.size() - 1);
+  if (!(window_bytes_ + log_bytes_ <= kMaxBytes)) too_much_memory();
+}
+
+void Row::too_much_memory() const {
+  throw CaseAbandoned(std::string(name_) + ": the element row would hold more than " +
+                      format_number(kMaxBytes / 1e6) + " MB (" +
+                      std::to_string(static_cast<long>(2.0 * aw_ / dx_)) + " elements of " +
+                      std::to_string(stride_) + " values and " + std::to_string(log_.size()) +
+                      " steps of its history); the case is too long or too stiff for this "
+                      "solver at this rtol");
 }
 
 // One material point over a step of dt at w, from its state at 0 (or fresh)
@@ -450,7 +496,7 @@ Row::Material Row::replay(long double J) const {
   Material mt = t.m;
   bool gone = t.gone;
   done += carry(mt, gone, J, t.n, log_.size());
-  control_.charge(static_cast<double>(done), name_);
+  control_.charge(unit_ * static_cast<double>(done), name_);
   return mt;
 }
 

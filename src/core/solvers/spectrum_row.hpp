@@ -313,6 +313,11 @@ private:
   mutable long measures_ = 0;
   mutable std::vector<double> scratch_x_, scratch_v_; // a part's points while its forces are summed
   double psi_tiny_ = 0.0, p_tiny_ = 0.0;              // gap and force below rounding
+  double unit_ = 1.0;                                 // work units per element sub-step
+  double window_bytes_ = 0.0, log_bytes_ = 0.0;       // memory held (bounded)
+  double entry_bytes(std::size_t i) const;            // log entry i with the grid it owns
+  void logged(); // counts the last entry; throws past the bound
+  [[noreturn]] void too_much_memory() const;
 };
 
 } // namespace mdrmap::spectrum
