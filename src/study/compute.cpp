@@ -93,7 +93,8 @@ void fill_jump(Filler& f, const io::RowSlots& S, const Case& c, const State& aft
 void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const RunResult& r) {
   const Series& x = r.series;
   const io::RowSlots& S = L.slots();
-  const std::vector<EventMetrics> ev = event_metrics(c, x, r.transients);
+  const std::vector<EventMetrics> ev =
+      event_metrics(c, x, r.transients, r.info.error_estimate, r.probes);
   Filler f(L, row.values);
   f.put(S.error_estimate, r.info.error_estimate);
   f.state(S.results_pre, x.pre);
