@@ -136,6 +136,8 @@ std::vector<EventMetrics> event_metrics(const Case& c, const Series& series,
     if (!transient) {
       e.a = e.a_minus_b; // the whole change is direct
       e.b = std::isnan(lr) ? kNaN : 0.0;
+    } else if (!jump && tr.ref_at_end) {
+      e.a = e.b = kNaN; // no peak within the segment: no direct effect to read
     } else {
       e.a = ((jump ? e.mu_after : e.mu_peak) - e.mu_before) / lr;
       e.b = e.a - e.a_minus_b;

@@ -46,7 +46,8 @@ struct EventMetrics {
   double overshoot = 0.0;
   /// Direct effect (mu_direct - mu(t_k-)) / ln(w_k / w_(k-1)), mu_direct =
   /// mu(t_k+) with a parallel dashpot, mu_peak without one; NaN if a
-  /// velocity is 0 or they are equal. Where the segment shows no transient
+  /// velocity is 0 or they are equal, or without a dashpot if the peak is
+  /// the segment's end (peak_at_end). Where the segment shows no transient
   /// the whole change is direct: a = a - b, b = 0.
   double a = 0.0;
   /// (mu_ss(w_k) - mu_ss(w_(k-1))) / ln(w_k / w_(k-1)); NaN likewise.
