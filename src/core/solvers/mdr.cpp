@@ -55,7 +55,8 @@ ResolutionRun run_once(const Case& c, double cells, double phase, const MdrOptio
   else
     row.init_stationary(c.history.v0, 0.0L);
   ResolutionRun out;
-  const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio};
+  // (the companions of the estimate, at other phases, are not probed)
+  const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != opt.phase};
   out.series = sample_history(
       c, [&](double w) { row.change_velocity(w); },
       [&](double dt, double) { row.advance(dt); }, // exact: no steps needed between samples

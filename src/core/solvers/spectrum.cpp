@@ -38,7 +38,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
-  const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio};
+  // (the companions of the estimate, at other phases, are not probed: their
+  // series serve the estimate only)
+  const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
   out.series = sample_history(
       c, [&](double w) { row.change_velocity(w); },
       [&](double dt, double) {
