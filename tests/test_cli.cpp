@@ -2338,3 +2338,27 @@ TEST(cli, StationaryHelpListsEveryOptionWithItsRange) {
 }
 
 } // namespace
+
+namespace {
+
+// Issue 32: a velocity step on a spectrum without a parallel dashpot printed
+// a = -0 (mu is continuous across the change: 0 over a negative log) and
+// D_c = nan at every step. Now the direct effect is read from the peak after
+// the change (docs/design.md, "Event metrics"), and no number is printed as
+// -0.
+TEST(cli, SpectrumStepHasADirectEffectAndNoMinusZero) {
+  for (const char* v1 : {"0.1", "10"}) {
+    SCOPED_TRACE(v1);
+    const Outcome r =
+        run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "0", "--prony", "9:1,3:10",
+                    "--v", "1", "--v1", v1, "--samples", "5", "--rtol", "1e-3"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out.find("=-0 "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("=-0\n"), std::string::npos) << r.out;
+    const Parsed p = parse_output(r.out);
+    ASSERT_EQ(p.events.size(), 1U);
+    EXPECT_NE(to_double(p.events[0].at("a")), 0.0);
+  }
+}
+
+} // namespace
