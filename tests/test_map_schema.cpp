@@ -250,15 +250,18 @@ TEST_F(MapSchema, PerEventDatasetsAreNByKWithDimensionEvent) {
       EXPECT_EQ(x, io::kFillValue);
     }
   }
-  // a, b, a_minus_b, d_c; at fixed depth also the seed's jump estimate and its
-  // residuals (4 quantities each: undefined for a relaxation spectrum)
-  EXPECT_EQ(fill, layout.by_force() ? 4u : 12u);
-  for (const char* p : {"events/a", "events/b", "events/a_minus_b", "events/d_c"}) {
+  // a, b, a_minus_b, d_c, healing; at fixed depth also the seed's jump
+  // estimate and its residuals (4 quantities each: undefined for a relaxation
+  // spectrum)
+  EXPECT_EQ(fill, layout.by_force() ? 5u : 13u);
+  for (const char* p :
+       {"events/a", "events/b", "events/a_minus_b", "events/d_c", "events/healing"}) {
     Handle d = io::make_dataset(H5Dopen2(f(), p, H5P_DEFAULT), p);
     EXPECT_TRUE(io::has_attr(d.id(), "_FillValue")) << p;
   }
-  for (const char* p : {"events/t", "events/mu_peak", "events/mu_end", "analytic/mu_ss",
-                        "residuals/mu_end", "cases/w", "cases/T"}) {
+  for (const char* p :
+       {"events/t", "events/mu_peak", "events/mu_max", "events/mu_min", "events/mu_end",
+        "analytic/mu_ss", "residuals/mu_end", "cases/w", "cases/T"}) {
     EXPECT_EQ(shape(f(), p), std::vector<hsize_t>({N, K})) << p;
   }
   for (const char* p : {"results/mu_pre", "analytic/mu_pre", "analytic/mu_jump",

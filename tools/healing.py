@@ -8,7 +8,8 @@ Each run slides stationarily at v0 (zeta0 = v0 tau / a0, a0 the Hertz radius
 of F0; a1 the leading edge at fixed depth: mdrmap's scales of the case, from
 its `# scales` line, simcsv.case_scales), holds (velocity 0) for t_hold, then
 slides again at v0 for max(20 tau, 20 a0 / v0), each segment sampled on a log
-scale (6 decades). dmu_peak = the largest mu of the reslide minus the
+scale (6 decades). dmu_peak = the largest mu of the reslide (its event's
+mu_max, from the solver's solution) minus the
 stationary mu at v0 (the '# pre' line), in units of a0/R. The tool prints
 dmu_peak per hold, its change per decade of hold time between neighbouring
 holds, and the least-squares slope d(dmu_peak)/d(log10 t_hold) over all holds.
@@ -44,8 +45,13 @@ def default_holds():
 
 
 def peak(run):
-    """(dmu_peak, slip of the peak) of the reslide (segment 1), scaled by a0/R and a0."""
+    """(dmu_peak, slip of the peak) of the reslide (segment 1), scaled by a0/R and
+    a0: its event's mu_max and slip_max (the largest mu on the solver's solution,
+    not of the samples), or, from an mdrmap before them, the largest sample."""
     a, _, mu_ref = run.scales()
+    event = run.events[1] if len(run.events) > 1 else {}
+    if "mu_max" in event:
+        return (event["mu_max"] - run.pre["mu"]) / mu_ref, event["slip_max"] / a
     seg = run.segment(1)
     mu, t = run.col["mu"][seg], run.col["t"][seg]
     i = int(mu.argmax())

@@ -7,7 +7,7 @@ The map must be a slide-hold-slide study: stationary sliding at v, segment 1 a
 hold (/cases/w[:, 0] = 0) of duration T1 = /cases/T[:, 0], segment 2 the
 reslide (w2 > 0), e.g. jobs/examples/shs_holds.ini. For every done case
 
-    dmu_peak = events/mu_peak[:, 1] - analytic/mu_pre
+    dmu_peak = events/mu_max[:, 1] - analytic/mu_pre  (the reslide's largest mu)
 
 (the sample of the reslide farthest from the stationary friction at w2, minus
 the stationary friction at v), in units of the map's friction scale
@@ -16,7 +16,7 @@ the leading edge), is
 plotted against T1 / tau (tau: /scales/time) on a log axis, one curve per value of the other
 parameters that vary (labelled with zeta0 = v tau / a0, or zeta = v tau / a1,
 and whatever else differs). The right panel shows the slip of the peak
-(events/slip_peak[:, 1]) in units of a0 (a1): /scales/length.
+(events/slip_max[:, 1]) in units of a0 (a1): /scales/length.
 
 Prints, per curve, dmu_peak per hold with its change per decade of hold time
 from the previous hold, and the least-squares slope d(dmu_peak)/d(log10 T1)
@@ -70,11 +70,14 @@ def read(args, sel, np):
     f, m = open_map2(args.map, np, PROG)
     with f:
         check_shs(m, args.map, np)
-        for need in ("events/mu_peak", "events/slip_peak", "analytic/mu_pre"):
+        # the reslide's largest mu (events/mu_max; in maps without it mu_peak,
+        # which was the sample farthest from mu_ss)
+        which = "max" if "events/mu_max" in f else "peak"
+        for need in (f"events/mu_{which}", f"events/slip_{which}", "analytic/mu_pre"):
             if need not in f:
                 raise UserError(f"{args.map} is an incomplete mdrmap map (no /{need})")
-        peak = read_masked(f["events/mu_peak"]).reshape(m["n"], m["K"])[:, 1]
-        slip = read_masked(f["events/slip_peak"]).reshape(m["n"], m["K"])[:, 1]
+        peak = read_masked(f[f"events/mu_{which}"]).reshape(m["n"], m["K"])[:, 1]
+        slip = read_masked(f[f"events/slip_{which}"]).reshape(m["n"], m["K"])[:, 1]
         mu_pre = read_masked(f["analytic/mu_pre"])
     keep, notes = select_cases(m, sel, np)
     done, time = m["status"] == 1, m["scales"]["time"]
@@ -160,7 +163,7 @@ def report(m, rows):
             per = "" if j == 0 else \
                 f"{(y[j] - y[j - 1]) / math.log10(x[j] / x[j - 1]):12.5g}" if x[j] > x[j - 1] else ""
             print(f"  {x[j]:>10.4g}  {y[j]:>12.6g}  {per:>12}  {int(i):>5}")
-    print(f"dmu_peak = events/mu_peak[:, 1] - analytic/mu_pre in units of {a_name}/R "
+    print(f"dmu_peak = events/mu_max[:, 1] - analytic/mu_pre in units of {a_name}/R "
           f"(/scales/friction); slope: least squares of dmu_peak against log10(T1/tau)")
 
 

@@ -5,7 +5,9 @@ mdrmap-map/2 grid study over two of its grid axes.
 
 Four panels for event K (default 0: the change at t = 0 from v to w1; event k
 is the change at the start of segment k + 1): the direct effect a, the
-evolution b, a - b (events/a, b, a_minus_b; docs/design.md "Event metrics"),
+evolution b, a - b (events/a, b, a_minus_b; docs/design.md "Event metrics":
+with a parallel dashpot a is the jump at the change, without one (tau = 0, a
+spectrum) it is read from the peak after the change, and D_c from there),
 each in the map's scale for its /schema unit (/scales/friction: a0/R under
 load, a1/R at fixed depth, for a, b, a - b; /scales/length: a0 or a1, for
 D_c). `--unscaled` plots the map's values as they are. Colours of a, b and
@@ -16,8 +18,9 @@ values, the longer on x); an axis is drawn logarithmically when /grid marks it
 so (attribute `log`) or its values are geometric. Every other grid axis with
 more than one value must be fixed with `--select AXIS=VALUE` (the grid value
 nearest to VALUE is taken, and the tool says which) unless it has one value.
-Undefined values (the fill value: a hold, equal velocities, a deviation that
-does not decay to 1/e within the segment) are drawn blank (white) and counted,
+Undefined values (the fill value: a hold, equal velocities, no transient,
+a peak that is the segment's end, a deviation that does not decay to 1/e
+within the segment) are drawn blank (white) and counted,
 and so are cases not done.
 
 Prints a table per panel: how many cells are defined, undefined and not done,

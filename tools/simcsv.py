@@ -98,7 +98,9 @@ def read_csv(path, np):
     case = {k: number(v, f"{path}: {k}") for k, v in case_text.items()
             if k not in ("history", "spacing")}
     pre = {k: number(v, f"{path}: pre {k}") for k, v in fields(pre_lines[0]).items()}
-    events = [{k: number(v, f"{path}: event {k}") for k, v in fields(ln).items()}
+    # (every field a number, but D_c_undefined: why D_c is nan, a word)
+    events = [{k: v if k == "D_c_undefined" else number(v, f"{path}: event {k}")
+               for k, v in fields(ln).items()}
               for ln in comments if ln.startswith("# event ")]
     try:
         data = np.array([[float(x) for x in ln.split(",")] for ln in body[1:]], dtype=float)

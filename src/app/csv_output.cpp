@@ -56,6 +56,7 @@ void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
   std::string line = "# event k=" + std::to_string(k);
   for (const auto& [name, value] : event_fields(e))
     line += std::string(" ") + name + "=" + format_double(value);
+  if (e.d_c_undefined != nullptr) line += std::string(" D_c_undefined=") + e.d_c_undefined;
   std::fprintf(out, "%s\n", line.c_str());
 }
 
@@ -84,6 +85,7 @@ std::string scales_line(const Case& c) {
 
 std::string format_double(double x) {
   if (std::isnan(x)) return "nan";
+  if (x == 0.0) x = 0.0; // never "-0"
   char buf[64];
   const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
   return std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0U);

@@ -51,7 +51,8 @@
 
 namespace mdrmap::app {
 
-/// `%.17g`: round-trips every finite double; NaN prints as "nan" (never "-nan").
+/// `%.17g`: round-trips every finite double; NaN prints as "nan" (never
+/// "-nan"), -0 as "0".
 std::string format_double(double x);
 
 /// A history as "W1:T1,W2:T2,...", each number with 17 significant digits.

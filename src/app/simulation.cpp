@@ -56,7 +56,7 @@ Simulation simulate(const CaseInput& in, const RunControl& control) {
   rec.info = res.info;
   rec.wall_seconds = wall;
   rec.c = in.c;
-  rec.events = event_metrics(in.c, res.series, res.transients);
+  rec.events = event_metrics(in.c, res.series, res.transients, res.info.error_estimate, res.probes);
   add_reference_error(in, res, rec);
   out.series = std::move(res.series);
   return out;
@@ -69,6 +69,12 @@ std::vector<Field> event_fields(const EventMetrics& e) {
       {"w_after", e.w_after},
       {"mu_before", e.mu_before},
       {"mu_after", e.mu_after},
+      {"mu_max", e.mu_max},
+      {"t_max", e.t_max},
+      {"slip_max", e.slip_max},
+      {"mu_min", e.mu_min},
+      {"t_min", e.t_min},
+      {"slip_min", e.slip_min},
       {"mu_peak", e.mu_peak},
       {"t_peak", e.t_peak},
       {"slip_peak", e.slip_peak},
@@ -80,6 +86,7 @@ std::vector<Field> event_fields(const EventMetrics& e) {
       {"a", e.a},
       {"a_minus_b", e.a_minus_b},
       {"b", e.b},
+      {"healing", e.healing},
   };
 }
 

@@ -47,9 +47,11 @@ Simulation simulate(const CaseInput& in, const RunControl& control = RunControl{
 /// A named number of a record.
 using Field = std::pair<const char*, double>;
 
-/// The fields of the `# event` line after k, in its order: t, w_before,
-/// w_after, mu_before, mu_after, mu_peak, t_peak, slip_peak, mu_end,
-/// mu_ss_before, mu_ss_after, D_c, overshoot, a, a_minus_b, b.
+/// The numbers of the `# event` line after k, in its order: t, w_before,
+/// w_after, mu_before, mu_after, mu_max, t_max, slip_max, mu_min, t_min,
+/// slip_min, mu_peak, t_peak, slip_peak, mu_end, mu_ss_before, mu_ss_after,
+/// D_c, overshoot, a, a_minus_b, b, healing (EventMetrics; where D_c is
+/// undefined the line adds D_c_undefined=REASON, EventMetrics::d_c_undefined).
 std::vector<Field> event_fields(const EventMetrics& e);
 
 /// The fields of the `# pre` line: FN, Fx, mu, a2; under load also d, a1.

@@ -69,6 +69,13 @@ void RowLayout::resolve_slots() {
   s.mu_peak = at("events/mu_peak");
   s.t_peak = at("events/t_peak");
   s.slip_peak = at("events/slip_peak");
+  s.mu_max = at("events/mu_max");
+  s.t_max = at("events/t_max");
+  s.slip_max = at("events/slip_max");
+  s.mu_min = at("events/mu_min");
+  s.t_min = at("events/t_min");
+  s.slip_min = at("events/slip_min");
+  s.healing = at("events/healing");
   s.a = at("events/a");
   s.b = at("events/b");
   s.a_minus_b = at("events/a_minus_b");
@@ -140,26 +147,44 @@ void RowLayout::add_events() {
   });
   add("events/mu_before", "number",
       "friction coefficient just before the change (the previous segment's last sample)", true);
+  for (const char* which : {"max", "min"}) {
+    const std::string m = which;
+    add("events/mu_" + m, "number",
+        std::string(m == "max" ? "largest" : "smallest") +
+            " friction coefficient within the segment (from the solution, not the output "
+            "instants)",
+        true);
+    add("events/t_" + m, "time", "time of mu_" + m + " since the change", true);
+    add("events/slip_" + m, "length", "slip of mu_" + m + " since the change", true);
+  }
   add("events/mu_peak", "number",
-      "the segment's extreme friction coefficient: the value farthest from its stationary value "
-      "(from the solution, not the output instants)",
+      "the extremum on the side of the change: mu_max after a rise, mu_min after a drop or into "
+      "a hold; mu just after the change where the segment shows no transient (within the error "
+      "estimate)",
       true);
   add("events/t_peak", "time", "time of mu_peak since the change", true);
   add("events/slip_peak", "length", "slip of mu_peak since the change", true);
+  add("events/healing", "number",
+      "static healing of a reslide after a hold: mu_max - mu_ss at the velocity before the "
+      "hold; undefined for any other segment",
+      true, true);
   for_each_quantity([&](const Quantity& q) {
     add(std::string("events/") + q.name + "_end", q.unit,
         std::string(q.meaning) + " at the segment's end (its last sample)", true);
   });
   add("events/a", "number",
-      "direct effect (mu_after - mu_before) / ln(w / w_before); undefined across a hold", true,
-      true);
+      "direct effect (mu_direct - mu_before) / ln(w / w_before), mu_direct = mu_after with a "
+      "parallel dashpot, mu_peak without one; undefined across a hold",
+      true, true);
   add("events/b", "number", "evolution effect a - (a - b); undefined across a hold", true, true);
   add("events/a_minus_b", "number",
       "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold", true, true);
   add("events/d_c", "length",
-      "slip over which |mu - mu_ss(w)| first falls to 1/e of its value after the change; "
-      "undefined during a hold, when it does not fall that far within the segment, or when the "
-      "transient overshoots mu_ss(w) by more than 1/e of that value",
+      "slip over which |mu - mu_ss(w)| first falls to 1/e of its value at the reference point "
+      "(the change with a parallel dashpot, the peak without one), counted from there; "
+      "undefined during a hold, without a transient, when the peak is the segment's end, when "
+      "it does not fall that far within the segment, or when the transient overshoots mu_ss(w) "
+      "by more than 1/e of that value",
       true, true);
   add("events/overshoot", "number",
       "largest excursion of mu beyond mu_ss(w) on the side opposite to mu just after the change, "

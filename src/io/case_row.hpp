@@ -44,6 +44,8 @@ struct RowSlots {
   std::size_t error_estimate = 0, wall_seconds = 0;
   PerQuantity results_pre{}, analytic_pre{}, residuals_pre{};
   std::size_t event_t = 0, mu_before = 0, mu_peak = 0, t_peak = 0, slip_peak = 0;
+  std::size_t mu_max = 0, t_max = 0, slip_max = 0, mu_min = 0, t_min = 0, slip_min = 0;
+  std::size_t healing = 0;                          ///< may be undefined (kFillValue)
   std::size_t a = 0, b = 0, a_minus_b = 0, d_c = 0; ///< may be undefined (kFillValue)
   std::size_t overshoot = 0;
   PerQuantity events_after{}, events_end{}, analytic_ss{}, residuals_end{};

@@ -85,6 +85,7 @@ py::list events(const app::SimulateRecord& rec) {
     e["k"] = k;
     for (const auto& [name, value] : app::event_fields(rec.events[k]))
       e[name] = value;
+    if (const char* why = rec.events[k].d_c_undefined) e["D_c_undefined"] = why; // (as the CSV)
     out.append(std::move(e));
   }
   return out;

@@ -59,6 +59,13 @@ void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, const S
   f.put(S.mu_peak, e.mu_peak, k);
   f.put(S.t_peak, e.t_peak, k);
   f.put(S.slip_peak, e.slip_peak, k);
+  f.put(S.mu_max, e.mu_max, k);
+  f.put(S.t_max, e.t_max, k);
+  f.put(S.slip_max, e.slip_max, k);
+  f.put(S.mu_min, e.mu_min, k);
+  f.put(S.t_min, e.t_min, k);
+  f.put(S.slip_min, e.slip_min, k);
+  f.put(S.healing, defined_or_fill(e.healing), k);
   f.state(S.events_end, e.end, k);
   f.put(S.a, defined_or_fill(e.a), k);
   f.put(S.b, defined_or_fill(e.b), k);
@@ -93,7 +100,8 @@ void fill_jump(Filler& f, const io::RowSlots& S, const Case& c, const State& aft
 void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const RunResult& r) {
   const Series& x = r.series;
   const io::RowSlots& S = L.slots();
-  const std::vector<EventMetrics> ev = event_metrics(c, x, r.transients);
+  const std::vector<EventMetrics> ev =
+      event_metrics(c, x, r.transients, r.info.error_estimate, r.probes);
   Filler f(L, row.values);
   f.put(S.error_estimate, r.info.error_estimate);
   f.state(S.results_pre, x.pre);

@@ -25,7 +25,8 @@ def test_simulate_takes_fn_as_f0():
     assert a.load and b.load
     for name in ("t", "segment", "FN", "Fx", "mu", "a2", "d", "a1"):
         assert np.array_equal(getattr(a, name), getattr(b, name)), name
-    assert a.events == b.events and a.pre == b.pre and a.case == b.case
+    assert str(a.events) == str(b.events)  # (nan != nan)
+    assert a.pre == b.pre and a.case == b.case
     assert a.case["F0"] == 0.1 and "FN" not in a.case
     # FN of the result is the measured force, which load control holds at F0
     assert a.pre["FN"] == pytest.approx(0.1, rel=1e-12)

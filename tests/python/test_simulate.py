@@ -63,6 +63,9 @@ def check_equal(exe, kw):
     for mine, theirs in zip(r.events, events):
         assert mine.keys() == theirs.keys()
         for key, text in theirs.items():
+            if key == "D_c_undefined":  # (a word: why D_c is nan)
+                assert mine[key] == text
+                continue
             assert same(float(mine[key]), float(text)), key
     assert list(r.pre) == list(comments["pre"])
     for key, text in comments["pre"].items():

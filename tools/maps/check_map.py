@@ -8,7 +8,7 @@ or mdrmap-map/1 (names, shapes, types), the root provenance attributes, that
 status holds only -1/0/1, that no value is NaN or infinite, and that done
 cases carry a positive normal force. For mdrmap-map/2 also: /scales (length,
 depth, force, friction, time); the fill value
-(9.969209968386869e36) appears only in events/{a,b,a_minus_b,d_c}, which carry
+(9.969209968386869e36) appears only in events/{a,b,a_minus_b,d_c,healing}, which carry
 it as their attribute _FillValue; /timeseries/segment numbers the segments;
 every failed case has a message in /failures. With --complete, also that no
 case is pending. Exits 0 when the map is valid, 1 otherwise, printing one
@@ -51,11 +51,13 @@ ROOT_ATTRS2 = ["mdrmap_schema", "n_cases", "segments", "samples", "loading", "pr
                "git_commit", "created_utc", "command_line", "mpi_size", "units"]
 EVENTS = ["t", "FN_after", "Fx_after", "mu_after", "a2_after", "mu_before", "mu_peak", "t_peak",
           "slip_peak", "FN_end", "Fx_end", "mu_end", "a2_end", "a", "b", "a_minus_b", "d_c"]
-FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c"}
+# the extrema and the healing of a reslide (issue 32): in maps written since
+EXTREMA = ["mu_max", "t_max", "slip_max", "mu_min", "t_min", "slip_min", "healing"]
+FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c", "events/healing"}
 SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/map-schema.md)
 
 
-def expected_datasets2(n, k, s, load, timeseries, indenter=("R",)):
+def expected_datasets2(n, k, s, load, timeseries, indenter=("R",), extrema=True):
     """`load`: the name of the prescribed load's /cases column (F0, or FN in a
     map written before it was named F0), or None at fixed depth; `indenter`:
     the profile's columns (R of the parabola, beta of the cone, n and A of a
@@ -77,7 +79,7 @@ def expected_datasets2(n, k, s, load, timeseries, indenter=("R",)):
         for x in q:
             d[f"analytic/{x}_jump"] = ((n,), "f8")
             d[f"residuals/{x}_jump"] = ((n,), "f8")
-    for m in EVENTS + (["d_end", "a1_end"] if load else []):
+    for m in EVENTS + (["d_end", "a1_end"] if load else []) + (EXTREMA if extrema else []):
         d[f"events/{m}"] = ((n, k), "f8")
     if timeseries:
         for x in ["t"] + q:
@@ -158,7 +160,8 @@ def check2(f, complete, expect_failed):
         problems.append(f"root attribute loading is {loading!r} but /cases has "
                         f"{load or 'd'}")
     indenter = [c for c in ("R", "beta", "n", "A") if f"cases/{c}" in f] or ["R"]
-    check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f, indenter), problems)
+    check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f, indenter,
+                                          "events/mu_max" in f), problems)
     status = check_grid_status(f, n, problems)
     done = status == 1
     if "results/FN_pre" in f and np.any(f["results/FN_pre"][()][done] <= 0):

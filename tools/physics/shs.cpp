@@ -57,7 +57,7 @@ Healing shs(const Case& base, double v0, double t_hold, double rtol) {
   h.d_hold = s.d[n - 1], h.a1_hold = s.a1[n - 1];
   h.err = res.info.error_estimate;
   reslide_peak(s, n, t_hold, h);
-  h.mu_peak_events = event_metrics(c, s, res.transients).at(1).mu_peak;
+  h.mu_peak_events = event_metrics(c, s, res.transients, h.err, res.probes).at(1).mu_peak;
   return h;
 }
 

@@ -16,65 +16,78 @@ double parabola(const double* t, const double* f, double x) {
 
 } // namespace
 
-/// A deviation |mu(0+) - mu_ss| at or below this fraction of |mu_ss| is the
-/// rounding of a solver that lands on the stationary state (a rise out of
-/// stationary sliding at fixed depth, a cone's plateau on the Kelvin
-/// foundation): no transient, whatever the noise after it shows.
-constexpr double kRoundingDeviation = 1e-12;
-
-TransientTracker::TransientTracker(double mu_ss, double mu0)
-    : mu_ss_(mu_ss), side_(mu0 >= mu_ss ? 1.0 : -1.0), dev0_(std::abs(mu0 - mu_ss)) {
-  if (dev0_ <= kRoundingDeviation * std::abs(mu_ss)) dev0_ = 0.0;
+TransientTracker::TransientTracker(double mu_ss, double mu0, Reference ref, double direction)
+    : mu_ss_(mu_ss), ref_(ref), direction_(direction >= 0.0 ? 1.0 : -1.0) {
   add(0.0, mu0);
 }
 
-// x holds the extremum of s * y over the points before the newest one (their
-// count: last_n): complete its right neighbour, or take the newest point.
-void TransientTracker::offer(Extremum& x, double s, int last_n) {
+// x holds the extremum of s * (mu - offset) over the points before the newest
+// one: complete its right neighbour, or take the newest point.
+bool TransientTracker::offer(Extremum& x, double s, double offset) const {
   const P& now = last_[2];
   if (x.n == 2) {
     x.at[2] = now;
     x.n = 3;
   }
-  if (s * now.y > x.value) {
-    x.value = s * now.y;
-    x.at[0] = last_[1];
-    x.at[1] = now;
-    x.n = last_n == 0 ? 1 : 2;
-  }
+  if (!(s * (now.mu - offset) > x.value)) return false;
+  x.value = s * (now.mu - offset);
+  x.at[0] = last_[1];
+  x.at[1] = now;
+  x.n = count_ == 1 ? 1 : 2;
+  return true;
+}
+
+void TransientTracker::new_reference() {
+  ref_point_ = last_[2];
+  side_ = ref_point_.mu >= mu_ss_ ? 1.0 : -1.0;
+  dev_ = std::abs(ref_point_.mu - mu_ss_);
+  beyond_ = Extremum{};
+  t_decay_ = Transient::kNaN;
 }
 
 void TransientTracker::add(double t, double mu) {
-  const int before = count_;
   last_[0] = last_[1];
   last_[1] = last_[2];
-  last_[2] = P{t, (mu - mu_ss_) * side_};
+  last_[2] = P{t, mu};
   ++count_;
-  offer(peak_near_, 1.0, before);
-  offer(peak_far_, -1.0, before);
-  const double level = dev0_ / std::exp(1.0);
-  if (!std::isnan(t_decay_) || before == 0 || !(dev0_ > 0.0) || last_[2].y > level) return;
-  // the first point at or below 1/e: the crossing lies after the previous one
-  // (on the parabola through the three latest points once there are three)
+  const bool new_max = offer(max_, 1.0, 0.0), new_min = offer(min_, -1.0, 0.0);
+  if (count_ == 1 || (ref_ == Reference::Peak && (direction_ > 0.0 ? new_max : new_min))) {
+    new_reference();
+    return;
+  }
+  offer(beyond_, -side_, mu_ss_);
+  find_crossing();
+}
+
+// The first point at or below 1/e of the reference's deviation: the crossing
+// lies after the previous one (on the parabola through the three latest
+// points once there are three).
+void TransientTracker::find_crossing() {
+  const double level = dev_ / std::exp(1.0);
   const P a = last_[1], b = last_[2];
+  const double ya = side_ * (a.mu - mu_ss_), yb = side_ * (b.mu - mu_ss_);
+  if (!std::isnan(t_decay_) || !(dev_ > 0.0) || yb > level) return;
   double lo = a.t, hi = b.t;
-  if (before >= 2) {
-    const double ts[3] = {last_[0].t, a.t, b.t}, fs[3] = {last_[0].y, a.y, b.y};
+  if (count_ >= 3) {
+    const double ts[3] = {last_[0].t, a.t, b.t};
+    const double fs[3] = {side_ * (last_[0].mu - mu_ss_), ya, yb};
     for (int i = 0; i < 60; ++i) {
       const double mid = 0.5 * (lo + hi);
       (parabola(ts, fs, mid) > level ? lo : hi) = mid;
     }
     t_decay_ = 0.5 * (lo + hi);
   } else {
-    t_decay_ = a.t + (a.y - level) / (a.y - b.y) * (b.t - a.t);
+    t_decay_ = a.t + (ya - level) / (ya - yb) * (b.t - a.t);
   }
 }
 
-double TransientTracker::vertex(const Extremum& x, double s, double* t) {
+// The extremum's value s * (mu - offset), at the vertex of the parabola
+// through it and its neighbours where that lies beyond it.
+double TransientTracker::vertex(const Extremum& x, double s, double offset, double* t) {
   *t = x.at[1].t;
   if (x.n < 3) return x.value;
   const double ts[3] = {x.at[0].t, x.at[1].t, x.at[2].t};
-  const double fs[3] = {s * x.at[0].y, x.value, s * x.at[2].y};
+  const double fs[3] = {s * (x.at[0].mu - offset), x.value, s * (x.at[2].mu - offset)};
   const double d0 = ts[1] - ts[0], d2 = ts[1] - ts[2];
   const double den = d0 * (fs[1] - fs[2]) - d2 * (fs[1] - fs[0]);
   if (!(den > 0.0)) return x.value; // flat or not concave: the point itself
@@ -88,13 +101,15 @@ double TransientTracker::vertex(const Extremum& x, double s, double* t) {
 
 Transient TransientTracker::result() const {
   Transient r;
-  double t_near = 0.0, t_far = 0.0;
-  const double near = vertex(peak_near_, 1.0, &t_near), far = vertex(peak_far_, -1.0, &t_far);
-  const bool far_wins = far > near;
-  r.mu_peak = mu_ss_ + side_ * (far_wins ? -far : near);
-  r.t_peak = far_wins ? t_far : t_near;
+  r.mu_max = vertex(max_, 1.0, 0.0, &r.t_max);
+  r.mu_min = -vertex(min_, -1.0, 0.0, &r.t_min);
+  if (ref_ == Reference::Peak) r.t_ref = direction_ > 0.0 ? r.t_max : r.t_min;
+  r.dev_ref = dev_;
+  r.ref_at_end = ref_ == Reference::Peak && count_ > 1 && ref_point_.t == last_[2].t;
   r.t_decay = t_decay_;
-  r.overshoot = dev0_ > 0.0 && far > 0.0 ? far / dev0_ : 0.0;
+  double t_beyond = 0.0;
+  const double beyond = beyond_.n > 0 ? vertex(beyond_, -side_, mu_ss_, &t_beyond) : 0.0;
+  r.overshoot = dev_ > 0.0 && beyond > 0.0 ? beyond / dev_ : 0.0;
   return r;
 }
 

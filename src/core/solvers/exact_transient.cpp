@@ -49,15 +49,16 @@ Transient ExactSolution::transient(std::size_t k, double T) const {
   const SegmentStart& seg = starts_[k];
   const double mu_ss = seg.at_cap.mu;
   Transient r;
-  if (!(c_.rheology.tau > 0.0) || seg.at_cap_throughout) {
-    r.mu_peak = mu_ss; // stationary throughout
-    return r;
-  }
+  r.mu_max = r.mu_min = mu_ss; // stationary throughout
+  if (!(c_.rheology.tau > 0.0) || seg.at_cap_throughout) return r;
   if (std::isnan(seg.start_edge)) at(k, 0.0); // (fills the cache: the first sample did)
   const Edge e0{seg.start_edge, seg.start_a1_minus_edge, seg.start_at_cap};
-  r.mu_peak = e0.at_cap ? mu_ss : analytic::contact_forces(c_, e0.e, e0.a1_minus_e, seg.w).mu;
-  const double dev0 = r.mu_peak - mu_ss;
+  const double mu0 =
+      e0.at_cap ? mu_ss : analytic::contact_forces(c_, e0.e, e0.a1_minus_e, seg.w).mu;
+  r.mu_max = r.mu_min = mu0;
+  const double dev0 = mu0 - mu_ss;
   if (e0.at_cap || dev0 == 0.0) return r;
+  r.dev_ref = std::abs(dev0);
   // the edges reached within the segment: up to the edge at its end (the cap
   // once the front got there; w > 0)
   // (the walks of the samples may have found the cap earlier: a tighter bracket)
@@ -100,18 +101,15 @@ Transient ExactSolution::transient(std::size_t k, double T) const {
     return v - sg * mu_ss;
   };
   double t_near = 0.0, t_far = 0.0;
-  const double near = extremum(1.0, &t_near);
-  // an excursion beyond mu_ss above the rounding of mu
-  const double floor = 1e-12 * std::max(std::abs(mu_ss), std::abs(r.mu_peak));
-  double far = -*std::min_element(Y, Y + n);
-  if (far > floor) far = extremum(-1.0, &t_far);
-  if (far > near) {
-    r.mu_peak = mu_ss - s * far;
-    r.t_peak = t_far;
-  } else {
-    r.mu_peak = mu_ss + s * near;
-    r.t_peak = t_near;
-  }
+  const double near = extremum(1.0, &t_near), far = extremum(-1.0, &t_far);
+  // (near: the extremum on mu(0+)'s side of mu_ss; far: on the other side)
+  const double mu_near = mu_ss + s * near, mu_far = mu_ss - s * far;
+  r.mu_max = s > 0.0 ? mu_near : mu_far;
+  r.t_max = s > 0.0 ? t_near : t_far;
+  r.mu_min = s > 0.0 ? mu_far : mu_near;
+  r.t_min = s > 0.0 ? t_far : t_near;
+  // (an excursion beyond mu_ss above the rounding of mu)
+  const double floor = 1e-12 * std::max(std::abs(mu_ss), std::abs(mu0));
   r.overshoot = far > floor ? far / std::abs(dev0) : 0.0;
   // the first grid edge at or below 1/e, and the crossing before it
   const double level = std::abs(dev0) / std::exp(1.0);

@@ -54,6 +54,17 @@ double credited(const Case& c, const RunAtResolution& once, double cells, double
 
 } // namespace
 
+double shortest_time(const Case& c, double a1) {
+  double t = std::numeric_limits<double>::infinity();
+  for (const Segment& seg : c.history.segments)
+    if (seg.w > 0.0) t = std::min(t, a1 / seg.w);
+  if (c.history.v0 > 0.0) t = std::min(t, a1 / c.history.v0);
+  if (c.rheology.tau > 0.0) t = std::min(t, c.rheology.tau);
+  for (const Branch& b : c.rheology.branches)
+    t = std::min(t, b.tau);
+  return t;
+}
+
 double companion_phase(double phase) {
   return std::fmod(phase + 0.381966, 1.0);
 }
@@ -80,6 +91,7 @@ RunResult refine(const Case& c, const Refinement& r, const RunAtResolution& once
       est += floor;
     }
     res.series = std::move(fine.series);
+    res.probes = std::move(fine.probes);
     res.info.error_estimate = est;
     res.info.cells_per_a1 = cells;
     res.info.elements = fine.elements;

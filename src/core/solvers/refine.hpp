@@ -5,7 +5,9 @@
 // estimate, and refine until it is below rtol. Shared by the element-row
 // solvers (mdr; spectrum can call it the same way): they differ only in how
 // one run goes, where they start and how fine they may go.
+#include <algorithm>
 #include <functional>
+#include <vector>
 
 #include "core/model/case.hpp"
 #include "core/solvers/result.hpp"
@@ -15,9 +17,10 @@ namespace mdrmap {
 /// One run of a solver at one resolution and element phase.
 struct ResolutionRun {
   Series series;
-  long elements = 0; ///< elements held at once
-  long steps = 0;    ///< time steps taken
-  long updates = 0;  ///< element state updates
+  std::vector<Probes> probes; ///< one per segment where the solver probes (sample_history)
+  long elements = 0;          ///< elements held at once
+  long steps = 0;             ///< time steps taken
+  long updates = 0;           ///< element state updates
 };
 
 /// The samples of one run of an element-row solver over the case's history:
@@ -43,6 +46,71 @@ Series sample_history(const Case& c, Change change, Advance advance, Measure mea
     }
   }
   return s;
+}
+
+/// The shortest time scale of a case at fixed depth a1 (the travel time
+/// a1 / w of its sliding segments, tau and the branches' tau_k): the first
+/// probe at kFirstProbe of it, then ratio kProbeRatio (parabolas through three
+/// probes place an extremum's value to ~1e-4 of its rise).
+inline constexpr double kFirstProbe = 1e-2, kProbeRatio = 0.1;
+double shortest_time(const Case& c, double a1);
+
+/// The instants after a change at which a stepping solver probes its
+/// solution for the event metrics (RunResult::probes): t_1 = first, then
+/// t_(i+1) = t_i + max(ratio t_i, first) to the segment's end, fixed by the
+/// segment and not by the output instants (docs/design.md, "Event metrics").
+struct ProbeRule {
+  double first = 0.0;
+  double ratio = 0.0;
+  bool off = false; ///< no probes (a segment without a change)
+  double next(double t) const { return t + std::max(ratio * t, first); }
+};
+
+/// sample_history, and between the output instants the probes of `rule(k)`
+/// for segment k: advance to each, measure() there into probes[k] (with
+/// mu(0+) and the segment's end, which every sampling has).
+template <class Change, class Advance, class Measure, class Rule>
+Series sample_history(const Case& c, Change change, Advance advance, Measure measure, Rule rule,
+                      std::vector<Probes>& probes) {
+  probes.assign(c.history.size(), Probes{});
+  Probes* p = nullptr; // the segment's (none before the first change: pre)
+  std::size_t k = 0;
+  double prev = 0.0, next = 0.0, T = 0.0;
+  ProbeRule r;
+  auto change_k = [&](double w) {
+    change(w);
+    if (p != nullptr) ++k;
+    p = &probes[k];
+    r = rule(k);
+    if (c.history.before(k) == w) r.off = true; // no change: the samples suffice
+    T = c.history.segments[k].T;
+    prev = 0.0;
+    next = r.next(0.0);
+  };
+  auto advance_k = [&](double dt, double w) {
+    const double target = prev + dt;
+    for (; !r.off && next < target; next = r.next(next)) {
+      advance(next - prev, w);
+      prev = next;
+      p->t.push_back(next);
+      p->mu.push_back(measure().mu);
+    }
+    advance(target - prev, w);
+    prev = target;
+  };
+  auto measure_k = [&] {
+    const State st = measure();
+    if (p == nullptr || r.off) return st;
+    if (prev == next)
+      next = r.next(next);
+    else if (prev != 0.0 && prev != T)
+      return st;                                         // an output instant only
+    if (!p->t.empty() && p->t.back() == prev) return st; // (the end twice: no samples between)
+    p->t.push_back(prev);
+    p->mu.push_back(st.mu);
+    return st;
+  };
+  return sample_history(c, change_k, advance_k, measure_k);
 }
 
 /// Runs the solver once at resolution `cells` (a1/dx) with element phase
@@ -78,7 +146,7 @@ double companion_phase(double phase);
 
 /// Runs `once` at r.cells (and the companion at r.cells / 2, companion_phase;
 /// with observed_order, where it decides, a third at r.cells / 4) and refines
-/// while adaptive and the estimate is above r.rtol: the series of
+/// while adaptive and the estimate is above r.rtol: the series and probes of
 /// the finest run and its RunInfo (solver, rtol, error_estimate,
 /// cells_per_a1, elements; steps, element_updates of all runs; refinements).
 /// `c` is the case the estimate measures the series on (case_error). Throws

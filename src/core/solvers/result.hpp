@@ -29,6 +29,10 @@ struct RunResult {
   /// output instants: core/metrics/transient.hpp); empty where the solver
   /// gives only its samples (the event metrics then read those).
   std::vector<Transient> transients;
+  /// Or one per segment, the solution at instants fixed by the segment (a
+  /// stepping solver's: core/solvers/refine.hpp, ProbeRule), which the event
+  /// metrics read in place of the samples; empty where the solver has none.
+  std::vector<Probes> probes;
   RunInfo info;
 };
 

@@ -38,13 +38,16 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
+  // (the companions of the estimate, at other phases, are not probed: their
+  // series serve the estimate only)
+  const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
   out.series = sample_history(
       c, [&](double w) { row.change_velocity(w); },
       [&](double dt, double) {
         row.renumber();
         row.advance(dt);
       },
-      [&] { return row.measure(); });
+      [&] { return row.measure(); }, [&](std::size_t) { return probe; }, out.probes);
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
@@ -183,10 +186,18 @@ public:
       h = n > 1.0 ? left / n : left;
       if (!step(h)) continue;
       t_seg += h;
+      if (probes != nullptr) { // (the state the balance accepted: measured last)
+        probes->t.push_back(t_seg);
+        probes->mu.push_back(at_.mu);
+      }
       left = n > 1.0 ? left - h : 0.0;
     }
   }
   double t_min = 0.0;
+  /// Where every accepted step's end and its mu go (the event metrics'
+  /// probes: the steps do not depend on the samples but where they cut
+  /// them), or nowhere.
+  Probes* probes = nullptr;
 
 private:
   bool step(double h) {
@@ -201,7 +212,8 @@ private:
     auto f = [&](double d1) {
       row_.restore(snap_);
       row_.advance(h, d1, slope.a * d1 + slope.b);
-      return row_.measure(edge).FN - F0;
+      at_ = row_.measure(edge);
+      return at_.FN - F0;
     };
     // (on a segment's first step from the rate just after the change: a
     // dashpot's balance there; from d0 alone the cone at zeta0 2.3 after a
@@ -212,7 +224,8 @@ private:
     double x = guess, fx = f(x);
     balance(f, x, fx, guess, d0);
     edge = spectrum::Edge::Confirmed;
-    fx = row_.measure(edge).FN - F0;
+    at_ = row_.measure(edge);
+    fx = at_.FN - F0;
     balance(f, x, fx, x, d0);
     if (n_ >= kOrder) { // the predictor's miss against eps^3 d (see StepRule)
       // (at least 100 times the balance's own noise, and never below the
@@ -296,6 +309,7 @@ private:
   spectrum::Row& row_;
   double cells_, eps_, first_, tol_, ftol_;
   spectrum::Row::Snapshot snap_;
+  State at_; ///< the row measured at the last depth tried
   static constexpr std::size_t kOrder = 3;
   std::size_t n_ = 0;
   double t_[4] = {}, d_[4] = {}, k_ = 0.0;
@@ -334,11 +348,20 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   run.t_min = geo.t_min;
   double t_seg = 0.0; // since the segment's start
   ResolutionRun out;
+  out.probes.assign(c.history.size(), Probes{});
+  std::size_t k = 0;
   out.series = sample_history(
       c,
       [&](double w) {
         run.change(w);
         t_seg = 0.0;
+        run.probes = nullptr; // (no change: the samples suffice)
+        if (c.history.before(k) != w) {
+          run.probes = &out.probes[k];
+          run.probes->t.push_back(0.0);
+          run.probes->mu.push_back(row.measure().mu);
+        }
+        ++k;
       },
       [&](double dt, double w) {
         run.advance(dt, w, t_seg);

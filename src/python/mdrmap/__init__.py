@@ -139,9 +139,12 @@ class Result:
                                  after segment; t since the first change);
                                  under load (F0=) also d and a1
     events   one dict per velocity change k (the CSV's `# event` line): k, t,
-             w_before, w_after, mu_before, mu_after, mu_peak, t_peak,
-             slip_peak, mu_end, mu_ss_before, mu_ss_after, D_c, a,
-             a_minus_b, b (nan where undefined)
+             w_before, w_after, mu_before, mu_after, mu_max, t_max, slip_max,
+             mu_min, t_min, slip_min, mu_peak, t_peak, slip_peak, mu_end,
+             mu_ss_before, mu_ss_after, D_c, overshoot, a, a_minus_b, b,
+             healing (nan where undefined), and where D_c is nan
+             D_c_undefined, why: no_change, hold, no_transient, peak_at_end,
+             overshoot or no_decay (docs/design.md, "Event metrics")
     pre      the stationary state before t = 0: FN, Fx, mu, a2 (d, a1 under load)
     info     solver, rtol, error_estimate, cells_per_a1, elements, steps,
              element_updates, root_solves, wall_seconds, version, commit
