@@ -41,7 +41,12 @@ along it), so a spectrum of 32 terms fits numpy's dimensions. The other
 columns equal the grid (to 1e-12).
 
 Both raise MapError (a ValueError, one line) for a file that is not a
-readable map or a Dataset that is not a grid study's. Needs h5py, xarray and
+readable map or a Dataset that is not a grid study's. open_map refuses what
+is not a regular file with HDF5's signature (a FIFO, a device) at once, and
+first reads the structure of every dataset it opens (dimension scales,
+attributes, first element) with h5py in a child process, so that a damaged
+map on which HDF5 loops for ever or crashes raises MapError (after
+open_map's `timeout`, 60 s by default) instead of hanging the caller. Needs h5py, xarray and
 h5netcdf (imported when called). tools/mapxr.py is the command line of this
 module.
 """
@@ -49,6 +54,7 @@ module.
 import math
 import os
 import re
+import stat
 import warnings
 
 SCHEMA1 = "mdrmap-map/1"
@@ -100,15 +106,109 @@ def schema_version(f):
     return 2 if "events" in f or "cases/w" in f else 1
 
 
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+def _kind(mode):
+    """What a file that is not a regular file is, for a message."""
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def check_file(path):
+    """MapError (one line) unless `path` is a regular file with HDF5's
+    signature (at byte 0, or after a user block of 512, 1024, 2048, ...
+    bytes). A FIFO or a device is refused before it is opened: reading one
+    would wait for a writer or never end."""
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise MapError(f"no such file: {path}") from None
+    except OSError as e:
+        raise MapError(f"cannot read {path} ({e.strerror})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise MapError(f"{path} is {_kind(st.st_mode)}, not an mdrmap map (a map is a regular "
+                       f"file)")
+    try:
+        with open(path, "rb") as f:
+            offset = 0
+            while offset + len(HDF5_SIGNATURE) <= st.st_size:
+                f.seek(offset)
+                if f.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE:
+                    return
+                offset = 512 if offset == 0 else 2 * offset
+    except OSError as e:
+        raise MapError(f"cannot read {path} ({e.strerror})") from None
+    raise MapError(f"{path} is not a readable HDF5 file (no HDF5 signature)")
+
+
+# Run in a child process by check_readable: opens the map with h5py and, for
+# every dataset of the groups open_map reads (GROUPS), what xarray's h5netcdf
+# reads of it (its dimension scales,
+# its attributes, its first element). Exit 0, or 1 with the problem on stderr.
+_CHECK_SCRIPT = r"""
+import sys
+import h5py
+def visit(name, obj):
+    if isinstance(obj, h5py.Dataset):
+        [len(d) for d in obj.dims]
+        [list(d.keys()) for d in obj.dims]
+        dict(obj.attrs)
+        if obj.size:
+            obj[(0,) * obj.ndim] if obj.ndim else obj[()]
+    else:
+        dict(obj.attrs)
+try:
+    with h5py.File(sys.argv[1], "r") as f:
+        dict(f.attrs)
+        for group in sys.argv[2:]:
+            if group in f:
+                visit(group, f[group])
+                if isinstance(f[group], h5py.Group):
+                    f[group].visititems(visit)
+except Exception as e:
+    print(f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}", file=sys.stderr)
+    sys.exit(1)
+"""
+
+
+def check_readable(path, timeout):
+    """MapError (one line) unless h5py reads the structure of every dataset of
+    the groups open_map reads (its dimension scales, attributes and first
+    element) within `timeout` seconds. Checked in a child process: on some damage
+    (bytes of a dimension scale's list overwritten) HDF5 loops for ever, and
+    a thread cannot be stopped."""
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+    try:
+        groups = [g for g, _ in GROUPS]
+        p = subprocess.run([sys.executable, "-c", _CHECK_SCRIPT, path] + groups,
+                           capture_output=True,
+                           text=True, timeout=timeout, env=env, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        raise MapError(f"{path}: reading its structure did not end within {timeout:g} s: a "
+                       f"damaged map (HDF5 loops on it)") from None
+    except OSError as e:
+        raise MapError(f"{path}: cannot check it ({e})") from None
+    if p.returncode < 0:
+        raise MapError(f"{path} is a damaged map: h5py crashes on it (signal {-p.returncode})")
+    if p.returncode != 0:
+        why = (p.stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
+        raise MapError(f"{path} is a damaged map: h5py cannot read it ({why})")
+
+
 def open_h5(path, h5py, warn=None, versions=(1, 2)):
     """PATH opened read-only with h5py; MapError (one line) unless it is a
     readable map of one of the layouts `versions`. `warn(message)` reports a
     map of an unknown schema name (default: a MapWarning). The one opener of
     the package and the tools (tools/maplib.py)."""
-    if not os.path.exists(path):
-        raise MapError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise MapError(f"{path} is a directory, not an mdrmap map")
+    check_file(path)
     try:
         f = h5py.File(path, "r")
     except OSError as e:
@@ -322,13 +422,22 @@ def _grid_attrs(grid):
     return out
 
 
-def open_map(path):
+def open_map(path, timeout=60):
     """The map at `path` as one xarray Dataset (see the module's help). Raises
-    MapError (one line) when `path` is not a readable mdrmap map."""
+    MapError (one line) when `path` is not a readable mdrmap map: not a
+    regular HDF5 file, or damaged (h5py cannot read the structure of every
+    dataset within `timeout` seconds, checked in a child process)."""
     import xarray as xr
 
     import numpy as np
 
+    if isinstance(path, os.PathLike):
+        path = os.fspath(path)
+    if not isinstance(path, str):
+        raise MapError(f"open_map needs the path of a map (str or os.PathLike), got "
+                       f"{type(path).__name__}")
+    check_file(path)
+    check_readable(path, timeout)
     attrs, n, groups, grid, scaled, version, messages = _read_h5(path)
     parts = [_open_group(path, group, prefix, n, scaled, version)
              for group, prefix in GROUPS if group in groups]
