@@ -309,6 +309,33 @@ def test_numbers_are_refused_as_their_texts():
         assert said in e.value.message, (change, e.value.message)
 
 
+def test_booleans_bytes_and_paths_are_not_numbers(tmp_path):
+    """Issue 32: numpy's bool_, bytes and a pathlib.Path passed as numbers
+    (float() takes all three) are refused naming the argument; a spectrum
+    file is taken as a pathlib.Path."""
+    import pathlib
+
+    import numpy as np
+
+    base = dict(d=0.1, R=10, tau=1, v=2, v1=0.5)
+    cases = [({"d": np.bool_(True)}, "d", "must be a number, got True"),
+             ({"tau": np.bool_(False)}, "tau", "must be a number, got False"),
+             ({"d": b"0.1"}, "d", "must be a number, got bytes b'0.1'"),
+             ({"v": bytearray(b"2")}, "v", "must be a number, got bytearray"),
+             ({"R": pathlib.Path("10")}, "R", "must be a number, got a path '10'"),
+             ({"samples": np.bool_(True)}, "samples", "got True")]
+    for change, option, said in cases:
+        with pytest.raises(mdrmap.InvalidInput) as e:
+            mdrmap.simulate(**dict(base, **change))
+        assert e.value.option == option, change
+        assert said in e.value.message, (change, e.value.message)
+    spectrum = tmp_path / "spectrum.csv"
+    spectrum.write_text("G,tau\n1,0.5\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    assert mdrmap.stationary(**kw, prony_file=spectrum) == \
+        mdrmap.stationary(**kw, prony_file=str(spectrum))
+
+
 def test_a_solver_refusing_the_loading_is_bad_input(exe):
     kw = dict(F0="0.1", R="10", tau="1", v="1", v1="2", solver="exact")
     with pytest.raises(mdrmap.InvalidInput) as e:  # refused by the solver, the GIL released
