@@ -337,6 +337,11 @@ exit with code 3; the message says how to resume.
 Exit codes: 0 study complete (failed cases are recorded in the map: status
 -1, with their message in /failures), 1 runtime failure, 2 bad input, 3 interrupted
 (resume with --resume).
+
+A bad input is one line from rank 0, the first of the output. Open MPI's
+mpirun follows any non-zero exit with a banner of about ten lines ("Primary
+job terminated normally, but 1 process returned a non-zero exit code ...");
+'mpirun -q' leaves the line alone (the exit code is the same).
 )";
 }
 
