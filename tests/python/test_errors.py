@@ -2,6 +2,7 @@
 raises mdrmap.InvalidInput (a ValueError) naming the same option, with the
 CLI's message, and prints nothing. The rows are copied here; the test checks
 that the copy lists every row of test_cli.cpp."""
+import os
 import re
 
 import pytest
@@ -349,3 +350,27 @@ def test_a_case_past_its_budget_is_a_runtime_error():
     with pytest.raises(RuntimeError, match="rtol"):
         mdrmap.simulate(d=1e-3, R=1, tau=1, v=1, history="0.1:0.1,0:0.1,1:0.1", samples=5,
                         solver="mdr", rtol=1e-15)
+
+
+def test_a_spectrum_file_that_is_a_fifo_is_refused_at_once(tmp_path):
+    """Issue 32: prony_file on a FIFO without a writer waited for ever (and
+    held the GIL, freezing every thread); now refused naming the option. In a
+    child process, so that the old behaviour fails the test instead of
+    hanging it."""
+    import subprocess
+    import sys
+
+    fifo = tmp_path / "spectrum.fifo"
+    os.mkfifo(fifo)
+    code = ("import sys, mdrmap\n"
+            "try:\n"
+            "    mdrmap.stationary(d=0.1, R=10, tau=0, v=1, prony_file=sys.argv[1])\n"
+            "except mdrmap.InvalidInput as e:\n"
+            "    print(e.option, e.message)\n")
+    try:
+        p = subprocess.run([sys.executable, "-c", code, str(fifo)], capture_output=True,
+                           text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("mdrmap.stationary(prony_file=FIFO) did not return within 60 s")
+    assert p.stdout == f"prony-file must be a regular file, got '{fifo}' (a FIFO)\n", \
+        (p.stdout, p.stderr)
