@@ -9,7 +9,7 @@ np=$1 config=$2
 out="$WORKDIR/resume_hint_np$np.h5"
 log="$WORKDIR/resume_hint_np$np.log"
 rm -f "$out"
-overrides=(--set 'grid.tau=linspace:0.5:2.5:10' --samples 51 --set run.rtol=1e-3)
+overrides=(--set 'grid.tau=linspace:0.5:2.5:10' --samples 51 --set 'run.rtol= 1e-3')
 "$MPIEXEC" -np "$np" "$MDRMAP" study --quiet --config "$config" --output "$out" \
   "${overrides[@]}" 2>"$log" &
 pid=$!
@@ -37,7 +37,8 @@ hint=$(sed -n 's/.*resume with: //p' "$log")
 [[ -n $hint ]] || fail "no 'resume with:' command in the message"
 prefix="mpirun -np $np mdrmap "
 [[ $hint == "$prefix"* ]] || fail "the resume command does not start with '$prefix': $hint"
-eval "args=(${hint#"$prefix"})"
+args=()
+eval "args=(${hint#"$prefix"})" # the words as a shell reads them (quoted by mdrmap)
 "$MPIEXEC" -np "$np" "$MDRMAP" "${args[@]}" ||
   fail "the printed resume command failed: $hint"
 "${CHECK[@]}" --quiet --complete "$out"
