@@ -1182,6 +1182,49 @@ TEST(cli, SpectrumFileEqualsTheOption) {
   }
 }
 
+// Issue 32: a spectrum file is a small regular file. A FIFO (no writer: its
+// read would wait forever) and a device (/dev/zero: endless) are refused at
+// once, like --output's; so are a file past 1 MiB and a line past 4096
+// characters; a UTF-8 BOM (a spreadsheet's "CSV UTF-8") is read; a bad field
+// is echoed cut to 60 characters.
+TEST(cli, PronyFileIsASmallRegularFile) {
+  TempDir dir;
+  const fs::path fifo = dir.path() / "spectrum.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  const auto refused = [](const std::string& file, const std::string& what) {
+    SCOPED_TRACE(file);
+    const Outcome r = run_mdrmap(
+        {"stationary", "--d", "0.1", "--R", "10", "--tau", "0", "--v", "1", "--prony-file", file},
+        20);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(starts_with(r.err, "mdrmap stationary: error: --prony-file: ")) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_LT(r.err.size(), 300U) << r.err;
+  };
+  refused(fifo.string(), "a FIFO");
+  refused("/dev/zero", "a character device");
+  const fs::path big = dir.path() / "big.csv";
+  write_file(big, "G,tau\n" + std::string(2U << 20, '#') + "\n1,2\n");
+  refused(big.string(), "larger than 1 MiB");
+  const fs::path long_line = dir.path() / "long_line.csv";
+  write_file(long_line, "G,tau\n1," + std::string(5000, '9') + "\n");
+  refused(long_line.string(), "longer than 4096 characters");
+  const fs::path long_field = dir.path() / "long_field.csv";
+  write_file(long_field, "G,tau\n1," + std::string(1000, 'x') + "\n");
+  refused(long_field.string(), "'" + std::string(60, 'x') + "...' (1000 characters)");
+
+  const fs::path bom = dir.path() / "bom.csv";
+  write_file(bom, "\xEF\xBB\xBFG,tau\r\n1,0.01\r\n2.5,1\r\n");
+  const auto a = mdrmap::app::read_case_input(spectrum_texts({{"prony-file", bom.string()}}));
+  const auto b = mdrmap::app::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1"}}));
+  ASSERT_EQ(a.c.rheology.branches.size(), 2U);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(a.c.rheology.branches[k].G, b.c.rheology.branches[k].G);
+    EXPECT_EQ(a.c.rheology.branches[k].tau, b.c.rheology.branches[k].tau);
+  }
+}
+
 TEST(cli, TemperatureGivesTheWlfShift) {
   const auto in = mdrmap::app::read_case_input(
       spectrum_texts({{"tau", "1"}, {"T", "40"}, {"wlf", "17.44:51.6:-10"}}));

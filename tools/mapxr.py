@@ -36,12 +36,17 @@ Maps with dimension scales are opened lazily (xarray engine h5netcdf, the
 file stays open until ds.close()); older maps too, their phony dimensions
 renamed to case and sample.
 
-to_grid(ds) reshapes every variable along `case` to the grid's axes (C order,
-last axis fastest: the case order of a [grid] study), with the axis values as
-index coordinates, the other /cases columns (e.g. v1, G; w and T) as N-d
-coordinates, and a coordinate `case` holding each point's row number in the
-map. The axes of an mdrmap-map/2 grid include the history's (w1_over_v,
-T1_over_tau, w2, ...: dimensions like any other). It checks that the /cases
+to_grid(ds) reshapes every variable along `case` to the grid's axes of more
+than one value (C order, last axis fastest: the case order of a [grid]
+study), with the axis values as index coordinates; an axis of one value (a
+fixed d, G, T1_over_tau, a spectrum's fixed terms) is a scalar coordinate;
+a relaxation spectrum's varied terms (G1, tau1, ..., G32, tau32) are one
+dimension `material` (their combinations in C order, each term a coordinate
+along it), so a spectrum of 32 terms fits numpy's dimensions. The other
+/cases columns (e.g. v1; w and T) are N-d coordinates, and a coordinate
+`case` holds each point's row number in the map. The axes of an
+mdrmap-map/2 grid include the history's (w1_over_v, T1_over_tau, w2, ...:
+dimensions like any other). It checks that the /cases
 columns equal the grid (v1 = v1_over_v * v, wk = w[:, k-1], wk_over_v =
 w[:, k-1] / v, Tk_over_tau = T[:, k-1] / tau, to 1e-12).
 

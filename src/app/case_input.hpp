@@ -63,7 +63,8 @@ std::vector<const ParamSpec*> group_members(const std::string& group);
 std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
                         const char* last_sep);
 
-/// The value as typed, quoted only when it would otherwise be unreadable.
+/// The value as typed, quoted only when it would otherwise be unreadable;
+/// more than 60 characters are cut, with the length said.
 std::string shown(const std::string& text);
 
 /// A parameter's entry in simulate's help: "(unit) meaning. Allowed range",

@@ -210,7 +210,9 @@ std::string rheology_help() {
                     "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
                     "line (at most " +
                         n +
-                        "); blank lines and lines starting with # are skipped. Give --prony or "
+                        "); blank lines and lines starting with # are skipped, a UTF-8 BOM is "
+                        "read. A regular file of at most 1 MiB, lines of at most 4096 "
+                        "characters (a FIFO or a device is refused). Give --prony or "
                         "--prony-file, not both") +
          help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
                                 "equation (instead of --aT), a finite number > TREF - C2") +

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "app/temp_cleanup.hpp"
 #include "core/model/case.hpp"
 
 namespace mdrmap::app {
@@ -94,7 +95,7 @@ void OutputFile::open_replace(const std::string& target, const struct stat* exis
   file_ = nullptr;
   target_ = target;
   tmp_ = target + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  const int fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  const int fd = create_temporary(tmp_); // removed on SIGINT, SIGTERM, SIGHUP
   if (fd < 0) refuse_errno(errno, path_);
   mode_ = Mode::Replace;
   // the replaced file keeps its permissions (best effort: a failure leaves
@@ -105,6 +106,7 @@ void OutputFile::open_replace(const std::string& target, const struct stat* exis
     const int err = errno;
     ::close(fd);
     ::unlink(tmp_.c_str());
+    release_temporary();
     throw std::runtime_error("cannot open " + tmp_ + ": " + std::strerror(err));
   }
 }
@@ -143,6 +145,7 @@ void OutputFile::open_through(const struct stat& st) {
 OutputFile::~OutputFile() {
   if (file_ != nullptr && mode_ != Mode::Stdout) std::fclose(file_);
   if (mode_ == Mode::Replace && !committed_) ::unlink(tmp_.c_str());
+  if (mode_ == Mode::Replace) release_temporary();
 }
 
 void OutputFile::commit() {
@@ -174,6 +177,7 @@ void OutputFile::commit() {
                              " failed: " + std::strerror(e));
   }
   committed_ = true;
+  release_temporary(); // renamed: the name no longer holds the temporary
   sync_dir(dir_of(target_), target_);
 }
 

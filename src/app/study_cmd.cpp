@@ -125,6 +125,7 @@ struct StudyArgs {
   std::string config, output;
   bool resume = false, overwrite = false, quiet = false;
   std::vector<std::pair<std::string, std::string>> overrides;
+  std::vector<std::string> args; // as given, for the resume command
 };
 
 const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
@@ -230,6 +231,7 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
     throw InvalidInput("config", e.what());
   }
   StudyArgs a;
+  a.args = args;
   help = vm["help"].as<bool>();
   if (help) return a;
   if (!vm.count("config"))
@@ -335,6 +337,11 @@ exit with code 3; the message says how to resume.
 Exit codes: 0 study complete (failed cases are recorded in the map: status
 -1, with their message in /failures), 1 runtime failure, 2 bad input, 3 interrupted
 (resume with --resume).
+
+A bad input is one line from rank 0, the first of the output. Open MPI's
+mpirun follows any non-zero exit with a banner of about ten lines ("Primary
+job terminated normally, but 1 process returned a non-zero exit code ...");
+'mpirun -q' leaves the line alone (the exit code is the same).
 )";
 }
 
@@ -375,14 +382,36 @@ study::StudyRequest make_request(const StudyArgs& a, int argc, char** argv) {
   return req;
 }
 
+// The command that resumes the run: its options as given (every override,
+// in order), without --resume, --overwrite and --output, then the map and
+// --resume; so the study it defines is the one stored in the map.
+std::string resume_command(const StudyArgs& a, int size) {
+  std::string cmd = "mpirun -np " + std::to_string(size) + " mdrmap study";
+  const auto is_switch = [](const std::string& name) {
+    return name == "resume" || name == "overwrite" || name == "quiet" || name == "help";
+  };
+  for (std::size_t i = 0; i < a.args.size(); ++i) {
+    const std::string& arg = a.args[i];
+    const bool option = arg.size() > 2 && arg.compare(0, 2, "--") == 0;
+    const std::string name = option ? arg.substr(2, arg.find('=') - 2) : "";
+    // an option that takes a value and has none after '=' takes the next word
+    const bool takes_next = option && !is_switch(name) && arg.find('=') == std::string::npos;
+    const bool dropped = name == "resume" || name == "overwrite" || name == "output";
+    if (!dropped) cmd += " " + shell_quote(arg);
+    if (takes_next && i + 1 < a.args.size()) {
+      ++i;
+      if (!dropped) cmd += " " + shell_quote(a.args[i]);
+    }
+  }
+  return cmd + " --output " + shell_quote(a.output) + " --resume";
+}
+
 // Rank 0's last lines: a write failure, an interruption (and how the map
 // resumes) or the summary, then the ranks' peak memory.
 void print_outcome(const study::StudySummary& sum, const StudyArgs& a, int size,
                    const std::string& memory) {
   const std::size_t ran = sum.done + sum.failed;
-  const std::string resume_hint = "mpirun -np " + std::to_string(size) + " mdrmap study --config " +
-                                  shell_quote(a.config) + " --output " + shell_quote(a.output) +
-                                  " --resume";
+  const std::string resume_hint = resume_command(a, size);
   if (!sum.write_failure.empty()) {
     // a failed case is not done: --resume runs it again unless /failures
     // holds its message

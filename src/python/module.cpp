@@ -148,11 +148,11 @@ py::dict case_dict(const Case& c) {
 /// Runs one case from its option texts; the result as a dict of numpy arrays
 /// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
 py::dict simulate(const py::dict& options) {
-  const app::CaseInput in = app::read_case_input(to_texts(options));
+  const app::OptionTexts texts = to_texts(options);
   auto sim = std::make_unique<app::Simulation>();
   {
-    py::gil_scoped_release release;
-    *sim = app::simulate(in);
+    py::gil_scoped_release release; // (the input reads a spectrum file)
+    *sim = app::simulate(app::read_case_input(texts));
   }
   py::dict out;
   out["events"] = events(sim->record);
@@ -184,9 +184,14 @@ py::dict simulate(const py::dict& options) {
 /// The stationary state at v of the case's loading; `options` as for
 /// simulate, with a history of one segment (the case must be complete).
 py::dict stationary(const py::dict& options) {
-  const app::CaseInput in = app::read_case_input(to_texts(options));
-  const State st = stationary_state(in.c, in.c.history.v0);
-  return fields(app::state_fields(st, in.c.loading.by_force()));
+  const app::OptionTexts texts = to_texts(options);
+  std::vector<app::Field> state;
+  {
+    py::gil_scoped_release release; // a spectrum file, a quadrature
+    const app::CaseInput in = app::read_case_input(texts);
+    state = app::state_fields(stationary_state(in.c, in.c.history.v0), in.c.loading.by_force());
+  }
+  return fields(state);
 }
 
 /// The old spellings the options take: {alias: the table's name}.

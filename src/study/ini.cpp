@@ -171,6 +171,8 @@ std::string unknown_key_message(const IniSchema& schema, const std::string& sect
     if (other != section && contains(schema.keys_of(other), key))
       return "key " + shown(key) + " belongs in [" + other + "], not [" + section +
              "]; move it there";
+  const std::string hint = schema.hint ? schema.hint(section, key) : "";
+  if (!hint.empty()) return "unknown key " + shown(key) + " in [" + section + "]; " + hint;
   const std::vector<std::string>& keys = schema.keys_of(section);
   const std::string near = nearest(key, keys);
   if (!near.empty())

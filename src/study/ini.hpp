@@ -58,6 +58,9 @@ struct IniSchema {
   std::string all_sections; ///< what a file has, e.g. "[grid] or [cases], and [run]"
   /// Keys a section takes besides its list (e.g. numbered ones); may be empty.
   std::function<bool(const std::string& section, const std::string& key)> also;
+  /// What an unknown key of a section may have meant, said instead of the
+  /// list of keys (e.g. a spectrum's term past the last); "" for none. May be empty.
+  std::function<std::string(const std::string& section, const std::string& key)> hint;
 
   /// The keys of a known section.
   const std::vector<std::string>& keys_of(const std::string& section) const;

@@ -49,6 +49,17 @@ bool is_alias_key(const std::string& key) {
   return canonical_parameter_name(key) != key && parse_column(key, col);
 }
 
+/// A key like a spectrum's term past the last (G33, tau0, G040): what the
+/// terms are; "" for any other key.
+std::string spectrum_term_hint(const std::string& key) {
+  const std::size_t digits = key[0] == 'G' ? 1 : starts_with(key, "tau") ? 3 : key.size();
+  if (digits >= key.size() || key.find_first_not_of("0123456789", digits) != std::string::npos)
+    return "";
+  const std::string last = std::to_string(kMaxBranches);
+  return "a relaxation spectrum has at most " + last + " terms, the keys G1.." + "G" + last +
+         " and tau1..tau" + last + " (a term's modulus and relaxation time)";
+}
+
 const IniSchema& study_schema() {
   static const IniSchema s{{"grid", "history", "cases", "run"},
                            {grid_keys(),
@@ -62,6 +73,9 @@ const IniSchema& study_schema() {
                              return (section == "history" && is_history_key(key)) ||
                                     (section == "grid" &&
                                      (is_spectrum_key(key) || is_alias_key(key)));
+                           },
+                           [](const std::string& section, const std::string& key) {
+                             return section == "grid" ? spectrum_term_hint(key) : "";
                            }};
   return s;
 }
@@ -440,6 +454,9 @@ void set_overrides(StudyConfig& n,
   refuse_two_spellings(settings, cl);
   for (const auto& [key, value_text] : settings) {
     if (!known_override(key)) {
+      const std::string hint = starts_with(key, "grid.") ? spectrum_term_hint(key.substr(5)) : "";
+      if (!hint.empty())
+        throw ConfigError(key, cl.prefix() + "unknown key " + shown(key) + "; " + hint);
       const std::string near = nearest(key, override_keys());
       throw ConfigError(key, cl.prefix() + "unknown key " + shown(key) + "; " +
                                  (near.empty() ? "the keys are " + join(override_keys())

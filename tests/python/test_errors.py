@@ -2,6 +2,7 @@
 raises mdrmap.InvalidInput (a ValueError) naming the same option, with the
 CLI's message, and prints nothing. The rows are copied here; the test checks
 that the copy lists every row of test_cli.cpp."""
+import os
 import re
 
 import pytest
@@ -309,6 +310,33 @@ def test_numbers_are_refused_as_their_texts():
         assert said in e.value.message, (change, e.value.message)
 
 
+def test_booleans_bytes_and_paths_are_not_numbers(tmp_path):
+    """Issue 32: numpy's bool_, bytes and a pathlib.Path passed as numbers
+    (float() takes all three) are refused naming the argument; a spectrum
+    file is taken as a pathlib.Path."""
+    import pathlib
+
+    import numpy as np
+
+    base = dict(d=0.1, R=10, tau=1, v=2, v1=0.5)
+    cases = [({"d": np.bool_(True)}, "d", "must be a number, got True"),
+             ({"tau": np.bool_(False)}, "tau", "must be a number, got False"),
+             ({"d": b"0.1"}, "d", "must be a number, got bytes b'0.1'"),
+             ({"v": bytearray(b"2")}, "v", "must be a number, got bytearray"),
+             ({"R": pathlib.Path("10")}, "R", "must be a number, got a path '10'"),
+             ({"samples": np.bool_(True)}, "samples", "got True")]
+    for change, option, said in cases:
+        with pytest.raises(mdrmap.InvalidInput) as e:
+            mdrmap.simulate(**dict(base, **change))
+        assert e.value.option == option, change
+        assert said in e.value.message, (change, e.value.message)
+    spectrum = tmp_path / "spectrum.csv"
+    spectrum.write_text("G,tau\n1,0.5\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    assert mdrmap.stationary(**kw, prony_file=spectrum) == \
+        mdrmap.stationary(**kw, prony_file=str(spectrum))
+
+
 def test_a_solver_refusing_the_loading_is_bad_input(exe):
     kw = dict(F0="0.1", R="10", tau="1", v="1", v1="2", solver="exact")
     with pytest.raises(mdrmap.InvalidInput) as e:  # refused by the solver, the GIL released
@@ -322,3 +350,27 @@ def test_a_case_past_its_budget_is_a_runtime_error():
     with pytest.raises(RuntimeError, match="rtol"):
         mdrmap.simulate(d=1e-3, R=1, tau=1, v=1, history="0.1:0.1,0:0.1,1:0.1", samples=5,
                         solver="mdr", rtol=1e-15)
+
+
+def test_a_spectrum_file_that_is_a_fifo_is_refused_at_once(tmp_path):
+    """Issue 32: prony_file on a FIFO without a writer waited for ever (and
+    held the GIL, freezing every thread); now refused naming the option. In a
+    child process, so that the old behaviour fails the test instead of
+    hanging it."""
+    import subprocess
+    import sys
+
+    fifo = tmp_path / "spectrum.fifo"
+    os.mkfifo(fifo)
+    code = ("import sys, mdrmap\n"
+            "try:\n"
+            "    mdrmap.stationary(d=0.1, R=10, tau=0, v=1, prony_file=sys.argv[1])\n"
+            "except mdrmap.InvalidInput as e:\n"
+            "    print(e.option, e.message)\n")
+    try:
+        p = subprocess.run([sys.executable, "-c", code, str(fifo)], capture_output=True,
+                           text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("mdrmap.stationary(prony_file=FIFO) did not return within 60 s")
+    assert p.stdout == f"prony-file must be a regular file, got '{fifo}' (a FIFO)\n", \
+        (p.stdout, p.stderr)

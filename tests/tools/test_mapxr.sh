@@ -5,7 +5,8 @@
 # axes as coordinates of /grid; mapxr.open_map merges the groups with the
 # /schema units; to_grid turns a 5-axis grid (d, R, tau, v, v1_over_v:
 # 2 x 2 x 2 x 3 x 2 = 48 cases) into a 5-dimensional Dataset whose coordinates
-# are the axis values and whose values are the 1-D rows (the maps are
+# are the axis values and whose values are the 1-D rows, the axes of one
+# value (G, t_end_over_tau) scalar coordinates (the maps are
 # mdrmap-map/2 maps: the step's axis is w1_over_v, or v1_over_v as the config
 # names it, and T1_over_tau may be a further axis of length 1; undefined
 # event metrics are NaN). A copy of the map
@@ -169,13 +170,19 @@ for name in ["mu_after", "mu_peak", "a", "d_c", "status", "message", "analytic_m
 if ds["FN_pre"].attrs.get("units") != "force" or ds["d"].attrs.get("units") != "length":
     fail(f"open_map: units {ds['FN_pre'].attrs} {ds['d'].attrs}")
 g = mapxr.to_grid(ds)
-want_dims = dict({a: len(v) for a, v in AXES.items()}, event=1, sample=7)
-if dict(g.sizes) != want_dims or list(g["mu_after"].dims) != list(AXES) + ["event"]:
+# the axes of more than one value are the dimensions; one of one value (G,
+# T1_over_tau) is a scalar coordinate
+DIMS = {a: v for a, v in AXES.items() if len(v) > 1}
+want_dims = dict({a: len(v) for a, v in DIMS.items()}, event=1, sample=7)
+if dict(g.sizes) != want_dims or list(g["mu_after"].dims) != list(DIMS) + ["event"]:
     fail(f"to_grid: dimensions {dict(g.sizes)} ({g['mu_after'].dims}), expected {want_dims}")
-for a, vals in AXES.items():
+for a, vals in DIMS.items():
     if not np.array_equal(g[a].values, vals) or a not in g.indexes:
         fail(f"to_grid: coordinate {a} = {g[a].values}, expected {vals}")
-if g["ts_mu"].dims != tuple(AXES) + ("sample",):
+for a, vals in AXES.items():
+    if a not in DIMS and (g[a].ndim != 0 or float(g[a]) != vals[0]):
+        fail(f"to_grid: {a} is not the scalar coordinate {vals[0]}: {g[a]}")
+if g["ts_mu"].dims != tuple(DIMS) + ("sample",):
     fail(f"to_grid: ts_mu dimensions {g['ts_mu'].dims}")
 for name, var in ds.variables.items():
     if name in AXES:
@@ -276,8 +283,21 @@ run help py "$XR" --help
 expect() { grep -qF -- "$3" "$2" || { cat "$2" >&2; fail "$1: '$3' not in $2"; }; }
 expect help "$W/help.out" "to_grid(ds)"
 run cli py "$XR" "$W/grid5.h5" --grid --var mu_after
-grep -qE "\(d, R, tau, G, v, v1_over_v, t_end_over_tau, event\) float64" "$W/cli.out" ||
+grep -qE "\(d, R, tau, v, v1_over_v, event\) float64" "$W/cli.out" ||
   { cat "$W/cli.out" >&2; fail "cli: mu_after is not over the grid's axes and event"; }
+# a 32-term spectrum (68 axes, two of its terms varied): --grid makes the
+# varied terms one dimension `material` and the axes of one value scalars
+{
+  printf '[grid]\nd = 1e-3\nR = 1\ntau = 0\nG1 = 1, 2\ntau1 = 0.01\n'
+  for ((k = 2; k <= 32; k++)); do printf 'G%d = 1\ntau%d = %s\n' "$k" "$k" "$((k == 2 ? 1 : k))"; done
+  printf 'v = 0.1, 1\nv1_over_v = 2\n[run]\nsamples = 5\nrtol = 1e-3\n'
+} >"$W/spectrum.ini"
+sed -i 's/^tau2 = 1$/tau2 = 1, 10/' "$W/spectrum.ini"
+study --config "$W/spectrum.ini" --output "$W/spectrum.h5"
+run cli_spectrum py "$XR" "$W/spectrum.h5" --grid --var mu_after
+grep -qE "mu_after +\(material, v, event\) float64" "$W/cli_spectrum.out" &&
+  grep -qE "^ +G1 +\(material\) float64 1.0 1.0 2.0 2.0" "$W/cli_spectrum.out" ||
+  { cat "$W/cli_spectrum.out" >&2; fail "cli: a spectrum's varied terms are not one material axis"; }
 bad() {
   local name=$1 expected=$2 rc=0
   shift 2
@@ -293,7 +313,7 @@ bad cli_missing "no such file" py "$XR" "$W/absent.h5"
 bad cli_not_map "is not a readable HDF5 file" py "$XR" "$W/grid5.ini"
 bad cli_cases_grid "not a grid study" py "$XR" "$W/cases.h5" --grid
 bad cli_var "--var foo: no such variable" py "$XR" "$W/grid5.h5" --var foo
-ok "mapxr.py: --help, --grid --var, one-line errors"
+ok "mapxr.py: --help, --grid --var (a 32-term spectrum too), one-line errors"
 
 # the tools read units and scales from the map: one without /schema (older
 # maps) or without /scales (made before mdrmap wrote them) is refused in one line

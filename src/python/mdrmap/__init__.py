@@ -79,8 +79,16 @@ def _number_text(option, value):
     if value is None:
         keyword = option.replace("-", "_")
         raise InvalidInput(f"needs a value, e.g. {keyword}=1.5", option)
-    if isinstance(value, bool):
-        return str(value)  # refused: "must be a number, got True"
+    if isinstance(value, bool) or (getattr(getattr(value, "dtype", None), "kind", "") == "b"
+                                   and getattr(value, "ndim", None) == 0):
+        return str(bool(value))  # refused: "must be a number, got True" (numpy's bool_ too)
+    if isinstance(value, (bytes, bytearray, memoryview)):
+        raise InvalidInput(f"must be a number, got {type(value).__name__} {bytes(value)[:60]!r}",
+                           option)
+    if isinstance(value, os.PathLike):
+        if option in _PATHS:
+            return os.fspath(value)
+        raise InvalidInput(f"must be a number, got a path {os.fspath(value)[:60]!r}", option)
     if isinstance(value, numbers.Integral):
         return str(int(value))
     try:
@@ -91,6 +99,9 @@ def _number_text(option, value):
         return str(int(x))
     return repr(x)
 
+
+# the options that name a file (they take a str or an os.PathLike)
+_PATHS = {"prony-file"}
 
 _PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
           "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}

@@ -29,14 +29,24 @@ Maps with dimension scales are opened lazily (xarray engine h5netcdf, the
 file stays open until ds.close()); older maps too, their phony dimensions
 renamed to case and sample.
 
-to_grid(ds) reshapes every variable along `case` to the grid's axes (C order,
-last axis fastest: the case order of a [grid] study), with the axis values as
-index coordinates, the other /cases columns (e.g. v1, G; w and T) as N-d
-coordinates, and a coordinate `case` holding each point's row number in the
-map. It checks that the /cases columns equal the grid (to 1e-12).
+to_grid(ds) reshapes every variable along `case` to the grid's axes of more
+than one value (C order, last axis fastest: the case order of a [grid]
+study), with the axis values as index coordinates; an axis of one value (a
+fixed d, G, T1_over_tau, a spectrum's fixed terms) is a scalar coordinate;
+a relaxation spectrum's varied terms (G1, tau1, ..., G32, tau32) are one
+dimension `material` (their combinations in C order, each term a coordinate
+along it), so a spectrum of 32 terms fits numpy's dimensions. The other
+/cases columns (e.g. v1; w and T) are N-d coordinates, and a coordinate
+`case` holds each point's row number in the map. It checks that the /cases
+columns equal the grid (to 1e-12).
 
 Both raise MapError (a ValueError, one line) for a file that is not a
-readable map or a Dataset that is not a grid study's. Needs h5py, xarray and
+readable map or a Dataset that is not a grid study's. open_map refuses what
+is not a regular file with HDF5's signature (a FIFO, a device) at once, and
+first reads the structure of every dataset it opens (dimension scales,
+attributes, first element) with h5py in a child process, so that a damaged
+map on which HDF5 loops for ever or crashes raises MapError (after
+open_map's `timeout`, 60 s by default) instead of hanging the caller. Needs h5py, xarray and
 h5netcdf (imported when called). tools/mapxr.py is the command line of this
 module.
 """
@@ -44,6 +54,7 @@ module.
 import math
 import os
 import re
+import stat
 import warnings
 
 SCHEMA1 = "mdrmap-map/1"
@@ -95,15 +106,109 @@ def schema_version(f):
     return 2 if "events" in f or "cases/w" in f else 1
 
 
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+def _kind(mode):
+    """What a file that is not a regular file is, for a message."""
+    for test, name in ((stat.S_ISDIR, "a directory"), (stat.S_ISFIFO, "a FIFO"),
+                       (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+                       (stat.S_ISSOCK, "a socket")):
+        if test(mode):
+            return name
+    return "not a regular file"
+
+
+def check_file(path):
+    """MapError (one line) unless `path` is a regular file with HDF5's
+    signature (at byte 0, or after a user block of 512, 1024, 2048, ...
+    bytes). A FIFO or a device is refused before it is opened: reading one
+    would wait for a writer or never end."""
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise MapError(f"no such file: {path}") from None
+    except OSError as e:
+        raise MapError(f"cannot read {path} ({e.strerror})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise MapError(f"{path} is {_kind(st.st_mode)}, not an mdrmap map (a map is a regular "
+                       f"file)")
+    try:
+        with open(path, "rb") as f:
+            offset = 0
+            while offset + len(HDF5_SIGNATURE) <= st.st_size:
+                f.seek(offset)
+                if f.read(len(HDF5_SIGNATURE)) == HDF5_SIGNATURE:
+                    return
+                offset = 512 if offset == 0 else 2 * offset
+    except OSError as e:
+        raise MapError(f"cannot read {path} ({e.strerror})") from None
+    raise MapError(f"{path} is not a readable HDF5 file (no HDF5 signature)")
+
+
+# Run in a child process by check_readable: opens the map with h5py and, for
+# every dataset of the groups open_map reads (GROUPS), what xarray's h5netcdf
+# reads of it (its dimension scales,
+# its attributes, its first element). Exit 0, or 1 with the problem on stderr.
+_CHECK_SCRIPT = r"""
+import sys
+import h5py
+def visit(name, obj):
+    if isinstance(obj, h5py.Dataset):
+        [len(d) for d in obj.dims]
+        [list(d.keys()) for d in obj.dims]
+        dict(obj.attrs)
+        if obj.size:
+            obj[(0,) * obj.ndim] if obj.ndim else obj[()]
+    else:
+        dict(obj.attrs)
+try:
+    with h5py.File(sys.argv[1], "r") as f:
+        dict(f.attrs)
+        for group in sys.argv[2:]:
+            if group in f:
+                visit(group, f[group])
+                if isinstance(f[group], h5py.Group):
+                    f[group].visititems(visit)
+except Exception as e:
+    print(f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}", file=sys.stderr)
+    sys.exit(1)
+"""
+
+
+def check_readable(path, timeout):
+    """MapError (one line) unless h5py reads the structure of every dataset of
+    the groups open_map reads (its dimension scales, attributes and first
+    element) within `timeout` seconds. Checked in a child process: on some damage
+    (bytes of a dimension scale's list overwritten) HDF5 loops for ever, and
+    a thread cannot be stopped."""
+    import subprocess
+    import sys
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p))
+    try:
+        groups = [g for g, _ in GROUPS]
+        p = subprocess.run([sys.executable, "-c", _CHECK_SCRIPT, path] + groups,
+                           capture_output=True,
+                           text=True, timeout=timeout, env=env, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired:
+        raise MapError(f"{path}: reading its structure did not end within {timeout:g} s: a "
+                       f"damaged map (HDF5 loops on it)") from None
+    except OSError as e:
+        raise MapError(f"{path}: cannot check it ({e})") from None
+    if p.returncode < 0:
+        raise MapError(f"{path} is a damaged map: h5py crashes on it (signal {-p.returncode})")
+    if p.returncode != 0:
+        why = (p.stderr.strip().splitlines() or [f"exit {p.returncode}"])[-1]
+        raise MapError(f"{path} is a damaged map: h5py cannot read it ({why})")
+
+
 def open_h5(path, h5py, warn=None, versions=(1, 2)):
     """PATH opened read-only with h5py; MapError (one line) unless it is a
     readable map of one of the layouts `versions`. `warn(message)` reports a
     map of an unknown schema name (default: a MapWarning). The one opener of
     the package and the tools (tools/maplib.py)."""
-    if not os.path.exists(path):
-        raise MapError(f"no such file: {path}")
-    if os.path.isdir(path):
-        raise MapError(f"{path} is a directory, not an mdrmap map")
+    check_file(path)
     try:
         f = h5py.File(path, "r")
     except OSError as e:
@@ -317,13 +422,22 @@ def _grid_attrs(grid):
     return out
 
 
-def open_map(path):
+def open_map(path, timeout=60):
     """The map at `path` as one xarray Dataset (see the module's help). Raises
-    MapError (one line) when `path` is not a readable mdrmap map."""
+    MapError (one line) when `path` is not a readable mdrmap map: not a
+    regular HDF5 file, or damaged (h5py cannot read the structure of every
+    dataset within `timeout` seconds, checked in a child process)."""
     import xarray as xr
 
     import numpy as np
 
+    if isinstance(path, os.PathLike):
+        path = os.fspath(path)
+    if not isinstance(path, str):
+        raise MapError(f"open_map needs the path of a map (str or os.PathLike), got "
+                       f"{type(path).__name__}")
+    check_file(path)
+    check_readable(path, timeout)
     attrs, n, groups, grid, scaled, version, messages = _read_h5(path)
     parts = [_open_group(path, group, prefix, n, scaled, version)
              for group, prefix in GROUPS if group in groups]
@@ -338,102 +452,177 @@ def open_map(path):
     return out
 
 
+# a relaxation spectrum's term k: its modulus Gk or its time tauk (k = 1..32)
+_SPECTRUM_KEY = re.compile(r"(G|tau)([1-9][0-9]*)")
+MATERIAL = "material"  # to_grid's dimension of a spectrum's varied terms
+
+
+def is_spectrum_key(name):
+    """Whether a grid axis is a spectrum's term (G1, tau1, ..., G32, tau32)."""
+    return _SPECTRUM_KEY.fullmatch(name) is not None
+
+
+def _grid_dims(axes, values):
+    """to_grid's dimensions: [(name, [axis indices])] over the axes with more
+    than one value, in the grid's order; the spectrum's such axes (Gk, tauk)
+    together as one dimension `material` (where the first of them is)."""
+    dims, material = [], None
+    for i, (a, v) in enumerate(zip(axes, values)):
+        if len(v) < 2:
+            continue
+        if is_spectrum_key(a):
+            if material is None:
+                material = []
+                dims.append((MATERIAL, material))
+            material.append(i)
+        else:
+            dims.append((a, [i]))
+    return dims
+
+
 def to_grid(ds):
     """The Dataset of a grid study (open_map) with the grid's axes as dimensions
     (see the module's help). Raises MapError for a map without /grid."""
     import numpy as np
+    import xarray as xr
 
+    if not isinstance(ds, xr.Dataset):
+        raise MapError(f"to_grid needs the Dataset of open_map(path), got {type(ds).__name__}")
     if "grid_axes" not in ds.attrs:
         raise MapError("not a grid study (the map has no /grid): to_grid needs the grid's axes")
+    if "case" not in ds.dims:
+        raise MapError("to_grid needs the Dataset of open_map(path), along `case`")
     axes = [a for a in str(ds.attrs["grid_axes"]).split(",") if a]
-    values = [np.asarray(ds.attrs[f"grid_{a}"], dtype=float) for a in axes]
+    try:
+        values = [np.atleast_1d(np.asarray(ds.attrs[f"grid_{a}"], dtype=float)) for a in axes]
+    except (KeyError, TypeError, ValueError) as e:
+        raise MapError(f"the Dataset's grid attributes are incomplete ({e})") from None
     shape = tuple(len(v) for v in values)
     n = ds.sizes["case"]
     if math.prod(shape) != n:
         raise MapError(f"grid axes {axes} of shape {list(shape)} do not fit {n} cases")
-    clash = [a for a in axes if a in ds.dims]
+    dims = _grid_dims(axes, values)
+    clash = [d for d, _ in dims if d in ds.dims]
     if clash:
         raise MapError(f"grid axis {clash[0]!r} is also a dimension of the Dataset")
-    # numpy's arrays have at most 32 dimensions (64 from numpy 2); a history of
-    # K segments gives 2 K axes (most of length 1): such a grid stays 1-D
+    # numpy's arrays have at most 32 dimensions (64 from numpy 2)
     max_dims = 64 if int(np.__version__.split(".")[0]) >= 2 else 32
-    if len(axes) + 1 > max_dims:
-        raise MapError(f"the grid has {len(axes)} axes; numpy arrays have at most {max_dims} "
-                        f"dimensions: use open_map's rows along `case` (grid_* attributes name "
-                        f"each case's axis values)")
+    if len(dims) + 1 > max_dims:
+        raise MapError(f"the grid has {len(dims)} axes of more than one value; numpy arrays have "
+                       f"at most {max_dims} dimensions: use open_map's rows along `case` "
+                       f"(grid_* attributes name each case's axis values)")
 
     _check_case_order(ds, axes, values, shape)
-    return _reshaped(ds, axes, values, shape, n)
+    return _reshaped(ds, axes, values, dims, n)
+
+
+def _segment_column(ds, name, cache):
+    """A history axis's values per case from /cases/w or /cases/T [N, K]
+    (mdrmap-map/2), or None where `name` is not such an axis."""
+    import numpy as np
+
+    seg = segment_axis(name) if name not in ds.variables else None
+    if seg is None or seg[0] not in ds.variables or ds[seg[0]].ndim != 2:
+        return None
+    kind, k, over = seg
+    if kind not in cache:
+        cache[kind] = np.asarray(ds[kind].values, dtype=float)
+    col = cache[kind]
+    if k > col.shape[1]:
+        raise MapError(f"grid axis {name!r} names segment {k}, the map has {col.shape[1]}")
+    have = col[:, k - 1]
+    if over:
+        # TK_over_tau multiplies the case's time scale (/scales/time; tau in a
+        # map made before /scales)
+        ref_name = "v" if kind == "w" else "scale_time" if "scale_time" in ds.variables else "tau"
+        if ref_name not in cache:
+            cache[ref_name] = np.asarray(ds[ref_name].values, dtype=float)
+        ref = cache[ref_name]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            have = np.where(ref != 0, have / ref, np.nan)
+    return have
 
 
 def _check_case_order(ds, axes, values, shape):
     """MapError unless the /cases columns are the grid's axes in C order."""
     import numpy as np
 
-    # the /cases columns must be the grid, in C order (last axis fastest)
-    mesh = dict(zip(axes, np.meshgrid(*values, indexing="ij")))
-    if "v1_over_v" in mesh and "v" in mesh:
-        mesh.setdefault("v1", mesh["v1_over_v"] * mesh["v"])
-    for a, want in mesh.items():
-        seg = segment_axis(a) if a not in ds.variables else None
-        if seg is not None and seg[0] in ds.variables and ds[seg[0]].ndim == 2:
-            # an mdrmap-map/2 history axis: from /cases/w or /cases/T [N, K]
-            kind, k, over = seg
-            col = np.asarray(ds[kind].values, dtype=float)
-            if k > col.shape[1]:
-                raise MapError(f"grid axis {a!r} names segment {k}, the map has {col.shape[1]}")
-            have = col[:, k - 1]
-            if over:
-                # TK_over_tau multiplies the case's time scale (/scales/time; tau in a
-                # map made before /scales)
-                time = "scale_time" if "scale_time" in ds.variables else "tau"
-                ref = np.asarray(ds["v" if kind == "w" else time].values, dtype=float)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    have = np.where(ref != 0, have / ref, np.nan)
-            have = have.reshape(shape)
-            ok = np.isfinite(have)  # Tk_over_tau where nothing relaxes: no time scale
-            same = np.allclose(have[ok], want[ok], rtol=1e-12, atol=0)
+    # the grid's values per case (C order, last axis fastest); an axis of one
+    # value is that value everywhere
+    n = math.prod(shape)
+    varied = [i for i, v in enumerate(values) if len(v) > 1]
+    mesh = np.meshgrid(*[values[i] for i in varied], indexing="ij") if varied else []
+    want = {a: np.full(n, v[0]) for a, v in zip(axes, values) if len(v) == 1}
+    want.update({axes[i]: m.ravel() for i, m in zip(varied, mesh)})
+    if "v1_over_v" in want and "v" in want:
+        want.setdefault("v1", want["v1_over_v"] * want["v"])
+    cache = {}
+    for a, w in want.items():
+        seg = _segment_column(ds, a, cache)
+        if seg is not None:
+            ok = np.isfinite(seg)  # Tk_over_tau where nothing relaxes: no time scale
+            same = np.allclose(seg[ok], w[ok], rtol=1e-12, atol=0)
         elif a not in ds.variables:
             continue
         else:
-            have = np.asarray(ds[a].values, dtype=float).reshape(shape)
-            exact = a in axes
-            same = np.array_equal(have, want) if exact else \
-                np.allclose(have, want, rtol=1e-12, atol=0)
+            have = np.asarray(ds[a].values, dtype=float).ravel()
+            same = np.array_equal(have, w) if a in axes else \
+                np.allclose(have, w, rtol=1e-12, atol=0)
         if not same:
             raise MapError(f"/cases/{a} does not follow the grid's axes {axes} in C order: "
-                            f"not a grid study's case order")
+                           f"not a grid study's case order")
 
 
-def _reshaped(ds, axes, values, shape, n):
-    """Every variable along `case` reshaped to the grid's axes (see to_grid)."""
+def _regrid(arr, kept_shape, dims, kept):
+    """`arr` [N, ...] to the dimensions `dims` (the C order of the kept axes,
+    each dimension's axes made adjacent and merged)."""
+    rest = arr.shape[1:]
+    order = [kept.index(i) for _, idx in dims for i in idx]
+    order += [len(kept) + j for j in range(len(rest))]  # the variable's own dimensions last
+    out = arr.reshape(kept_shape + rest).transpose(order)
+    sizes = tuple(math.prod(kept_shape[kept.index(i)] for i in idx) for _, idx in dims)
+    return out.reshape(sizes + rest)
+
+
+def _axis_attrs(ds, a):
+    """The units and long_name of grid axis `a` (from the Dataset's attributes)."""
+    return {key: ds.attrs[f"grid_{a}_{key}"] for key in ("units", "long_name")
+            if f"grid_{a}_{key}" in ds.attrs}
+
+
+def _reshaped(ds, axes, values, dims, n):
+    """Every variable along `case` reshaped to the grid's dimensions (see to_grid)."""
     import numpy as np
     import xarray as xr
 
+    kept = [i for _, idx in dims for i in idx]
+    kept.sort()
+    kept_shape = tuple(len(values[i]) for i in kept)
+    names = tuple(d for d, _ in dims)
     coords = {}
+    for d, idx in dims:
+        if d != MATERIAL:
+            coords[d] = xr.Variable((d,), values[idx[0]], _axis_attrs(ds, d))
+            continue
+        mesh = np.meshgrid(*[values[i] for i in idx], indexing="ij")
+        for i, m in zip(idx, mesh):
+            coords[axes[i]] = xr.Variable((MATERIAL,), m.ravel(), _axis_attrs(ds, axes[i]))
     for a, v in zip(axes, values):
-        attrs = {}
-        for key in ("units", "long_name"):
-            if f"grid_{a}_{key}" in ds.attrs:
-                attrs[key] = ds.attrs[f"grid_{a}_{key}"]
-        coords[a] = xr.Variable((a,), v, attrs)
-    coords["case"] = xr.Variable(tuple(axes), np.arange(n).reshape(shape),
+        if len(v) == 1:  # an axis of one value: a scalar coordinate
+            coords[a] = xr.Variable((), v[0], _axis_attrs(ds, a))
+    coords["case"] = xr.Variable(names, _regrid(np.arange(n), kept_shape, dims, kept),
                                  {"long_name": "row of the case in the map"})
     data = {}
     for name, var in ds.variables.items():
         if name in axes:
-            continue  # now an index coordinate
+            continue  # now a coordinate of the grid
         if "case" not in var.dims:  # e.g. ts_segment: kept as it is
             (coords if name in ds.coords else data)[name] = var
             continue
         if var.dims[0] != "case" or "case" in var.dims[1:]:
             raise MapError(f"variable {name!r} is not along `case` first: cannot reshape it")
-        rest = var.dims[1:]
-        arr = np.asarray(var.values)
-        new = xr.Variable(tuple(axes) + rest, arr.reshape(shape + arr.shape[1:]), var.attrs)
-        if name in ds.coords:
-            coords[name] = new
-        else:
-            data[name] = new
+        new = xr.Variable(names + var.dims[1:],
+                          _regrid(np.asarray(var.values), kept_shape, dims, kept), var.attrs)
+        (coords if name in ds.coords else data)[name] = new
     attrs = {k: v for k, v in ds.attrs.items()}
     return xr.Dataset(data, coords=coords, attrs=attrs)
