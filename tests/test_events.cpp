@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,7 +16,10 @@
 #include "core/metrics/events.hpp"
 #include "core/metrics/transient.hpp"
 #include "core/model/case.hpp"
+#include "core/solvers/baseline.hpp"
 #include "core/solvers/dispatch.hpp"
+#include "core/solvers/load_baseline.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {
 namespace {
@@ -267,9 +271,11 @@ void expect_row_metrics_agree(const Case& c) {
   }
 }
 
-// The Kelvin row at fixed depth (--solver mdr) probes its solution as well.
-TEST(EventsFromTheSolution, MdrRowMetricsDoNotDependOnTheSamples) {
-  const Case c = event_case(false, 1.0, {{0.1, 6.0}});
+/// The event metrics of `solve` agree over 5, 21, 201 linear and 2001
+/// log-spaced samples (t_peak too: the probes are the same instants whatever
+/// the samples).
+void expect_solver_metrics_agree(const Case& c,
+                                 const std::function<RunResult(const Case&)>& solve) {
   auto run = [&](long n, bool log) {
     Case s = c;
     s.sampling.samples = n;
@@ -277,7 +283,8 @@ TEST(EventsFromTheSolution, MdrRowMetricsDoNotDependOnTheSamples) {
       s.sampling.spacing = Spacing::Log;
       s.sampling.decades = 7.0;
     }
-    const RunResult r = run_case(s, SolverKind::Mdr, 1e-4);
+    const RunResult r = solve(s);
+    EXPECT_FALSE(r.probes.empty()) << "the solver probes its solution";
     return event_metrics(s, r.series, r.transients, r.info.error_estimate, r.probes)[0];
   };
   const EventMetrics ref = run(201, false);
@@ -285,9 +292,34 @@ TEST(EventsFromTheSolution, MdrRowMetricsDoNotDependOnTheSamples) {
     SCOPED_TRACE(std::to_string(n) + (log ? " log" : " linear"));
     const EventMetrics e = run(n, log);
     EXPECT_TRUE(agree("mu_peak", e.mu_peak, ref.mu_peak, ref.mu_peak));
+    EXPECT_TRUE(agree("mu_max", e.mu_max, ref.mu_max, ref.mu_max));
+    EXPECT_TRUE(agree("mu_min", e.mu_min, ref.mu_min, ref.mu_min));
     EXPECT_TRUE(agree("t_peak", e.t_peak, ref.t_peak, ref.t_peak));
     EXPECT_TRUE(agree("D_c", e.d_c, ref.d_c, ref.d_c));
   }
+}
+
+// The Kelvin row at fixed depth (--solver mdr) probes its solution as well.
+TEST(EventsFromTheSolution, MdrRowMetricsDoNotDependOnTheSamples) {
+  expect_solver_metrics_agree(event_case(false, 1.0, {{0.1, 6.0}}),
+                              [](const Case& s) { return run_case(s, SolverKind::Mdr, 1e-4); });
+}
+
+// So do the fixed-step baselines (--solver baseline), at fixed depth and under
+// load: their probes are the instants of ProbeRule on their step grid (read
+// off the samples, the depth case's t_peak was 6 with 5 samples against 1.53
+// with 201, and D_c 0.0949 against 0.0113).
+TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesDepth) {
+  BaselineOptions o;
+  o.cells_per_a1 = 200;
+  expect_solver_metrics_agree(event_case(false, 1.0, {{0.1, 6.0}}),
+                              [&](const Case& s) { return run_baseline(s, o); });
+}
+TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesLoad) {
+  LoadBaselineOptions o;
+  o.cells_per_a0 = 100;
+  expect_solver_metrics_agree(event_case(true, 1.0, {{0.1, 6.0}}),
+                              [&](const Case& s) { return run_load_baseline(s, o); });
 }
 
 /// A three-term spectrum without a dashpot (tau_k 0.1, 1, 10), a drop.
@@ -307,6 +339,15 @@ Case cone_drop(bool load) {
   return c;
 }
 
+TEST(EventsFromTheSolution, SpectrumBaselineMetricsDoNotDependOnTheSamples) {
+  SpectrumBaselineOptions o;
+  o.cells_per_a1 = 50;
+  for (bool load : {false, true}) {
+    SCOPED_TRACE(load ? "load" : "depth");
+    expect_solver_metrics_agree(three_terms(load),
+                                [&](const Case& s) { return run_spectrum_baseline(s, o); });
+  }
+}
 TEST(EventsFromTheSolution, RowMetricsDoNotDependOnTheSamplesSpectrumDepth) {
   expect_row_metrics_agree(three_terms(false));
 }

@@ -1,6 +1,7 @@
 #include "core/solvers/baseline.hpp"
 
 #include "core/metrics/error_metric.hpp"
+#include "core/solvers/step_samples.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -145,27 +146,23 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt, const Run
     row.step(s_start + v0 * g.dt * static_cast<double>(k), v0, decay(g.dt));
   res.series.pre = row.measure(0.0, v0);
   res.series.resize(c.total_samples());
+  res.probes.assign(c.history.size(), Probes{});
+  const ProbeRule rule = step_probe_rule(c);
   double sp = 0.0;
   long steps = g.n_pre;
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const double dt = seg.T / static_cast<double>(g.n_seg[k]), dec = decay(dt);
-    const double t0 = c.history.start(k), sp0 = sp;
+    const double sp0 = sp;
     row.change(sp, seg.w);
-    long done = 0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      const long target = std::min(g.n_seg[k], static_cast<long>(std::llround(off / dt)));
-      for (; done < target; ++done)
-        row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);
-      sp = sp0 + seg.w * dt * static_cast<double>(done);
-      res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
-    }
-    for (; done < g.n_seg[k]; ++done) // (the last sample ends the segment already)
-      row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);
+    sample_steps(
+        c, k, g.n_seg[k], dt,
+        [&](long j) { row.step(sp0 + seg.w * dt * static_cast<double>(j + 1), seg.w, dec); },
+        [&](long j) { return row.measure(sp0 + seg.w * dt * static_cast<double>(j), seg.w); }, rule,
+        res.series, i, res.probes[k]);
     sp = sp0 + seg.w * seg.T;
-    steps += done;
+    steps += g.n_seg[k];
   }
   res.info.steps = steps;
   res.info.element_updates = static_cast<long>(g.n_elem) * (steps + 1);

@@ -11,6 +11,7 @@
 
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/error_metric.hpp"
+#include "core/solvers/step_samples.hpp"
 
 // The fixed-step element row under load control (docs/design.md, "Load control"). An
 // element in contact at xi has u = d - g(xi), u' = d' - w g'(xi) and force
@@ -316,24 +317,19 @@ RunResult run_once(const Case& c, const LoadBaselineOptions& opt, const RunContr
     st.t_first = 1e-2 * tau * std::pow(opt.cells_per_a0, -3.0);
   }
   res.series.resize(c.total_samples());
+  res.probes.assign(c.history.size(), Probes{});
+  const ProbeRule rule = step_probe_rule(c);
   double s = 0.0;
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const double dt = seg.T / static_cast<double>(g.n_seg[k]);
-    const double dec = tau > 0.0 ? std::exp(-dt / tau) : 0.0, s0 = s, t0 = c.history.start(k);
+    const double dec = tau > 0.0 ? std::exp(-dt / tau) : 0.0, s0 = s;
     auto travel = [&](long n) { return s0 + seg.w * dt * static_cast<double>(n); };
-    long done = 0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      const long target = std::min(g.n_seg[k], static_cast<long>(std::llround(off / dt)));
-      for (; done < target; ++done)
-        st.step(travel(done), seg.w, dt, dec);
-      res.series.set(i, t0 + off, static_cast<int>(k), row.measure(travel(done), seg.w));
-    }
-    for (; done < g.n_seg[k]; ++done)
-      st.step(travel(done), seg.w, dt, dec);
-    s = travel(done);
+    sample_steps(
+        c, k, g.n_seg[k], dt, [&](long j) { st.step(travel(j), seg.w, dt, dec); },
+        [&](long j) { return row.measure(travel(j), seg.w); }, rule, res.series, i, res.probes[k]);
+    s = travel(g.n_seg[k]);
   }
   res.info.steps = g.steps;
   res.info.element_updates = row.updates();

@@ -8,6 +8,7 @@
 
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/stationary.hpp"
+#include "core/solvers/step_samples.hpp"
 
 namespace mdrmap {
 namespace {
@@ -245,32 +246,28 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
     step(s_pre + v0 * dt0 * static_cast<double>(k), v0, dt0, e0);
   res.series.pre = row.measure(0.0, v0);
   res.series.resize(c.total_samples());
+  res.probes.assign(c.history.size(), Probes{});
+  const ProbeRule rule = step_probe_rule(c);
   double sp = 0.0;
   long nsteps = n_pre;
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const long n = static_cast<long>(std::max(1.0, std::ceil(seg.T / dt0)));
-    const double dt = seg.T / static_cast<double>(n), t0 = c.history.start(k), sp0 = sp;
+    const double dt = seg.T / static_cast<double>(n), sp0 = sp;
     const std::vector<double> e = decays(dt);
     if (load) {
       balance.change(sp, seg.w);
     } else {
       row.change(sp, seg.w);
     }
-    long done = 0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
-      const long target = std::min(n, static_cast<long>(std::llround(off / dt)));
-      for (; done < target; ++done)
-        step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
-      sp = sp0 + seg.w * dt * static_cast<double>(done);
-      res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
-    }
-    for (; done < n; ++done)
-      step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
+    sample_steps(
+        c, k, n, dt,
+        [&](long j) { step(sp0 + seg.w * dt * static_cast<double>(j + 1), seg.w, dt, e); },
+        [&](long j) { return row.measure(sp0 + seg.w * dt * static_cast<double>(j), seg.w); }, rule,
+        res.series, i, res.probes[k]);
     sp = sp0 + seg.w * seg.T;
-    nsteps += done;
+    nsteps += n;
   }
   res.info.steps = nsteps;
   res.info.element_updates = row.updates;
