@@ -46,6 +46,8 @@ public:
   double G() const { return G_; }
   double tau() const { return tau_; }
   double G0() const { return G0_; }
+  double Gk(std::size_t k) const { return Gk_[k]; }
+  double tauk(std::size_t k) const { return tk_[k]; }
   /// The shortest branch time (infinity without branches).
   double shortest_time() const;
   /// Decay rates -L_i of the free modes (> 0).

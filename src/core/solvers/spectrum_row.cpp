@@ -80,8 +80,8 @@ Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, doubl
          double sub_travel, double edge_tol, const RunControl& control, const char* name)
     : law_(law), control_(control), name_(name), parab_(c.indenter.parabolic()),
       gc_(c.indenter.coefficient()), gn_(c.indenter.exponent()),
-      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.R), d_(d), dx_(dx),
-      aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
+      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), layers_(!c.loading.by_force()),
+      R_(c.indenter.R), d_(d), dx_(dx), aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8 + static_cast<std::size_t>(kPast);
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
@@ -111,6 +111,9 @@ void Row::save(Snapshot& s) const {
   s.d = d_;
   s.dd = dd_;
   s.w = w_;
+  s.since = since_;
+  s.lead = lead_;
+  s.layers = layers_before_;
   stable_ = log_.size();
 }
 
@@ -133,6 +136,9 @@ void Row::restore(const Snapshot& s) {
   d_ = s.d;
   dd_ = s.dd;
   w_ = s.w;
+  since_ = s.since;
+  lead_ = s.lead;
+  layers_before_ = s.layers;
 }
 
 void Row::set_position(long double P) {
@@ -149,6 +155,8 @@ void Row::set_position(long double P) {
 void Row::start_stationary(double v0) {
   w_ = v0;
   dd_ = 0.0;
+  since_ = 0.0; // (the step below sets every element's history)
+  layers_before_.assign(law_.branches(), BranchLayer{});
   log_.clear();
   log_bytes_ = 0.0;
   tracers_.clear();
@@ -156,13 +164,20 @@ void Row::start_stationary(double v0) {
   rest_.to = 0;
   const double dt = (a1_now() + aw_ + 6.0 * dx_) / v0;
   set_position(-static_cast<long double>(v0 * dt / dx_));
-  jhi_ = jlo_ - 1; // empty: every element enters fresh during the step
+  lead_ = label(-a1_now()); // (past the window after the step: all entered at v0)
+  jhi_ = jlo_ - 1;          // empty: every element enters fresh during the step
   advance(dt);
 }
 
 void Row::change_velocity(double w, double dd) {
   control_.charge(unit_ * static_cast<double>(jhi_ - jlo_ + 1), name_);
   add_seam(log_.size(), w);
+  if (w != w_ || dd != dd_) {
+    layers_before_.resize(law_.branches());
+    entry_layers(w_, dd_, layers_before_.data());
+    since_ = 0.0;
+    lead_ = label(-a1_now());
+  }
   w_ = w;
   dd_ = dd;
   log_.push_back(Entry{-1.0, w, P_, nullptr, d_, dd});
@@ -237,6 +252,7 @@ void Row::renumber() {
       t.J += static_cast<long double>(K);
     for (Seam& m : seams_)
       m.J += static_cast<long double>(K);
+    lead_ += static_cast<long double>(K);
   }
 }
 
@@ -266,6 +282,7 @@ void Row::advance(double dt, double d1, double dd1) {
     d_ = d1;
     dd_ = dd1;
   }
+  since_ += dt;
 }
 
 double Row::entry_bytes(std::size_t i) const {

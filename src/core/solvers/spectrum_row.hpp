@@ -90,6 +90,10 @@ public:
       double sub_travel, double edge_tol, const RunControl& control, const char* name);
 
   /// What a trial step changes (restore() returns to it).
+  /// A leading-edge layer of one branch (spectrum_forces.cpp, leading_layer).
+  struct BranchLayer {
+    double amp = 0.0, width = 0.0;
+  };
   struct Snapshot {
     std::vector<double> y;
     std::vector<Mode> mode;
@@ -97,6 +101,9 @@ public:
     long long jlo = 0, jhi = -1;
     std::size_t log = 0;
     double d = 0.0, dd = 0.0, w = 0.0;
+    double since = 0.0;
+    long double lead = 0.0L;
+    std::vector<BranchLayer> layers;
   };
   /// Saves the state (the log up to here is kept by every restore: replayed
   /// points are cached there).
@@ -214,9 +221,29 @@ private:
     return static_cast<long double>(x) / static_cast<long double>(dx_) - P_ -
            static_cast<long double>(phase_);
   }
+  /// The layers of fresh material's fast branches behind the leading edge,
+  /// thinner than a cell: L(s) = sum_k amp_k exp(-s / width_k) at s behind
+  /// the edge, which the rule cannot integrate from nodes dx apart
+  /// (spectrum_forces.cpp, leading_layer).
+  /// Branch k's layer: amplitude and width, for the material that entered
+  /// since the last change (s < s_c = c since), and for the material before
+  /// it (its layer from before the change, decayed by exp(-since / tau_k)).
+  struct Layer {
+    std::size_t n = 0;
+    BranchLayer now[kMaxBranches], before[kMaxBranches];
+    double s_c = 0.0;   ///< where the material at the edge at the change is now (< 0: gone)
+    double reach = 0.0; ///< beyond it L is below rounding
+    double at(double s) const;
+    double integral() const;
+    double moment() const; ///< int s L(s) ds
+  };
+  Layer leading_layer() const;
+  /// The layers fresh material forms at the leading edge at w and rate dd
+  /// (zero amplitude where the layer is not thinner than a cell).
+  void entry_layers(double w, double dd, BranchLayer* out) const;
   template <class Piece>
   void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
-                    bool rest, bool leading, Piece piece) const;
+                    bool rest, bool leading, const Layer& layer, Piece piece) const;
   double part_value(const double* y, double x, bool rest) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
@@ -263,6 +290,10 @@ private:
   /// Another profile's g = c |x|^n and g' (Indenter::g, slope, bit for bit,
   /// with c and n formed once: the hot path asks at every sub-step).
   double g(double x) const { return gc_ * std::pow(std::fabs(x), gn_); }
+  /// g''(x) (x != 0).
+  double curvature(double x) const {
+    return parab_ ? 2.0 / R_ : gn_ * (gn_ - 1.0) * gc_ * std::pow(std::fabs(x), gn_ - 2.0);
+  }
   double slope(double x) const {
     const double s = gn_ * gc_ * std::pow(std::fabs(x), gn_ - 1.0);
     return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
@@ -282,6 +313,10 @@ private:
   bool parab_;       // the parabola: Taylor forcing, no tip
   double gc_, gn_;   // the profile's g = gc_ |x|^gn_ (Indenter::coefficient, exponent)
   bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
+  // the leading edge's thin layers integrated exactly (leading_layer): at fixed
+  // depth; under load not yet (a creeping edge's layers formed under a varying
+  // rate and a hold's slow branches cost more than they gain, see design.md)
+  bool layers_;
   double R_, d_, dx_, aw_, phase_, sub_travel_;
   double dd_ = 0.0; // depth rate now (load control)
   std::size_t cap_, stride_;
@@ -293,6 +328,11 @@ private:
   double theta_ = 0.0;   // P - m
   long long jlo_ = 0, jhi_ = -1;
   double w_ = 0.0;
+  // time since the last change of w or dd (a jump), and the leading edge's
+  // layers just before it (leading_layer)
+  double since_ = 0.0;
+  long double lead_ = 0.0L; // the material point at the leading edge then
+  std::vector<BranchLayer> layers_before_;
   mutable long updates_ = 0;
   long steps_ = 0;
   double edge_tol_ = 1e-9; // the trailing edge's tolerance, in a1
