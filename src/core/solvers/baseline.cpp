@@ -161,6 +161,7 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt, const Run
         row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);
       sp = sp0 + seg.w * dt * static_cast<double>(done);
       res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
+      control.report(i + 1, res.series.size());
     }
     for (; done < g.n_seg[k]; ++done) // (the last sample ends the segment already)
       row.step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dec);

@@ -330,6 +330,7 @@ RunResult run_once(const Case& c, const LoadBaselineOptions& opt, const RunContr
       for (; done < target; ++done)
         st.step(travel(done), seg.w, dt, dec);
       res.series.set(i, t0 + off, static_cast<int>(k), row.measure(travel(done), seg.w));
+      control.report(i + 1, res.series.size());
     }
     for (; done < g.n_seg[k]; ++done)
       st.step(travel(done), seg.w, dt, dec);

@@ -5,8 +5,12 @@
 // (CaseAbandoned: status -1 in a study, exit 1 from simulate) instead of
 // running unbounded; a stop request (SIGTERM/SIGINT in the app layer) ends
 // the case within one check (Interrupted: a study leaves it pending).
-// The flag is the caller's; the core holds no global state.
+// The solvers also report how far the case got (report: the fraction of the
+// history's samples computed), for a caller that shows progress.
+// The flag and the progress are the caller's; the core holds no global state.
+#include <atomic>
 #include <csignal>
+#include <cstddef>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -34,6 +38,9 @@ struct RunControl {
 
   double max_work = kDefaultMaxWork;                ///< > 0
   const volatile std::sig_atomic_t* stop = nullptr; ///< nonzero: stop now
+  /// Where report() writes the fraction of the samples done (any thread may
+  /// read it while the solver runs); nullptr: not reported.
+  std::atomic<double>* progress = nullptr;
 
   /// Counts `units` of work; throws Interrupted if a stop was requested and
   /// CaseAbandoned once the case's work passes max_work. `what` names the
@@ -50,6 +57,25 @@ struct RunControl {
     }
   }
   double spent() const { return spent_; }
+
+  /// The same budget, stop flag and progress, with nothing spent (for a
+  /// further run of the case with a budget of its own, e.g. a reference).
+  RunControl fresh() const {
+    RunControl out;
+    out.max_work = max_work;
+    out.stop = stop;
+    out.progress = progress;
+    return out;
+  }
+
+  /// The solver has computed `done` of the `total` samples of its current run
+  /// over the history (a solver that refines runs the history again: the
+  /// fraction starts again from 0).
+  void report(std::size_t done, std::size_t total) const {
+    if (progress != nullptr && total > 0)
+      progress->store(static_cast<double>(done) / static_cast<double>(total),
+                      std::memory_order_relaxed);
+  }
 
 private:
   mutable double spent_ = 0.0;

@@ -266,6 +266,7 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
         step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
       sp = sp0 + seg.w * dt * static_cast<double>(done);
       res.series.set(i, t0 + off, static_cast<int>(k), row.measure(sp, seg.w));
+      control.report(i + 1, res.series.size());
     }
     for (; done < n; ++done)
       step(sp0 + seg.w * dt * static_cast<double>(done + 1), seg.w, dt, e);
