@@ -2,12 +2,10 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <csignal>
 #include <exception>
-#include <mutex>
 #include <optional>
-#include <thread>
+#include <utility>
 
 namespace py = pybind11;
 
@@ -16,84 +14,72 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The work on its own thread; the destructor stops it (where it still runs)
-/// and joins it, so that no thread outlives the call, whatever is thrown.
-class Worker {
-public:
-  Worker(const std::function<void(const RunControl&)>& work, std::atomic<double>* progress) {
-    control_.stop = &stop_;
-    control_.progress = progress;
-    thread_ = std::thread([this, &work] {
-      try {
-        work(control_);
-      } catch (...) {
-        error_ = std::current_exception();
-      }
-      const std::lock_guard<std::mutex> lock(mutex_);
-      done_ = true;
-      done_cv_.notify_all();
-    });
-  }
-  Worker(const Worker&) = delete;
-  Worker& operator=(const Worker&) = delete;
-  ~Worker() {
-    stop_ = 1;
-    py::gil_scoped_release release;
-    thread_.join();
-  }
+/// Python's ident of the main thread (threading.main_thread().ident).
+unsigned long main_thread_ident = 0;
 
-  /// Waits up to `seconds` (without the GIL); whether the work has ended.
-  bool wait(double seconds) {
-    py::gil_scoped_release release;
-    std::unique_lock<std::mutex> lock(mutex_);
-    return done_cv_.wait_for(lock, std::chrono::duration<double>(seconds),
-                             [this] { return done_; });
-  }
-  void stop() { stop_ = 1; }
-  bool stopping() const { return stop_ != 0; }
-  /// What the work threw, once it has ended.
-  std::exception_ptr error() const { return error_; }
-
-private:
-  volatile std::sig_atomic_t stop_ = 0;
-  RunControl control_;
-  std::mutex mutex_;
-  std::condition_variable done_cv_;
-  bool done_ = false;
-  std::exception_ptr error_;
-  std::thread thread_;
+/// What the polls of one call share.
+struct Watch {
+  explicit Watch(const py::object& p) : progress(p) {}
+  const py::object& progress;
+  bool signals = false; ///< in the main thread: run the signal handlers
+  volatile std::sig_atomic_t stop = 0;
+  std::atomic<double> fraction{0.0};
+  double shown = -1.0;
+  Clock::time_point last = Clock::now();
+  std::optional<py::error_already_set> raised; ///< KeyboardInterrupt or the callback's
 };
+
+/// RunControl::poll: runs the signal handlers and the progress callback; an
+/// exception stops the case and is kept for the caller.
+void poll(void* data) {
+  Watch& w = *static_cast<Watch*>(data);
+  if (w.stop != 0) return;
+  py::gil_scoped_acquire gil;
+  try {
+    if (w.signals && PyErr_CheckSignals() != 0) throw py::error_already_set();
+    const double f = w.fraction.load(std::memory_order_relaxed);
+    if (!w.progress.is_none() && f != w.shown &&
+        std::chrono::duration<double>(Clock::now() - w.last).count() >= kProgressSeconds) {
+      w.progress(f);
+      w.shown = f;
+      w.last = Clock::now();
+    }
+  } catch (py::error_already_set& e) {
+    w.raised.emplace(std::move(e));
+    w.stop = 1;
+  }
+}
 
 } // namespace
 
+void init_call() {
+  main_thread_ident =
+      py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
+}
+
 void run_call(const std::function<void(const RunControl&)>& work, const py::object& progress) {
-  std::atomic<double> fraction{0.0};
-  std::optional<py::error_already_set> raised; // KeyboardInterrupt or the callback's
-  const bool report = !progress.is_none();
-  {
-    Worker worker(work, report ? &fraction : nullptr);
-    auto last = Clock::now();
-    double shown = -1.0;
-    while (!worker.wait(kPollSeconds)) {
-      if (worker.stopping()) continue; // (stopping: wait for the work to end)
-      try {
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        const double f = fraction.load(std::memory_order_relaxed);
-        if (report && f != shown &&
-            std::chrono::duration<double>(Clock::now() - last).count() >= kProgressSeconds) {
-          progress(f);
-          shown = f;
-          last = Clock::now();
-        }
-      } catch (py::error_already_set& e) {
-        raised.emplace(std::move(e));
-        worker.stop();
-      }
-    }
-    if (!raised && worker.error()) std::rethrow_exception(worker.error());
+  Watch w(progress);
+  w.signals = PyThread_get_thread_ident() == main_thread_ident;
+  RunControl control;
+  control.stop = &w.stop;
+  if (!progress.is_none()) control.progress = &w.fraction;
+  if (w.signals || !progress.is_none()) {
+    control.poll = &poll;
+    control.poll_data = &w;
+    control.poll_seconds = kPollSeconds;
   }
-  if (raised) throw std::move(*raised);
-  if (report) progress(1.0);
+  std::exception_ptr error;
+  {
+    py::gil_scoped_release release;
+    try {
+      work(control);
+    } catch (...) {
+      error = std::current_exception();
+    }
+  }
+  if (w.raised) throw std::move(*w.raised); // (the work ended by Interrupted, or just before)
+  if (error) std::rethrow_exception(error);
+  if (!progress.is_none()) progress(1.0);
 }
 
 } // namespace mdrmap::python

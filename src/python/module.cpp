@@ -1,9 +1,9 @@
 // The extension module mdrmap._core: the C++ half of the Python package
 // `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes option
 // texts as the command line does (app/case_input.hpp builds and checks the
-// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), on a
-// thread of its own without the GIL while the caller watches for Ctrl-C and
-// reports progress (python/call.hpp); the time series are handed over as
+// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), without
+// the GIL, looking at Ctrl-C and reporting progress now and then
+// (python/call.hpp); the time series are handed over as
 // numpy arrays that own the result's vectors (no copy). InvalidInput becomes
 // mdrmap.InvalidInput.
 #include <algorithm>
@@ -262,6 +262,7 @@ PYBIND11_MODULE(_core, m) {
   using namespace mdrmap::python;
   m.doc() = "mdrmap's solvers (the C++ half of the package mdrmap; use mdrmap, not _core)";
   make_invalid_input_class(m);
+  init_call();
   py::register_exception_translator(&translate);
   m.attr("__version__") = mdrmap::kVersion;
   m.attr("commit") = mdrmap::kGitCommit;

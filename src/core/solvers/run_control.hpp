@@ -6,9 +6,12 @@
 // running unbounded; a stop request (SIGTERM/SIGINT in the app layer) ends
 // the case within one check (Interrupted: a study leaves it pending).
 // The solvers also report how far the case got (report: the fraction of the
-// history's samples computed), for a caller that shows progress.
+// history's samples computed), for a caller that shows progress; and a caller
+// may have its `poll` called now and then from the solver's thread (e.g. the
+// Python module, to run the interpreter's signal handlers: Ctrl-C).
 // The flag and the progress are the caller's; the core holds no global state.
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstddef>
 #include <cstdio>
@@ -41,12 +44,19 @@ struct RunControl {
   /// Where report() writes the fraction of the samples done (any thread may
   /// read it while the solver runs); nullptr: not reported.
   std::atomic<double>* progress = nullptr;
+  /// Called from the solver's thread within charge(), at most about every
+  /// poll_seconds while the case runs (nullptr: never); it may set *stop to
+  /// end the case. `poll_data` is its argument.
+  void (*poll)(void* poll_data) = nullptr;
+  void* poll_data = nullptr;
+  double poll_seconds = 0.02;
 
   /// Counts `units` of work; throws Interrupted if a stop was requested and
   /// CaseAbandoned once the case's work passes max_work. `what` names the
   /// solver in the message.
   void charge(double units, const char* what) const {
     spent_ += units;
+    if (poll != nullptr && --poll_countdown_ <= 0) poll_now();
     if (stop != nullptr && *stop != 0) throw Interrupted();
     if (spent_ > max_work) {
       char budget[32]; // (max_work may exceed what a long long holds)
@@ -65,6 +75,9 @@ struct RunControl {
     out.max_work = max_work;
     out.stop = stop;
     out.progress = progress;
+    out.poll = poll;
+    out.poll_data = poll_data;
+    out.poll_seconds = poll_seconds;
     return out;
   }
 
@@ -78,7 +91,22 @@ struct RunControl {
   }
 
 private:
+  /// Charges between two looks at the clock.
+  static constexpr int kPollEvery = 64;
+
+  void poll_now() const {
+    poll_countdown_ = kPollEvery;
+    const auto now = std::chrono::steady_clock::now();
+    const bool first = next_poll_ == std::chrono::steady_clock::time_point{};
+    if (!first && now < next_poll_) return;
+    next_poll_ = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                           std::chrono::duration<double>(poll_seconds));
+    if (!first) poll(poll_data); // (the first poll_seconds after the start)
+  }
+
   mutable double spent_ = 0.0;
+  mutable int poll_countdown_ = 0;
+  mutable std::chrono::steady_clock::time_point next_poll_{};
 };
 
 } // namespace mdrmap

@@ -13,10 +13,13 @@ lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
 '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
 numbers (or as the text the command line takes); the history as a list of
-(w, T) pairs (or "W1:T1,W2:T2"). FN= is accepted as the old spelling of the
-prescribed load F0= (not both). The results equal the command line's bit
-for bit; the solver runs without the GIL, so a thread pool over cases uses
-every core.
+(w, T) pairs (or "W1:T1,W2:T2"), a spectrum as prony=[(G, tau), ...], the
+WLF constants as wlf=(C1, C2, TREF) with temperature= (T= its old spelling).
+FN= is accepted as the old spelling of the prescribed load F0= (not both).
+help(mdrmap.simulate) lists every keyword. The results equal the command
+line's bit for bit; the solver runs without the GIL, so a thread pool over
+cases uses every core; Ctrl-C raises KeyboardInterrupt within a fraction of
+a second, and progress=callable reports how far a call got.
 """
 
 import numbers
