@@ -23,10 +23,11 @@ constexpr double kSpectrumReferenceFloor = 1e-7;
 /// parabola at fixed depth) that solver at 1e-12;
 /// under load, or with a spectrum, the default solver at a much tighter rtol
 /// (docs/design.md, "Error metric").
-void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecord& rec) {
+void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecord& rec,
+                         const RunControl& control) {
   if (solver_handles(SolverKind::Exact, model_needs(a.c))) {
     if (rec.solver == "exact") return;
-    const RunResult ref = run_case(a.c, SolverKind::Exact, kExactReferenceRtol);
+    const RunResult ref = run_case(a.c, SolverKind::Exact, kExactReferenceRtol, control.fresh());
     rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
     return;
   }
@@ -34,7 +35,7 @@ void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecor
   rec.reference_rtol = a.c.rheology.kelvin()
                            ? std::max(a.rtol * kLoadReferenceFactor, kLoadReferenceFloor)
                            : std::max(a.rtol * kSpectrumReferenceFactor, kSpectrumReferenceFloor);
-  const RunResult ref = run_case(a.c, SolverKind::Auto, rec.reference_rtol);
+  const RunResult ref = run_case(a.c, SolverKind::Auto, rec.reference_rtol, control.fresh());
   rec.reference = ref.info.solver.empty() ? "auto" : ref.info.solver;
   rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
 }
@@ -57,7 +58,7 @@ Simulation simulate(const CaseInput& in, const RunControl& control) {
   rec.wall_seconds = wall;
   rec.c = in.c;
   rec.events = event_metrics(in.c, res.series, res.transients, res.info.error_estimate, res.probes);
-  add_reference_error(in, res, rec);
+  add_reference_error(in, res, rec, control);
   out.series = std::move(res.series);
   return out;
 }

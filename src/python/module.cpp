@@ -1,9 +1,11 @@
 // The extension module mdrmap._core: the C++ half of the Python package
 // `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes option
 // texts as the command line does (app/case_input.hpp builds and checks the
-// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), with the
-// GIL released; the time series are handed over as numpy arrays that own the
-// result's vectors (no copy). InvalidInput becomes mdrmap.InvalidInput.
+// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), without
+// the GIL, looking at Ctrl-C and reporting progress now and then
+// (python/call.hpp); the time series are handed over as
+// numpy arrays that own the result's vectors (no copy). InvalidInput becomes
+// mdrmap.InvalidInput.
 #include <algorithm>
 #include <exception>
 #include <memory>
@@ -17,10 +19,12 @@
 
 #include "app/case_input.hpp"
 #include "app/simulation.hpp"
+#include "app/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
 #include "mdrmap/version.hpp"
+#include "python/call.hpp"
 
 namespace py = pybind11;
 
@@ -147,13 +151,14 @@ py::dict case_dict(const Case& c) {
 
 /// Runs one case from its option texts; the result as a dict of numpy arrays
 /// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
-py::dict simulate(const py::dict& options) {
+py::dict simulate(const py::dict& options, const py::object& progress) {
   const app::OptionTexts texts = to_texts(options);
   auto sim = std::make_unique<app::Simulation>();
-  {
-    py::gil_scoped_release release; // (the input reads a spectrum file)
-    *sim = app::simulate(app::read_case_input(texts));
-  }
+  run_call( // (the input reads a spectrum file)
+      [&](const RunControl& control) {
+        *sim = app::simulate(app::read_case_input(texts), control);
+      },
+      progress);
   py::dict out;
   out["events"] = events(sim->record);
   const bool load = sim->record.c.loading.by_force();
@@ -181,17 +186,32 @@ py::dict simulate(const py::dict& options) {
   return out;
 }
 
-/// The stationary state at v of the case's loading; `options` as for
-/// simulate, with a history of one segment (the case must be complete).
-py::dict stationary(const py::dict& options) {
+/// The stationary states of the case's loading as `mdrmap stationary` gives
+/// them: `options` its options (the case's, and v or v-list), the result
+/// {"v": velocities, FN, Fx, mu, a2 (d, a1 under load): arrays}.
+py::dict stationary(const py::dict& options, const py::object& progress) {
   const app::OptionTexts texts = to_texts(options);
-  std::vector<app::Field> state;
-  {
-    py::gil_scoped_release release; // a spectrum file, a quadrature
-    const app::CaseInput in = app::read_case_input(texts);
-    state = app::state_fields(stationary_state(in.c, in.c.history.v0), in.c.loading.by_force());
+  app::StationaryInput in;
+  std::vector<State> states;
+  run_call( // a spectrum file, quadratures
+      [&](const RunControl& control) {
+        in = app::read_stationary_input(texts);
+        states = app::stationary_states(in, control);
+      },
+      progress);
+  const bool load = in.in.c.loading.by_force();
+  py::dict out;
+  out["v"] =
+      py::array_t<double>(static_cast<py::ssize_t>(in.velocities.size()), in.velocities.data());
+  const std::size_t n = app::state_fields(State{}, load).size();
+  for (std::size_t j = 0; j < n; ++j) {
+    py::array_t<double> a(static_cast<py::ssize_t>(states.size()));
+    auto x = a.mutable_unchecked<1>();
+    for (std::size_t k = 0; k < states.size(); ++k)
+      x(static_cast<py::ssize_t>(k)) = app::state_fields(states[k], load)[j].second;
+    out[app::state_fields(State{}, load)[j].first] = a;
   }
-  return fields(state);
+  return out;
 }
 
 /// The old spellings the options take: {alias: the table's name}.
@@ -230,6 +250,8 @@ void translate(std::exception_ptr p) {
     PyErr_SetObject(invalid_input_class.ptr(), exc.ptr());
   } catch (const CaseAbandoned& e) {
     PyErr_SetString(PyExc_RuntimeError, e.what());
+  } catch (const Interrupted&) { // (run_call raises the signal's exception before)
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
   }
 }
 
@@ -240,15 +262,16 @@ PYBIND11_MODULE(_core, m) {
   using namespace mdrmap::python;
   m.doc() = "mdrmap's solvers (the C++ half of the package mdrmap; use mdrmap, not _core)";
   make_invalid_input_class(m);
+  init_call();
   py::register_exception_translator(&translate);
   m.attr("__version__") = mdrmap::kVersion;
   m.attr("commit") = mdrmap::kGitCommit;
   m.def("option_names", &mdrmap::app::case_option_names,
         "The options of a case, as the CLI spells them, in the order of its help.");
-  m.def("simulate", &simulate, py::arg("options"),
+  m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
         "Runs one case from {option: text}; a dict of numpy arrays and records.");
-  m.def("stationary", &stationary, py::arg("options"),
-        "The stationary state at v of a case given as {option: text}.");
+  m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
+        "The stationary states at v or v-list of a case given as {option: text}.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");

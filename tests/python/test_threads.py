@@ -52,3 +52,31 @@ def test_other_threads_run_while_the_solver_runs():
     assert end - start > 0.02, "the case ran too briefly to tell"
     middle = [t for t in ticks if start + 0.3 * (end - start) < t < end - 0.3 * (end - start)]
     assert len(middle) >= 3, f"{len(middle)} ticks in the middle of a {end - start:.3f} s call"
+
+
+def test_other_threads_run_while_the_main_thread_calls_and_polls():
+    # the call in the main thread looks at signals and progress every 20 ms
+    # (it takes the GIL for that): between two looks it must not hold the GIL,
+    # so a pure-Python counter thread keeps ticking through the call's middle
+    kw = dict(F0=0.004, R=2, tau=1, v=114471.4242553332, samples=11,
+              history=[(0.1144714242553332, 3.0), (114.4714242553332, 2.0)])
+    done = threading.Event()
+    ticks = []
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.0005)
+
+    th = threading.Thread(target=count)
+    th.start()
+    try:
+        start = time.perf_counter()
+        mdrmap.simulate(progress=lambda f: None, **kw)
+        end = time.perf_counter()
+    finally:
+        done.set()
+        th.join()
+    assert end - start > 0.02, "the case ran too briefly to tell"
+    middle = [t for t in ticks if start + 0.3 * (end - start) < t < end - 0.3 * (end - start)]
+    assert len(middle) >= 3, f"{len(middle)} ticks in the middle of a {end - start:.3f} s call"

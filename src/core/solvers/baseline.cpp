@@ -160,7 +160,7 @@ RunResult run_baseline_once(const Case& c, const BaselineOptions& opt, const Run
         c, k, g.n_seg[k], dt,
         [&](long j) { row.step(sp0 + seg.w * dt * static_cast<double>(j + 1), seg.w, dec); },
         [&](long j) { return row.measure(sp0 + seg.w * dt * static_cast<double>(j), seg.w); }, rule,
-        res.series, i, res.probes[k]);
+        res.series, i, res.probes[k], control);
     sp = sp0 + seg.w * seg.T;
     steps += g.n_seg[k];
   }

@@ -397,6 +397,7 @@ RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& c
       control.charge(1.0, "exact");
       const State st = ex.at(k, off);
       res.series.set(i, t0 + off, static_cast<int>(k), st);
+      control.report(i + 1, res.series.size());
       if (ex.last_bracket() > 0.0)
         add_edge_error(c, st, c.history.segments[k].w, edge_error(st, a1, ex.last_bracket()), err);
     }

@@ -228,6 +228,7 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
       stepper.advance_to(std::max(row.t(), off));
       row.check_one_interval();
       out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)
+      control.report(i + 1, out.series.size());
     }
     out.transients.push_back(tracker.result());
     stepper.restart(nullptr);

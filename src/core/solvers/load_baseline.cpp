@@ -328,7 +328,8 @@ RunResult run_once(const Case& c, const LoadBaselineOptions& opt, const RunContr
     auto travel = [&](long n) { return s0 + seg.w * dt * static_cast<double>(n); };
     sample_steps(
         c, k, g.n_seg[k], dt, [&](long j) { st.step(travel(j), seg.w, dt, dec); },
-        [&](long j) { return row.measure(travel(j), seg.w); }, rule, res.series, i, res.probes[k]);
+        [&](long j) { return row.measure(travel(j), seg.w); }, rule, res.series, i, res.probes[k],
+        control);
     s = travel(g.n_seg[k]);
   }
   res.info.steps = g.steps;

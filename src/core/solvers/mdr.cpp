@@ -59,7 +59,7 @@ ResolutionRun run_once(const Case& c, double cells, double phase, const MdrOptio
   // companion without the fine run's steps would widen the estimate)
   const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio};
   out.series = sample_history(
-      c, [&](double w) { row.change_velocity(w); },
+      c, control, [&](double w) { row.change_velocity(w); },
       [&](double dt, double) { row.advance(dt); }, // exact: no steps needed between samples
       [&] { return row.measure(); }, [&](std::size_t) { return probe; }, out.probes);
   out.elements = static_cast<long>(row.capacity());

@@ -11,6 +11,7 @@
 
 #include "core/model/case.hpp"
 #include "core/solvers/result.hpp"
+#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -26,9 +27,10 @@ struct ResolutionRun {
 /// The samples of one run of an element-row solver over the case's history:
 /// measure() before t = 0 (pre), then for each segment change(w) at its
 /// start and, to each output instant, advance(dt, w) by the time since the
-/// last one and measure() there.
+/// last one and measure() there; reports each sample to `control`.
 template <class Change, class Advance, class Measure>
-Series sample_history(const Case& c, Change change, Advance advance, Measure measure) {
+Series sample_history(const Case& c, const RunControl& control, Change change, Advance advance,
+                      Measure measure) {
   Series s;
   s.resize(c.total_samples());
   s.pre = measure();
@@ -43,6 +45,7 @@ Series sample_history(const Case& c, Change change, Advance advance, Measure mea
       advance(off - prev, seg.w);
       prev = off;
       s.set(i, t0 + off, static_cast<int>(k), measure());
+      control.report(i + 1, s.size());
     }
   }
   return s;
@@ -70,8 +73,8 @@ struct ProbeRule {
 /// for segment k: advance to each, measure() there into probes[k] (with
 /// mu(0+) and the segment's end, which every sampling has).
 template <class Change, class Advance, class Measure, class Rule>
-Series sample_history(const Case& c, Change change, Advance advance, Measure measure, Rule rule,
-                      std::vector<Probes>& probes) {
+Series sample_history(const Case& c, const RunControl& control, Change change, Advance advance,
+                      Measure measure, Rule rule, std::vector<Probes>& probes) {
   probes.assign(c.history.size(), Probes{});
   Probes* p = nullptr; // the segment's (none before the first change: pre)
   std::size_t k = 0;
@@ -110,7 +113,7 @@ Series sample_history(const Case& c, Change change, Advance advance, Measure mea
     p->mu.push_back(st.mu);
     return st;
   };
-  return sample_history(c, change_k, advance_k, measure_k);
+  return sample_history(c, control, change_k, advance_k, measure_k);
 }
 
 /// Runs the solver once at resolution `cells` (a1/dx) with element phase

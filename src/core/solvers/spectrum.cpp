@@ -42,7 +42,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // series serve the estimate only)
   const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
   out.series = sample_history(
-      c, [&](double w) { row.change_velocity(w); },
+      c, control, [&](double w) { row.change_velocity(w); },
       [&](double dt, double) {
         row.renumber();
         row.advance(dt);
@@ -351,7 +351,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   out.probes.assign(c.history.size(), Probes{});
   std::size_t k = 0;
   out.series = sample_history(
-      c,
+      c, control,
       [&](double w) {
         run.change(w);
         t_seg = 0.0;

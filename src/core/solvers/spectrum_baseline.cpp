@@ -265,7 +265,7 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
         c, k, n, dt,
         [&](long j) { step(sp0 + seg.w * dt * static_cast<double>(j + 1), seg.w, dt, e); },
         [&](long j) { return row.measure(sp0 + seg.w * dt * static_cast<double>(j), seg.w); }, rule,
-        res.series, i, res.probes[k]);
+        res.series, i, res.probes[k], control);
     sp = sp0 + seg.w * seg.T;
     nsteps += n;
   }

@@ -10,6 +10,7 @@
 
 #include "core/model/case.hpp"
 #include "core/solvers/refine.hpp"
+#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -23,10 +24,12 @@ inline ProbeRule step_probe_rule(const Case& c) {
 /// (j + 1) dt), measure(j) is the state after j steps. Writes the segment's
 /// samples into `series` from index i (advanced past them) and, where the
 /// segment changes the velocity, its probes into `probes` (mu(0+), the rule's
-/// instants on the step grid, the segment's end). Returns after all n steps.
+/// instants on the step grid, the segment's end); reports each sample to
+/// `control`. Returns after all n steps.
 template <class Step, class Measure>
 void sample_steps(const Case& c, std::size_t k, long n, double dt, Step step, Measure measure,
-                  const ProbeRule& rule, Series& series, std::size_t& i, Probes& probes) {
+                  const ProbeRule& rule, Series& series, std::size_t& i, Probes& probes,
+                  const RunControl& control) {
   const Segment& seg = c.history.segments[k];
   const double t0 = c.history.start(k);
   const bool probing =
@@ -62,6 +65,7 @@ void sample_steps(const Case& c, std::size_t k, long n, double dt, Step step, Me
     const double off = c.sampling.offset(j, seg.T);
     advance(std::min(n, static_cast<long>(std::llround(off / dt))));
     series.set(i, t0 + off, static_cast<int>(k), measure(done));
+    control.report(i + 1, series.size());
   }
   advance(n); // (the last sample ends the segment already)
 }

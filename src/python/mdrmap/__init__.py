@@ -13,10 +13,13 @@ lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
 '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
 numbers (or as the text the command line takes); the history as a list of
-(w, T) pairs (or "W1:T1,W2:T2"). FN= is accepted as the old spelling of the
-prescribed load F0= (not both). The results equal the command line's bit
-for bit; the solver runs without the GIL, so a thread pool over cases uses
-every core.
+(w, T) pairs (or "W1:T1,W2:T2"), a spectrum as prony=[(G, tau), ...], the
+WLF constants as wlf=(C1, C2, TREF) with temperature= (T= its old spelling).
+FN= is accepted as the old spelling of the prescribed load F0= (not both).
+help(mdrmap.simulate) lists every keyword. The results equal the command
+line's bit for bit; the solver runs without the GIL, so a thread pool over
+cases uses every core; Ctrl-C raises KeyboardInterrupt within a fraction of
+a second, and progress=callable reports how far a call got.
 """
 
 import numbers
@@ -38,6 +41,7 @@ except ImportError as _error:  # not built (for this Python), or does not load
                       "`pip install --no-build-isolation --no-index .`") from None
 from ._core import InvalidInput
 from .maps import MapError, open_map, to_grid
+from . import _doc
 
 __version__ = _core.__version__
 __all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
@@ -61,6 +65,7 @@ def _keywords(options):
     out = {o.replace("-", "_"): o for o in options}
     out.update({o: o for o in options})
     out.update({alias: alias for alias, name in _ALIASES.items() if name in options})
+    out.update({_doc.keyword(o): o for o in options})  # temperature for T
     return out
 
 
@@ -128,8 +133,11 @@ def _pairs_text(option, value):
     return ",".join(parts)
 
 
-def _texts(kwargs, keywords, function):
+def _texts(kwargs, keywords, function, spelled=None):
+    """{option: text} of the keyword arguments; `spelled` gets {option:
+    keyword} where the keyword is not the option's spelling (temperature)."""
     texts = {}
+    spelled = {} if spelled is None else spelled
     for key, value in kwargs.items():
         option = keywords.get(key)
         if option is None:
@@ -138,9 +146,44 @@ def _texts(kwargs, keywords, function):
                                f"case-sensitive: {names}), got {key}", key)
         if option in texts:
             raise InvalidInput("may be given only once", option)
-        texts[option] = _pairs_text(option, value) if option in ("history", "prony") else \
-            _number_text(option, value)
+        if option in ("history", "prony"):
+            texts[option] = _pairs_text(option, value)
+        elif option == "wlf":
+            texts[option] = _wlf_text(value)
+        else:
+            texts[option] = _number_text(option, value)
+        if key != option and key == _doc.keyword(option):
+            spelled[option] = key
     return texts
+
+
+def _wlf_text(value):
+    """wlf=(C1, C2, TREF) as "C1:C2:TREF" (a str as it is)."""
+    if isinstance(value, str) or value is None:
+        return _number_text("wlf", value)
+    try:
+        items = list(value)
+    except TypeError:
+        items = None
+    if items is None or len(items) != 3:
+        raise InvalidInput(f"must be the three WLF constants (C1, C2, TREF), got {value!r}",
+                           "wlf")
+    return ":".join(_number_text("wlf", x) for x in items)
+
+
+def _call(function, texts, progress, spelled):
+    """_core.function(texts, progress); an InvalidInput of an option given
+    under another keyword (temperature= for T) names that keyword."""
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a callable (or None), got {progress!r}")
+    try:
+        return function(texts, progress)
+    except InvalidInput as e:
+        if e.option not in spelled:
+            raise
+        e.keyword = spelled[e.option]
+        e.args = (f"{e.keyword}: {e.message}",)
+        raise e from None
 
 
 class Result:
@@ -182,31 +225,50 @@ class Result:
                 f"solver={self.info['solver']}, mu_pre={self.pre['mu']:.6g}>")
 
 
-def simulate(**options):
-    """Runs one case as `mdrmap simulate` does and returns a Result.
-
-    Keywords: d (depth control) or F0 (load control; FN, its old spelling,
-    is accepted), R, tau, v, and G,
-    the history: v1 (one step, with t_end) or history=[(w1, T1), ...],
-    the sampling: samples, spacing ("linear", "log"), log_decades,
-    the run: rtol, solver ("auto", "exact", "mdr", "baseline", "spectrum").
-    Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError
-    (the case cannot be computed within its budget or rtol, exit code 1).
-    """
-    return Result(_core.simulate(_texts(options, _SIMULATE_KEYWORDS, "simulate")))
+def simulate(*, progress=None, **options):
+    spelled = {}
+    texts = _texts(options, _SIMULATE_KEYWORDS, "simulate", spelled)
+    return Result(_call(_core.simulate, texts, progress, spelled))
 
 
-def stationary(**options):
-    """The stationary state at velocity v (FN, Fx, mu, a2, and d, a1 under
-    load) of the case's parameters without a history: d or F0, the indenter
-    (R, or profile="cone" with beta=, or profile="power" with n= and A=), tau,
-    v, G, and its spectrum (prony= as "G1:TAU1,..." or [(G1, TAU1), ...], or
-    prony_file=) and shift (aT=, or T= with wlf=).
-    It is the state that events[0]["mu_ss_before"] of simulate describes."""
-    texts = _texts(options, _STATIONARY_KEYWORDS, "stationary")
-    if "v" in texts:
-        texts["history"] = texts["v"] + ":1"
-    return _core.stationary(texts)
+simulate.__doc__ = _doc.docstring(
+    "Runs one case as `mdrmap simulate` does and returns a Result.\n\n"
+    "The keywords are the command line's options with '_' for '-'; numbers as\n"
+    "Python or numpy numbers (or the text the command line takes).",
+    _doc.entries(_OPTIONS, _TABLE, _ALIASES) + [("progress", _doc.PROGRESS)],
+    "Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError\n"
+    "(the case cannot be computed within its budget or rtol, exit code 1).")
+
+
+def stationary(*, progress=None, **options):
+    v = options.get("v")
+    many = v is not None and not isinstance(v, (str, bytes)) and \
+        (getattr(v, "ndim", None) or 0) > 0 or isinstance(v, (list, tuple, range))
+    if many:
+        options = dict(options)
+        del options["v"]
+    spelled = {}
+    texts = _texts(options, _STATIONARY_KEYWORDS, "stationary", spelled)
+    if many:
+        texts["v-list"] = ",".join(_number_text("v", x) for x in v)
+        spelled["v-list"] = "v"
+    out = _call(_core.stationary, texts, progress, spelled)
+    if many:
+        return out
+    del out["v"]
+    return {name: float(x[0]) for name, x in out.items()}
+
+
+stationary.__doc__ = _doc.docstring(
+    "The stationary sliding state (FN, Fx, mu, a2, and d, a1 under load) of a\n"
+    "case without its history, as `mdrmap stationary` gives it: at v= a dict\n"
+    "of numbers (the state events[0][\"mu_ss_before\"] of simulate describes),\n"
+    "at v=[v1, v2, ...] (a list or an array, as --v-list) a dict of numpy\n"
+    "arrays, one value per velocity, with v itself.",
+    [(k, t) if k != "v" else ("v", t + "; or a list or array of velocities")
+     for k, t in _doc.entries(_STATIONARY, _TABLE, _ALIASES)] +
+    [("progress", _doc.PROGRESS)],
+    "Raises InvalidInput (bad input, as the CLI's exit code 2).")
 
 
 def parameters():
