@@ -70,31 +70,8 @@ add "load shs zeta0 1e8" any "$LOAD --tau 1e8 --history 0:1e9,1:1e9 --samples 11
 declare -A count=()
 failures=0
 start=$SECONDS
-check() { # check LABEL EXPECTED CODE: prints the outcome, returns 1 on a violation
-  local label=$1 expected=$2 code=$3 lines why=""
-  lines=$(wc -l <"$err")
-  case $code in
-  0)
-    [[ -s $err ]] && why="stderr not empty"
-    grep -v '^#' "$out" | tail -n +2 | grep -qi 'inf\|nan' && why="inf/nan in the rows"
-    grep '^# pre ' "$out" | grep -qi 'inf\|nan' && why="inf/nan in the pre line"
-    [[ $(grep -vc '^#' "$out") -ge 2 ]] || why="no rows" ;;
-  1) [[ $lines == 1 ]] && grep -q '^mdrmap simulate: error: ' "$err" || why="not one error line" ;;
-  2)
-    [[ $lines == 1 ]] && grep -Eq '^mdrmap simulate: error: --[A-Za-z0-9-]+: ' "$err" ||
-      why="not one line naming an option"
-    [[ -s $out ]] && why="stdout not empty" ;;
-  124 | 137) why="timeout (${TIMEOUT} s): ran unbounded" ;;
-  *) why="exit $code" ;;
-  esac
-  if [[ -z $why && $expected != any ]]; then
-    [[ ${expected%%:*} == "$code" ]] || why="exit $code, expected $expected"
-    [[ $expected == *:* ]] && ! grep -q -- "--${expected#*:}:" "$err" && why="does not name --${expected#*:}"
-  fi
-  [[ -z $why ]] && return 0
-  echo "FAIL: $label: $why: $(head -c 300 "$err")"
-  return 1
-}
+# shellcheck source=tests/extreme/check.sh
+source "$(dirname "${BASH_SOURCE[0]}")/check.sh"
 
 for c in "${CASES[@]}"; do
   IFS="|" read -r label expected args <<<"$c"
@@ -103,7 +80,7 @@ for c in "${CASES[@]}"; do
   timeout -k 5 "$TIMEOUT" "$MDRMAP" simulate $args >"$out" 2>"$err"
   code=$?
   secs=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')
-  if check "$label" "$expected" "$code"; then
+  if check "$label" "$expected" "$code" simulate; then
     count["exit $code"]=$((${count["exit $code"]:-0} + 1))
     printf '%-32s exit %s  %6s s  %s\n' "$label" "$code" "$secs" "$(head -c 120 "$err")"
   else
