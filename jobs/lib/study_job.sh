@@ -175,7 +175,9 @@ job_launcher() {
       [[ -z "$NP" ]] || launcher+=(-n "$NP")
       ;;
     local)
-      launcher=(mpirun -np "${NP:-$(nproc 2>/dev/null || echo 1)}")
+      # -q (Open MPI's orte_execute_quiet, 4.x and 5.x): an error's one line
+      # (exit 2) is not buried under mpirun's abort banner; the exit code stays
+      launcher=(mpirun -np "${NP:-$(nproc 2>/dev/null || echo 1)}" -q)
       ;;
   esac
   [[ -z "$LAUNCHER" ]] || read -r -a launcher <<<"$LAUNCHER"

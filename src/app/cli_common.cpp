@@ -100,6 +100,19 @@ std::string all_option_names(const std::vector<std::string>& names) {
   return s + "--help";
 }
 
+std::string beyond_last_term(const std::string& name) {
+  const std::size_t digits = name.find_first_of("0123456789");
+  const std::string stem = name.substr(0, digits);
+  if (digits == std::string::npos || (stem != "G" && stem != "tau") || name[digits] == '0' ||
+      name.find_first_not_of("0123456789", digits) != std::string::npos ||
+      name.size() - digits > 6 || std::stoul(name.substr(digits)) <= kMaxBranches)
+    return "";
+  const std::string n = std::to_string(kMaxBranches);
+  return "a spectrum has at most " + n + " terms, the options --G1..--G" + n +
+         " and --tau1..--tau" + n + " of mdrmap study, or --prony G1:TAU1,... with at most " + n +
+         " pairs; got --" + name;
+}
+
 po::variables_map option_texts(const std::vector<std::string>& args, const std::string& command,
                                const std::vector<std::string>& names, const std::string& example) {
   po::options_description desc;
@@ -119,6 +132,8 @@ po::variables_map option_texts(const std::vector<std::string>& args, const std::
     if (tok.size() > 1 && tok[0] == '-') {
       std::string name = tok.substr(0, tok.find('='));
       name.erase(0, name.find_first_not_of('-'));
+      if (const std::string why = beyond_last_term(name); !why.empty())
+        throw InvalidInput(name, why);
       throw InvalidInput(name, "not an option of mdrmap " + command +
                                    " (options are case-sensitive: " + all_option_names(names) +
                                    "), got " + tok);

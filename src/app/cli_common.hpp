@@ -41,6 +41,10 @@ int report_run_error(const std::string& command, const std::string& hint);
 /// "--a, --b, ..., --help": the options `names` (without dashes) and --help.
 std::string all_option_names(const std::vector<std::string>& names);
 
+/// For an option name G<k> or tau<k> with k past the spectrum's last term
+/// (kMaxBranches), why it is refused (the 32-term limit); else "".
+std::string beyond_last_term(const std::string& name);
+
 /// Reads the command line of `command`: each of `names` takes one value (a
 /// text), --help none. An unknown option throws InvalidInput naming it and
 /// listing all_option_names(names); a stray argument throws InvalidInput("")

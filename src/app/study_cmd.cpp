@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
 #include "core/model/params.hpp"
 #include "mdrmap/version.hpp"
@@ -226,6 +227,7 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
     std::string opt = e.get_option_name();
     while (!opt.empty() && opt[0] == '-')
       opt.erase(0, 1);
+    if (const std::string why = beyond_last_term(opt); !why.empty()) throw InvalidInput(opt, why);
     throw InvalidInput(opt.empty() ? "config" : opt, e.what());
   } catch (const po::error& e) {
     throw InvalidInput("config", e.what());

@@ -263,6 +263,10 @@ expect refuse_file 2 "is not an HDF5 map; not touching it"
 sum=$(sha256sum <"$WORK/tiny_study.pbs.h5")
 run refuse_study "$PBS" CONFIG=big.ini OUTPUT="$WORK/tiny_study.pbs.h5"
 expect refuse_study 2 "mdrmap refused"
+! grep -qE "MPI_ABORT|mpirun detected|Primary job|^-{20}" refuse_study.log || {
+  cat refuse_study.log >&2
+  fail "refuse_study: the error line is buried under mpirun's abort banner (mpirun -q)"
+}
 ! grep -qE "resubmitting|would run" refuse_study.log || fail "refuse_study: resubmits"
 [[ "$(sha256sum <"$WORK/tiny_study.pbs.h5")" == "$sum" ]] || fail "refuse_study: the map changed"
 run refuse_config "$SBATCH" CONFIG=missing.ini OUTPUT=x.h5

@@ -61,9 +61,11 @@ struct RunControl {
     if (spent_ > max_work) {
       char budget[32]; // (max_work may exceed what a long long holds)
       std::snprintf(budget, sizeof budget, "%.3g", max_work);
-      throw CaseAbandoned(std::string(what) + " needs more than its work budget of " + budget +
-                          " element updates for this case (the case is too stiff or too long "
-                          "for this solver at this rtol)");
+      throw CaseAbandoned(
+          std::string(what) + " needs more than its work budget of " + budget +
+          " work units (an element's sub-step, 1 + N/4 for N spectrum branches; a root "
+          "solve; a time step): the case is too stiff or too long for this "
+          "solver at this rtol; a looser --rtol needs less work");
     }
   }
   double spent() const { return spent_; }
