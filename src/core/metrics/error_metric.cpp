@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/model/scales.hpp"
@@ -55,19 +56,27 @@ void load_errors(const Series& run, const Series& ref, const Case& c, CaseError&
 
 } // namespace
 
+// the parabola's as it always was, any other profile's from its Scales (with
+// R = 0 the parabola's would be infinite: a floor that hid every F_x and mu
+// difference of a cone or a power law)
+double friction_scale(const Case& c) {
+  if (!c.indenter.parabolic()) return scales(c).friction;
+  const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
+  return std::sqrt(d_scale / c.indenter.R);
+}
+
+bool friction_resolved(const Case& c, double mu_max, double rtol) {
+  // measured (cone beta 10 and parabola, v tau/a1 1e12..1e15): the error of
+  // mu is up to 2.5 eps times the scale
+  constexpr double kRoundingTerms = 4.0;
+  const double floor = kRoundingTerms * std::numeric_limits<double>::epsilon() * friction_scale(c);
+  return std::max(mu_max, kNegligibleFriction) * rtol >= floor;
+}
+
 CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel) {
   CaseError e = case_error(run, ref, c.edge_scale());
   if (c.loading.by_force()) load_errors(run, ref, c, e);
-  // the friction scale: the parabola's as it always was, any other profile's
-  // from its Scales (with R = 0 the parabola's would be infinite: a floor
-  // that hid every F_x and mu difference of a cone or a power law)
-  double mu_scale = 0.0;
-  if (c.indenter.parabolic()) {
-    const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
-    mu_scale = std::sqrt(d_scale / c.indenter.R);
-  } else {
-    mu_scale = scales(c).friction;
-  }
+  const double mu_scale = friction_scale(c);
   double fn_max = 0.0, fx_max = 0.0, mu_max = 0.0;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     fn_max = std::max(fn_max, std::abs(ref.FN[k]));

@@ -29,4 +29,19 @@ CaseError case_error(const Series& run, const Series& ref, double a1);
 /// (both in `a2`) by the Hertz radius a0.
 CaseError case_error(const Series& run, const Series& ref, const Case& c, double floor_rel = 0.0);
 
+/// The case's friction scale: sqrt(d/R) for the parabola (under load with
+/// the Hertz depth a0^2/R), another profile's Scales::friction.
+double friction_scale(const Case& c);
+
+/// A friction coefficient below this is zero to a tribologist: resolved to
+/// rtol times it, not to rtol of itself.
+inline constexpr double kNegligibleFriction = 1e-10;
+
+/// mu = F_x / F_N where F_x integrates p g' over both faces of the contact:
+/// its rounding error is a few eps times the friction scale, whatever mu is
+/// (a needle cone, or v tau/a1 far from 1, gives a mu 1e-15 of its scale).
+/// True when |mu| up to `mu_max` is resolved to `rtol` above that floor:
+/// max(mu_max, kNegligibleFriction) rtol >= 4 eps friction_scale(c).
+bool friction_resolved(const Case& c, double mu_max, double rtol);
+
 } // namespace mdrmap
