@@ -62,8 +62,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
 // updates are exact for the path and the dashpot's force inside the step (it
 // decides where a point lets go) is second order too. Steps grow geometrically
 // from each velocity change (relative step eps = 1 / cells: the companion at
-// half the cells has twice the step, so its difference sees the time error),
-// at most 8 eps a1 / w while sliding.
+// half the cells has twice the step, so its difference sees the time error).
 
 /// Root of an increasing f from x0: a secant step with the expected slope k
 /// (> 0) past the root, widened (times 4) until it brackets, then TOMS 748 to
@@ -95,10 +94,10 @@ template <class F> double increasing_root(F f, double x0, double& k, double tol,
 }
 
 // Time steps. The relative step eps = factor / (a_ref/dx) after a change,
-// starting at first eps t_min, and at most kTravel dx of travel per step
-// while sliding. The depth rate at a step's end is the cubic's through the
-// segment's last three depths and the new one (BDF3), and within the step the
-// depth is the parabola to that rate (within O(h^3) of the cubic): the branch
+// starting at first eps t_min, whatever the travel (a cap of 16 dx of travel
+// per step made a long segment's cost grow with its travel: docs/design.md). The depth rate at a
+// step's end is the cubic's through the segment's last three depths and the new one (BDF3), and
+// within the step the depth is the parabola to that rate (within O(h^3) of the cubic): the branch
 // states see a third-order path error and the dashpot a third-order rate
 // error. Without a parallel dashpot the force depends on the path only through
 // the branches' kernel averages; with one, the rate enters the force directly
@@ -118,7 +117,6 @@ struct StepRule {
 StepRule step_rule(const Rheology& r) {
   return r.tau > 0.0 ? StepRule{2.0, 1e-2} : StepRule{8.0, 0.1};
 }
-constexpr double kTravel = 16.0;
 // The load balance's tolerance on F_N and the depth, relative to rtol: 1e-3
 // of the case's error budget. (At 1e-4 the secant needed 17% more trials for
 // the same results: 6-term spectrum under load at rtol 1e-3, 32 -> 29 ms,
@@ -176,12 +174,11 @@ public:
     row_.change_velocity(w, dd);
   }
 
-  /// Advance by T at velocity w, t_seg the time since the change before.
-  void advance(double T, double w, double& t_seg) {
+  /// Advance by T, t_seg the time since the change before.
+  void advance(double T, double& t_seg) {
     double left = T;
     while (left > 0.0) {
       double h = std::min(std::max(eps_ * t_seg, first_ * eps_ * t_min), h_err_);
-      if (w > 0.0) h = std::min(h, kTravel / cells_ * row_.a1_now() / w);
       const double n = std::ceil(left / h);
       h = n > 1.0 ? left / n : left;
       if (!step(h)) continue;
@@ -363,8 +360,8 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
         }
         ++k;
       },
-      [&](double dt, double w) {
-        run.advance(dt, w, t_seg);
+      [&](double dt, double) {
+        run.advance(dt, t_seg);
         if (row.a1_now() > a_win - 2.0 * dx)
           throw CaseAbandoned("spectrum: under load the contact grew past its window (a1 = " +
                               format_number(row.a1_now()) + ")");
