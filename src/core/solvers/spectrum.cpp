@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
 
+#include "core/metrics/error_metric.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
@@ -122,6 +125,10 @@ StepRule step_rule(const Rheology& r) {
 // the same results: 6-term spectrum under load at rtol 1e-3, 32 -> 29 ms,
 // errors and estimates unchanged.)
 constexpr double kBalanceTol = 1e-3;
+// A segment under load whose row stays within kSteadyNear rtol of its
+// stationary state, and within kSteadySpread rtol of itself, over two
+// traverses of the window keeps that state (LoadRun::Watch).
+constexpr double kSteadyNear = 0.5, kSteadySpread = 0.25;
 
 struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
@@ -156,6 +163,7 @@ public:
   /// The depth rate just after a change to w (the dashpot's balance at the instant).
   void change(double w) {
     restart();
+    start_watch(w);
     if (!(c_.rheology.tau > 0.0)) {
       row_.change_velocity(w, 0.0);
       return;
@@ -174,29 +182,87 @@ public:
     row_.change_velocity(w, dd);
   }
 
-  /// Advance by T, t_seg the time since the change before.
+  /// Advance by T, t_seg the time since the change before; a segment that
+  /// has reached its stationary state keeps it (see Watch).
   void advance(double T, double& t_seg) {
     double left = T;
-    while (left > 0.0) {
+    while (left > 0.0 && !watch_.frozen) {
       double h = std::min(std::max(eps_ * t_seg, first_ * eps_ * t_min), h_err_);
       const double n = std::ceil(left / h);
       h = n > 1.0 ? left / n : left;
       if (!step(h)) continue;
       t_seg += h;
-      if (probes != nullptr) { // (the state the balance accepted: measured last)
-        probes->t.push_back(t_seg);
-        probes->mu.push_back(at_.mu);
-      }
+      probe(t_seg);
       left = n > 1.0 ? left - h : 0.0;
+      watch(h);
     }
+    if (!(left > 0.0)) return;
+    t_seg += left; // (frozen: the state stays)
+    probe(t_seg);
   }
   double t_min = 0.0;
+  /// The travel that renews the window's material (2 a_win).
+  double traverse = 0.0;
   /// Where every accepted step's end and its mu go (the event metrics'
   /// probes: the steps do not depend on the samples but where they cut
   /// them), or nowhere.
   Probes* probes = nullptr;
 
 private:
+  void probe(double t) {
+    if (probes == nullptr) return; // (the state the balance accepted: measured last)
+    probes->t.push_back(t);
+    probes->mu.push_back(at_.mu);
+  }
+
+  /// A segment's approach to its stationary state (the continuum's, at w > 0
+  /// under F0). After each traverse of the window (its material renewed) the
+  /// row's depth and mu are compared with it: once within kSteadyNear rtol at
+  /// three checks in a row, and within kSteadySpread rtol of each other
+  /// there, every later sample of the segment is that state of the row,
+  /// without further steps. (Against the continuum alone the row's own
+  /// error, which cycles with the grid's phase, decides; against itself alone
+  /// a slow creep could pass.) Both runs of the estimate decide alone, so
+  /// their difference still sees the row's own error (docs/design.md,
+  /// "Stationary segments under load").
+  struct Watch {
+    State steady;
+    double w = 0.0, travel = 0.0;
+    int within = 0;
+    double lo[2] = {}, hi[2] = {}; // the streak's extremes of d and mu, relative
+    bool frozen = false;
+  };
+  void start_watch(double w) {
+    watch_ = Watch{};
+    if (!(w > 0.0) || !keep_stationary) return;
+    try {
+      watch_.steady = stationary_state(c_, w);
+      watch_.w = w;
+    } catch (const std::exception&) { // (no closed form at this w: the steps go on)
+    }
+  }
+  void watch(double h) {
+    if (!(watch_.w > 0.0)) return;
+    watch_.travel += watch_.w * h;
+    if (watch_.travel < traverse) return;
+    watch_.travel = 0.0;
+    const State& ss = watch_.steady;
+    const double x[2] = {row_.depth_now() / ss.d - 1.0,
+                         (at_.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction)};
+    if (!(std::abs(x[0]) <= kSteadyNear * rtol && std::abs(x[1]) <= kSteadyNear * rtol)) {
+      watch_.within = 0;
+      return;
+    }
+    double spread = 0.0;
+    for (int q = 0; q < 2; ++q) {
+      watch_.lo[q] = watch_.within == 0 ? x[q] : std::min(watch_.lo[q], x[q]);
+      watch_.hi[q] = watch_.within == 0 ? x[q] : std::max(watch_.hi[q], x[q]);
+      spread = std::max(spread, watch_.hi[q] - watch_.lo[q]);
+    }
+    ++watch_.within;
+    watch_.frozen = watch_.within >= 3 && spread <= kSteadySpread * rtol;
+  }
+
   bool step(double h) {
     row_.renumber();
     row_.save(snap_);
@@ -311,6 +377,11 @@ private:
   std::size_t n_ = 0;
   double t_[4] = {}, d_[4] = {}, k_ = 0.0;
   double h_err_ = std::numeric_limits<double>::infinity();
+  Watch watch_;
+
+public:
+  double rtol = 0.0;
+  bool keep_stationary = true;
 };
 
 // The pre-state: stationary sliding at the depth where the row's F_N is F0
@@ -343,6 +414,9 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, cells, kBalanceTol * o.rtol);
   run.t_min = geo.t_min;
+  run.traverse = 2.0 * a_win;
+  run.rtol = o.rtol;
+  run.keep_stationary = o.keep_stationary;
   double t_seg = 0.0; // since the segment's start
   ResolutionRun out;
   out.probes.assign(c.history.size(), Probes{});

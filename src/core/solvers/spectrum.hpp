@@ -22,6 +22,9 @@ struct SpectrumOptions {
   double phase = 0.5;         ///< element offset at t = 0, in cells
   double sub_travel = 0.25;   ///< largest travel of a sub-step, in a1 (switch detection)
   bool estimate_error = true; ///< run the half-resolution companion for error_estimate
+  /// Under load, a segment that has reached its stationary state keeps it
+  /// without further steps (spectrum.cpp, LoadRun::Watch); false: steps on.
+  bool keep_stationary = true;
   /// Work budget and stop flag (nullptr: the default budget, no stop flag).
   const RunControl* control = nullptr;
 };
