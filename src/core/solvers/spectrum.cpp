@@ -16,6 +16,7 @@
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
+#include "core/solvers/stationary_watch.hpp"
 
 namespace mdrmap {
 namespace {
@@ -29,6 +30,17 @@ constexpr double kEdgeTol = 1e-3, kEdgeFloor = 4e-3;
 
 constexpr const char* kName = "spectrum";
 constexpr double kMaxCells = 2e5; // window memory: 4e5 elements of up to 33 doubles
+
+/// The stationary state at w > 0 (F_N = 0 where there is none: w = 0, or no
+/// closed form at this w; the steps then go on).
+State stationary_or_none(const Case& c, double w) {
+  if (!(w > 0.0)) return State{};
+  try {
+    return stationary_state(c, w);
+  } catch (const std::exception&) {
+    return State{};
+  }
+}
 
 ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
                        const SpectrumOptions& o, const RunControl& control) {
@@ -44,13 +56,33 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // (the companions of the estimate, at other phases, are not probed: their
   // series serve the estimate only)
   const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
+  // a segment that has reached its stationary state keeps it (stationary_watch.hpp)
+  StationaryWatch watch(o.rtol, 2.0 * c.a1(), o.keep_stationary);
+  State ss, now;
+  double w_now = 0.0;
   out.series = sample_history(
-      c, control, [&](double w) { row.change_velocity(w); },
+      c, control,
+      [&](double w) {
+        row.change_velocity(w);
+        w_now = w;
+        ss = stationary_or_none(c, w);
+        watch.start(w, ss.FN > 0.0);
+      },
       [&](double dt, double) {
+        if (watch.frozen()) return;
         row.renumber();
         row.advance(dt);
+        watch.moved(w_now * dt);
       },
-      [&] { return row.measure(); }, [&](std::size_t) { return probe; }, out.probes);
+      [&] {
+        if (watch.frozen()) return now;
+        now = row.measure();
+        if (watch.due())
+          watch.check(now.FN / ss.FN - 1.0,
+                      (now.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
+        return now;
+      },
+      [&](std::size_t) { return probe; }, out.probes);
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
@@ -125,10 +157,6 @@ StepRule step_rule(const Rheology& r) {
 // the same results: 6-term spectrum under load at rtol 1e-3, 32 -> 29 ms,
 // errors and estimates unchanged.)
 constexpr double kBalanceTol = 1e-3;
-// A segment under load whose row stays within kSteadyNear rtol of its
-// stationary state, and within kSteadySpread rtol of itself, over two
-// traverses of the window keeps that state (LoadRun::Watch).
-constexpr double kSteadyNear = 0.5, kSteadySpread = 0.25;
 
 struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
@@ -156,13 +184,14 @@ LoadGeometry load_geometry(const Case& c) {
 
 class LoadRun {
 public:
-  LoadRun(const Case& c, spectrum::Row& row, double cells, double tol)
+  LoadRun(const Case& c, spectrum::Row& row, double cells, double tol, StationaryWatch watch)
       : c_(c), row_(row), cells_(cells), eps_(step_rule(c.rheology).factor / cells),
-        first_(step_rule(c.rheology).first), tol_(tol), ftol_(tol) {}
+        first_(step_rule(c.rheology).first), tol_(tol), ftol_(tol), watch_(watch) {}
 
   /// The depth rate just after a change to w (the dashpot's balance at the instant).
   void change(double w) {
     restart();
+    watch_w_ = w;
     start_watch(w);
     if (!(c_.rheology.tau > 0.0)) {
       row_.change_velocity(w, 0.0);
@@ -186,7 +215,7 @@ public:
   /// has reached its stationary state keeps it (see Watch).
   void advance(double T, double& t_seg) {
     double left = T;
-    while (left > 0.0 && !watch_.frozen) {
+    while (left > 0.0 && !watch_.frozen()) {
       double h = std::min(std::max(eps_ * t_seg, first_ * eps_ * t_min), h_err_);
       const double n = std::ceil(left / h);
       h = n > 1.0 ? left / n : left;
@@ -201,8 +230,6 @@ public:
     probe(t_seg);
   }
   double t_min = 0.0;
-  /// The travel that renews the window's material (2 a_win).
-  double traverse = 0.0;
   /// Where every accepted step's end and its mu go (the event metrics'
   /// probes: the steps do not depend on the samples but where they cut
   /// them), or nowhere.
@@ -215,52 +242,16 @@ private:
     probes->mu.push_back(at_.mu);
   }
 
-  /// A segment's approach to its stationary state (the continuum's, at w > 0
-  /// under F0). After each traverse of the window (its material renewed) the
-  /// row's depth and mu are compared with it: once within kSteadyNear rtol at
-  /// three checks in a row, and within kSteadySpread rtol of each other
-  /// there, every later sample of the segment is that state of the row,
-  /// without further steps. (Against the continuum alone the row's own
-  /// error, which cycles with the grid's phase, decides; against itself alone
-  /// a slow creep could pass.) Both runs of the estimate decide alone, so
-  /// their difference still sees the row's own error (docs/design.md,
-  /// "Stationary segments under load").
-  struct Watch {
-    State steady;
-    double w = 0.0, travel = 0.0;
-    int within = 0;
-    double lo[2] = {}, hi[2] = {}; // the streak's extremes of d and mu, relative
-    bool frozen = false;
-  };
+  /// The segment's stationary state under F0 (watch_ decides when it holds).
   void start_watch(double w) {
-    watch_ = Watch{};
-    if (!(w > 0.0) || !keep_stationary) return;
-    try {
-      watch_.steady = stationary_state(c_, w);
-      watch_.w = w;
-    } catch (const std::exception&) { // (no closed form at this w: the steps go on)
-    }
+    ss_ = stationary_or_none(c_, w);
+    watch_.start(w, ss_.FN > 0.0);
   }
   void watch(double h) {
-    if (!(watch_.w > 0.0)) return;
-    watch_.travel += watch_.w * h;
-    if (watch_.travel < traverse) return;
-    watch_.travel = 0.0;
-    const State& ss = watch_.steady;
-    const double x[2] = {row_.depth_now() / ss.d - 1.0,
-                         (at_.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction)};
-    if (!(std::abs(x[0]) <= kSteadyNear * rtol && std::abs(x[1]) <= kSteadyNear * rtol)) {
-      watch_.within = 0;
-      return;
-    }
-    double spread = 0.0;
-    for (int q = 0; q < 2; ++q) {
-      watch_.lo[q] = watch_.within == 0 ? x[q] : std::min(watch_.lo[q], x[q]);
-      watch_.hi[q] = watch_.within == 0 ? x[q] : std::max(watch_.hi[q], x[q]);
-      spread = std::max(spread, watch_.hi[q] - watch_.lo[q]);
-    }
-    ++watch_.within;
-    watch_.frozen = watch_.within >= 3 && spread <= kSteadySpread * rtol;
+    watch_.moved(watch_w_ * h);
+    if (watch_.due())
+      watch_.check(row_.depth_now() / ss_.d - 1.0,
+                   (at_.mu - ss_.mu) / std::max(std::abs(ss_.mu), kNegligibleFriction));
   }
 
   bool step(double h) {
@@ -377,11 +368,9 @@ private:
   std::size_t n_ = 0;
   double t_[4] = {}, d_[4] = {}, k_ = 0.0;
   double h_err_ = std::numeric_limits<double>::infinity();
-  Watch watch_;
-
-public:
-  double rtol = 0.0;
-  bool keep_stationary = true;
+  StationaryWatch watch_;
+  State ss_;
+  double watch_w_ = 0.0;
 };
 
 // The pre-state: stationary sliding at the depth where the row's F_N is F0
@@ -412,11 +401,9 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
   start_under_load(row, c, geo.d_pre, o.rtol);
-  LoadRun run(c, row, cells, kBalanceTol * o.rtol);
+  LoadRun run(c, row, cells, kBalanceTol * o.rtol,
+              StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary));
   run.t_min = geo.t_min;
-  run.traverse = 2.0 * a_win;
-  run.rtol = o.rtol;
-  run.keep_stationary = o.keep_stationary;
   double t_seg = 0.0; // since the segment's start
   ResolutionRun out;
   out.probes.assign(c.history.size(), Probes{});
