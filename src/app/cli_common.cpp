@@ -97,7 +97,7 @@ std::string all_option_names(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& o : names)
     s += "--" + o + ", ";
-  return s + "--help";
+  return s + "--help, --help-all";
 }
 
 std::string beyond_last_term(const std::string& name) {

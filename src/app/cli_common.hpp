@@ -38,7 +38,8 @@ int report_parse_error(const std::string& command);
 /// else is rethrown.
 int report_run_error(const std::string& command, const std::string& hint);
 
-/// "--a, --b, ..., --help": the options `names` (without dashes) and --help.
+/// "--a, --b, ..., --help, --help-all": the options `names` (without dashes)
+/// and the two help options.
 std::string all_option_names(const std::vector<std::string>& names);
 
 /// For an option name G<k> or tau<k> with k past the spectrum's last term
