@@ -89,6 +89,7 @@ std::string options_summary(const std::vector<HelpSection>& sections) {
     head += std::string(head.size() + 1 > kColumn ? 1 : kColumn - head.size(), ' ');
     std::string labels;
     for (const auto& e : sec.entries) {
+      if (!e.summarized) continue;
       std::string label = e.label;
       // a label is never broken: its spaces become no-break for the wrapping
       for (auto& c : label)

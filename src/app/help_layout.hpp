@@ -13,9 +13,10 @@ namespace mdrmap::app {
 
 /// One option of a help text.
 struct HelpEntry {
-  std::string label;     ///< "--profile P": the option and its value's placeholder
-  std::string text;      ///< what it means, wrapped by help_entry
-  std::string tail = ""; ///< verbatim lines printed after the entry (a small table)
+  std::string label;      ///< "--profile P": the option and its value's placeholder
+  std::string text;       ///< what it means, wrapped by help_entry
+  std::string tail = "";  ///< verbatim lines printed after the entry (a small table)
+  bool summarized = true; ///< listed by the short summary (false: an old spelling)
 };
 
 /// A group of options: the full list prints "TITLE:" and the entries, the

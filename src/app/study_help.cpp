@@ -7,6 +7,7 @@
 #include "app/help_layout.hpp"
 #include "app/study_cmd.hpp"
 #include "app/study_options.hpp"
+#include "core/model/params.hpp"
 
 namespace mdrmap::app {
 namespace {
@@ -48,11 +49,14 @@ bool grouped(const std::string& name) {
   return false;
 }
 
-/// What an override sets, and a note where the key alone does not say it.
+/// What an override sets: the key and, for a case parameter of the table,
+/// its meaning and unit; a note where those do not say it all.
 std::string override_text(const StudyOverride& ov) {
   std::string s = "sets " + ov.key;
-  if (ov.option == "G") return s + ": the modulus of every case (one number)";
   if (ov.option == "FN") return s + ", the old spelling of grid.F0 (the prescribed load)";
+  if (const ParamSpec* p = find_parameter(ov.option))
+    s += std::string(" (") + dim_name(p->dim) + "): " + p->meaning;
+  if (ov.option == "G") return s + ", one number for every case";
   if (ov.option == "profile")
     return s + ": parabola (default, with R), cone (with beta) or power (with n and A); a cone "
                "or power law is solved by the spectrum solver (solver auto picks it)";
@@ -61,7 +65,9 @@ std::string override_text(const StudyOverride& ov) {
 }
 
 HelpEntry override_entry(const StudyOverride& ov) {
-  return {"--" + ov.option + " " + ov.placeholder, override_text(ov)};
+  HelpEntry e{"--" + ov.option + " " + ov.placeholder, override_text(ov)};
+  e.summarized = canonical_parameter_name(ov.option) == ov.option; // not an old spelling
+  return e;
 }
 
 /// The override options, in groups (a spectrum's terms as one entry; an
