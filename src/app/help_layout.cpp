@@ -116,6 +116,46 @@ std::string full_list_pointer(const std::string& command) {
                    "; mdrmap help lists the topics).");
 }
 
+std::string case_usage(bool history) {
+  std::string s;
+  for (const auto& p : case_parameters()) {
+    if (p.required && p.profile == nullptr && (history || p.part != Part::History))
+      s += std::string(" --") + p.name + " " + p.symbol;
+    if (!p.one_of) continue;
+    const auto members = group_members(p.one_of);
+    if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
+  }
+  std::string alternatives;
+  for (const Profile kind : kProfiles) {
+    std::string alt =
+        kind == Profile::Parabola ? "" : std::string("--profile ") + profile_name(kind);
+    for (const auto& p : case_parameters())
+      if (p.required && p.profile && std::string(p.profile) == profile_name(kind))
+        alt += (alt.empty() ? "--" : " --") + std::string(p.name) + " " + p.symbol;
+    alternatives += (alternatives.empty() ? "(" : " | ") + alt;
+  }
+  return s + "\n           " + alternatives + ")";
+}
+
+HelpEntry profile_entry(bool solvers) {
+  return {"--profile P",
+          "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its surface to "
+          "the plane) or power (f = A r^n, --n --A); MDR image g(x) = kappa_n A |x|^n. " +
+              std::string(solvers ? "The cone and power profiles are solved by the spectrum "
+                                    "solver (auto picks it); the other solvers take the parabola "
+                                    "only. Their stationary states: mdrmap stationary. "
+                                  : "") +
+              "Default: parabola"};
+}
+
+HelpEntry output_entry() {
+  return {"--output FILE",
+          "write to FILE instead of stdout. A regular file (or the file a symbolic link points "
+          "to) is replaced at once when the run succeeds and left untouched when it fails; a "
+          "device or a FIFO is written to, never replaced (a FIFO needs its reader running); "
+          "\"-\" means stdout"};
+}
+
 std::vector<HelpEntry> rheology_entries() {
   const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
   const std::string n = std::to_string(kMaxBranches);

@@ -40,6 +40,19 @@ HelpEntry parameter_entry(const ParamSpec& p);
 /// The entries of the table's parameters of `part`, in the table's order.
 std::vector<HelpEntry> parameter_entries(Part part);
 
+/// The usage of a case from the table: its required options (without the
+/// history's unless `history`), each one_of group as "(--d D | --F0 F0)",
+/// then on a line of its own, indented to column 11, the profiles'
+/// alternatives "(--R R | --profile cone --beta DEG | ...)".
+std::string case_usage(bool history);
+
+/// --profile, for simulate and stationary: the indenter profiles and their
+/// parameters; `solvers` adds which solvers take which profile.
+HelpEntry profile_entry(bool solvers);
+
+/// --output FILE of simulate and stationary: how the file is replaced.
+HelpEntry output_entry();
+
 /// The entries of the relaxation spectrum and the temperature: --prony,
 /// --prony-file, --T, --wlf, with the ranges of the table's branch specs.
 std::vector<HelpEntry> rheology_entries();

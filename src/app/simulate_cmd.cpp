@@ -56,28 +56,6 @@ int run(const SimulateArgs& a) {
 
 // --- Help ----------------------------------------------------------------------
 
-HelpEntry profile_entry() {
-  return {"--profile P",
-          "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its surface to "
-          "the plane) or power (f = A r^n, --n --A); MDR image g(x) = kappa_n A |x|^n. The cone "
-          "and power profiles are solved by the spectrum solver (auto picks it); the other "
-          "solvers take the parabola only. Their stationary states: mdrmap stationary. Default: "
-          "parabola"};
-}
-
-/// The required options of the table, as the usage line gives them: each
-/// one_of group as "(--d D | --F0 F0)" where its first member stands.
-std::string required_usage() {
-  std::string s;
-  for (const auto& p : case_parameters()) {
-    if (p.required && p.profile == nullptr) s += std::string(" --") + p.name + " " + p.symbol;
-    if (!p.one_of) continue;
-    const auto members = group_members(p.one_of);
-    if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
-  }
-  return s + "\n           (--R R | --profile cone --beta DEG | --profile power --n N --A A)";
-}
-
 std::vector<HelpEntry> history_entries() {
   const ParamSpec &w = segment_velocity_spec(), &T = segment_duration_spec();
   std::vector<HelpEntry> e = parameter_entries(Part::History);
@@ -108,11 +86,7 @@ std::vector<HelpEntry> output_entries() {
                "                   log     t_k, then t_k + T_k 10^(-D (N-1-j)/(N-2)),\n"
                "                           j = 1..N-1 (D = --log-decades): a long hold and\n"
                "                           the transient at its start both resolved\n"});
-  e.push_back({"--output FILE",
-               "write to FILE instead of stdout. A regular file (or the file a symbolic link "
-               "points to) is replaced at once when the run succeeds and left untouched when it "
-               "fails; a device or a FIFO is written to, never replaced (a FIFO needs its reader "
-               "running); \"-\" means stdout"});
+  e.push_back(output_entry());
   return e;
 }
 
@@ -133,7 +107,7 @@ std::vector<HelpEntry> solver_entries() {
 /// The options of simulate, in groups: the short help gives their labels,
 /// the full help their entries.
 std::vector<HelpSection> sections() {
-  std::vector<HelpEntry> geometry = {profile_entry()};
+  std::vector<HelpEntry> geometry = {profile_entry(true)};
   for (const Part part : {Part::Loading, Part::Indenter})
     for (auto& e : parameter_entries(part))
       geometry.push_back(e);
@@ -206,7 +180,7 @@ digits, so they read back to the same double.
 }
 
 std::string usage() {
-  return "Usage: mdrmap simulate" + required_usage() +
+  return "Usage: mdrmap simulate" + case_usage(true) +
          "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n";
 }
 

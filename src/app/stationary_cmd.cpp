@@ -123,10 +123,7 @@ int run(const StationaryArgs& a) {
 /// The profile and the table's geometry and loading parameters, as
 /// simulate's help gives them.
 std::vector<HelpEntry> geometry_entries() {
-  std::vector<HelpEntry> e = {
-      {"--profile P", "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its "
-                      "surface to the plane) or power (f = A r^n, --n --A); MDR image g(x) = "
-                      "kappa_n A |x|^n. Default: parabola"}};
+  std::vector<HelpEntry> e = {profile_entry(false)};
   for (const Part part : {Part::Loading, Part::Indenter})
     for (auto& p : parameter_entries(part))
       e.push_back(p);
@@ -152,28 +149,20 @@ std::vector<HelpSection> sections() {
   std::vector<HelpEntry> material = parameter_entries(Part::Material);
   for (auto& e : rheology_entries())
     material.push_back(e);
-  return {
-      {"geometry", "Case geometry and loading", geometry_entries()},
-      {"material", "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
-       material},
-      {"velocity", "Velocities (exactly one of --v, --v-list, --v-range)", velocity_entries(),
-       "Each velocity must pass the checks of --v in mdrmap simulate: v tau / a1 (a0\n"
-       "under --F0) and the stationary contact at v representable in doubles.\n"},
-      {"output",
-       "Output",
-       {{"--output FILE",
-         "write to FILE instead of stdout, as mdrmap simulate does: a regular file (or the file "
-         "a symbolic link points to) is replaced at once when the run succeeds and left "
-         "untouched when it fails; a device or a FIFO is written to, never replaced; \"-\" "
-         "means stdout"}}},
-      {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
+  return {{"geometry", "Case geometry and loading", geometry_entries()},
+          {"material",
+           "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
+           material},
+          {"velocity", "Velocities (exactly one of --v, --v-list, --v-range)", velocity_entries(),
+           "Each velocity must pass the checks of --v in mdrmap simulate: v tau / a1 (a0\n"
+           "under --F0) and the stationary contact at v representable in doubles.\n"},
+          {"output", "Output", {output_entry()}},
+          {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
 }
 
 std::string usage() {
-  return R"(Usage: mdrmap stationary (--d D | --F0 F0) --tau TAU
-           (--R R | --profile cone --beta DEG | --profile power --n N --A A)
-           (--v V | --v-list V1,V2,... | --v-range LO:HI:N) [options]
-)";
+  return "Usage: mdrmap stationary" + case_usage(false) +
+         "\n           (--v V | --v-list V1,V2,... | --v-range LO:HI:N) [options]\n";
 }
 
 std::string output_help() {
