@@ -435,7 +435,7 @@ TEST(cli, TopBadSubcommandsExit2WithOneLine) {
 }
 
 TEST(cli, SimulateHelpMentionsEveryOption) {
-  const Outcome r = run_mdrmap({"simulate", "--help"});
+  const Outcome r = run_mdrmap({"simulate", "--help-all"});
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.err, "");
   for (const auto& opt : kOptionNames)
@@ -445,7 +445,7 @@ TEST(cli, SimulateHelpMentionsEveryOption) {
                            "Default: linear", "6 tau", "Kelvin", "mu = Fx/FN", "W1:T1,W2:T2"})
     EXPECT_NE(r.out.find(word), std::string::npos) << word;
   // --help wins over missing or bad options, and `mdrmap help simulate` is the same text.
-  EXPECT_EQ(run_mdrmap({"simulate", "--d", "abc", "--help"}).out, r.out);
+  EXPECT_EQ(run_mdrmap({"simulate", "--d", "abc", "--help-all"}).out, r.out);
   EXPECT_EQ(run_mdrmap({"help", "simulate"}).out, r.out);
 }
 
@@ -1282,7 +1282,7 @@ std::string flattened(const std::string& text) {
 }
 
 TEST(cli, SimulateHelpIsGeneratedFromTheParameterTable) {
-  const Outcome r = run_mdrmap({"simulate", "--help"});
+  const Outcome r = run_mdrmap({"simulate", "--help-all"});
   ASSERT_EQ(r.code, 0);
   const std::string help = flattened(r.out);
   for (const auto& p : mdrmap::case_parameters()) {
@@ -1631,7 +1631,7 @@ TEST(cli, SimulateLoadingNeedsExactlyOneOfDepthAndForce) {
 /// The help shows the loading group from the table's one_of field: both
 /// members in the usage line as one alternative, and no "Default: 0".
 TEST(cli, SimulateHelpShowsTheLoadingGroup) {
-  const Outcome r = run_mdrmap({"simulate", "--help"});
+  const Outcome r = run_mdrmap({"simulate", "--help-all"});
   ASSERT_EQ(r.code, 0);
   const std::string help = flattened(r.out);
   std::string alternative, listed;
@@ -1887,7 +1887,7 @@ TEST(cli, SimulateTakesFNAsTheOldSpellingOfF0) {
     EXPECT_FALSE(fs::exists(out));
   }
   // the help documents --F0 and names --FN as its old spelling
-  const Outcome help = run_mdrmap({"simulate", "--help"});
+  const Outcome help = run_mdrmap({"simulate", "--help-all"});
   const std::size_t at = help.out.find("\n  --F0 F0 ");
   ASSERT_NE(at, std::string::npos) << help.out;
   const std::string entry = flattened(help.out.substr(at, help.out.find("\n  --", at + 1) - at));
@@ -2340,11 +2340,11 @@ TEST(cli, StationaryBadInputsExit2WithOneLineNamingTheOption) {
 // columns; --help wins over bad options, and `mdrmap help stationary` is
 // the same text. The options an unknown option's message lists are those.
 TEST(cli, StationaryHelpListsEveryOptionWithItsRange) {
-  const Outcome r = run_mdrmap({"stationary", "--help"});
+  const Outcome r = run_mdrmap({"stationary", "--help-all"});
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(r.err, "");
   EXPECT_EQ(run_mdrmap({"help", "stationary"}).out, r.out);
-  EXPECT_EQ(run_mdrmap({"stationary", "--v", "abc", "--help"}).out, r.out);
+  EXPECT_EQ(run_mdrmap({"stationary", "--v", "abc", "--help-all"}).out, r.out);
   for (const auto& line : split_lines(r.out))
     EXPECT_LE(line.size(), 79U) << line;
   const std::string help = flattened(r.out);
@@ -2379,7 +2379,8 @@ TEST(cli, StationaryHelpListsEveryOptionWithItsRange) {
   EXPECT_EQ(bad.code, 2);
   const std::string list = bad.err.substr(bad.err.find("case-sensitive: ") + 16);
   for (const auto& o : options)
-    EXPECT_NE(list.find(o + (o == "--help" ? ")" : ",")), std::string::npos) << o;
+    EXPECT_NE(list.find(o + ","), std::string::npos) << o;
+  EXPECT_NE(list.find("--help-all)"), std::string::npos) << list;
   EXPECT_NE(list.find("--FN, "), std::string::npos);
 }
 
@@ -2427,4 +2428,101 @@ TEST(cli, SpectrumTermPastTheLastNamesThe32TermLimit) {
                                          ": a spectrum has at most 32 terms"))
           << r.err;
     }
+}
+
+// --- Help that fits a screen (issue 34) -----------------------------------------
+
+namespace {
+
+const std::vector<std::string> kHelpTopics{"simulate", "spectrum", "stationary", "study",
+                                           "profiles", "history",  "config",     "exit-codes"};
+
+/// Every line of `text` at most `columns` wide; at most `max_lines` lines.
+void expect_fits(const std::string& text, std::size_t max_lines, std::size_t columns) {
+  const auto lines = split_lines(text);
+  EXPECT_LE(lines.size(), max_lines) << text;
+  for (const auto& line : lines)
+    EXPECT_LE(line.size(), columns) << line;
+}
+
+} // namespace
+
+// mdrmap --help and every subcommand's --help: at most 40 lines of at most 80
+// columns, pointing to --help-all; --help wins over bad options.
+TEST(cli, HelpOfEverySubcommandFitsAScreen) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"--help"}, {"simulate", "--help"}, {"stationary", "--help"}, {"study", "--help"}}) {
+    SCOPED_TRACE(args.front());
+    const Outcome r = run_mdrmap(args);
+    EXPECT_EQ(r.code, 0);
+    EXPECT_EQ(r.err, "");
+    expect_fits(r.out, 40, 80);
+    EXPECT_NE(r.out.find(args.size() == 1 ? "help [TOPIC]" : "--help-all"), std::string::npos);
+  }
+  EXPECT_EQ(run_mdrmap({"simulate", "--d", "abc", "--help"}).out,
+            run_mdrmap({"simulate", "--help"}).out);
+  EXPECT_EQ(run_mdrmap({"-h"}).out, run_mdrmap({"--help"}).out);
+}
+
+// --help-all names every option of the parameter table (stationary: those of
+// a stationary case; study: every case parameter's override), and is the
+// text of `mdrmap help COMMAND`.
+TEST(cli, HelpAllListsEveryOptionOfTheParameterTable) {
+  for (const std::string cmd : {"simulate", "stationary", "study"}) {
+    SCOPED_TRACE(cmd);
+    const Outcome r = run_mdrmap({cmd, "--help-all"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, run_mdrmap({"help", cmd}).out);
+    expect_fits(r.out, 1000, 80);
+    for (const auto& p : mdrmap::case_parameters()) {
+      const bool sampling = p.part == mdrmap::Part::Sampling;
+      if ((cmd == "stationary" && (sampling || p.part == mdrmap::Part::History)) ||
+          (cmd == "study" && sampling))
+        continue;
+      const std::string label = cmd == "study" ? std::string("\n  --") + p.name + " "
+                                               : std::string("\n  --") + p.name + " " + p.symbol;
+      EXPECT_NE(r.out.find(label), std::string::npos) << p.name;
+    }
+    for (const auto& a : mdrmap::parameter_aliases())
+      EXPECT_NE(r.out.find(std::string("--") + a.alias), std::string::npos) << a.alias;
+  }
+}
+
+// `mdrmap help` lists the topics; `mdrmap help TOPIC` prints each in lines
+// of at most 80 columns; an unknown topic is one line naming the topics,
+// exit 2.
+TEST(cli, HelpTopicsAndUnknownTopic) {
+  const Outcome list = run_mdrmap({"help"});
+  ASSERT_EQ(list.code, 0);
+  expect_fits(list.out, 40, 80);
+  for (const auto& t : kHelpTopics) {
+    SCOPED_TRACE(t);
+    EXPECT_NE(list.out.find("\n  " + t + " "), std::string::npos);
+    const Outcome r = run_mdrmap({"help", t});
+    EXPECT_EQ(r.code, 0);
+    EXPECT_EQ(r.err, "");
+    EXPECT_GT(split_lines(r.out).size(), 3U);
+    expect_fits(r.out, 1000, 80);
+  }
+  EXPECT_NE(run_mdrmap({"help", "spectrum"}).out.find("--prony-file FILE"), std::string::npos);
+  EXPECT_NE(run_mdrmap({"help", "config"}).out.find("grid.F0"), std::string::npos);
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"help", "bogus"}, {"help", "Simulate"}, {"help", "simulate", "extra"}}) {
+    SCOPED_TRACE(args[1]);
+    const Outcome r = run_mdrmap(args);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const auto& t : kHelpTopics)
+      EXPECT_NE(r.err.find(t), std::string::npos) << t;
+  }
+}
+
+// The study's help no longer says that a cone's or a power law's case fails
+// (the spectrum solver takes them; the cone example study completes).
+TEST(cli, StudyHelpHasNoStaleProfileStatement) {
+  const Outcome r = run_mdrmap({"study", "--help-all"});
+  ASSERT_EQ(r.code, 0);
+  EXPECT_EQ(r.out.find("case fails"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("parabola only"), std::string::npos) << r.out;
 }

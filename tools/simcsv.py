@@ -2,7 +2,7 @@
 simulate` and reading its CSV output, with one-line errors.
 
 Not a script: the tools import it from their own directory. Reads the format
-of `mdrmap simulate --help` ("Output"): comment lines `# mdrmap ...`,
+of `mdrmap simulate --help-all` ("Output"): comment lines `# mdrmap ...`,
 `# case ...`, optional `# error_vs_...`, one `# event ...` per segment,
 `# pre ...`, then the header and the rows.
 

@@ -97,7 +97,7 @@ std::string all_option_names(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& o : names)
     s += "--" + o + ", ";
-  return s + "--help";
+  return s + "--help, --help-all";
 }
 
 std::string beyond_last_term(const std::string& name) {
@@ -170,70 +170,17 @@ bool asks_for_help(const std::vector<std::string>& args) {
   return false;
 }
 
+bool asks_for_help_all(const std::vector<std::string>& args) {
+  for (const auto& arg : args) {
+    if (arg == "--") return false;
+    if (arg == "--help-all") return true;
+  }
+  return false;
+}
+
 int print_help(const std::string& text) {
   std::fputs(text.c_str(), stdout);
   return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
-}
-
-// --- Help ----------------------------------------------------------------------
-
-std::string help_entry(const std::string& option, const std::string& text) {
-  constexpr std::size_t kColumn = 17, kWidth = 79;
-  std::string out = "  " + option;
-  if (out.size() + 1 > kColumn)
-    out += "\n" + std::string(kColumn, ' ');
-  else
-    out += std::string(kColumn - out.size(), ' ');
-  std::size_t col = kColumn;
-  std::size_t pos = 0;
-  bool first = true;
-  while (pos < text.size()) {
-    std::size_t end = text.find(' ', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string word = text.substr(pos, end - pos);
-    if (!first && col + 1 + word.size() > kWidth) {
-      out += "\n" + std::string(kColumn, ' ');
-      col = kColumn;
-      first = true;
-    }
-    if (!first) out += ' ', ++col;
-    out += word;
-    col += word.size();
-    first = false;
-    pos = end + 1;
-  }
-  return out + "\n";
-}
-
-std::string parameter_entry(const ParamSpec& p) {
-  return help_entry(std::string("--") + p.name + " " + p.symbol, parameter_help_text(p));
-}
-
-std::string rheology_help() {
-  const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
-  const std::string n = std::to_string(kMaxBranches);
-  return help_entry("--prony G1:TAU1,G2:TAU2,...",
-                    "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "
-                    "spring of modulus Gk (" +
-                        std::string(dim_name(g.dim)) + "), " + g.allowed() +
-                        ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) +
-                        "), " + t.allowed() + "; at most " + n +
-                        " terms, absolute values in the units of --G and --tau. With a spectrum "
-                        "--G is the long-term (rubbery) modulus and --tau the parallel dashpot's "
-                        "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
-         help_entry("--prony-file FILE",
-                    "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
-                    "line (at most " +
-                        n +
-                        "); blank lines and lines starting with # are skipped, a UTF-8 BOM is "
-                        "read. A regular file of at most 1 MiB, lines of at most 4096 "
-                        "characters (a FIFO or a device is refused). Give --prony or "
-                        "--prony-file, not both") +
-         help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
-                                "equation (instead of --aT), a finite number > TREF - C2") +
-         help_entry("--wlf C1:C2:TREF",
-                    "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, "
-                    "C2 > 0 (in the unit of T), TREF the reference temperature (aT = 1)");
 }
 
 } // namespace mdrmap::app

@@ -2,8 +2,8 @@
 // What the command lines of `mdrmap simulate` and `mdrmap stationary` share:
 // reading the options as texts (boost::program_options, unknown options and
 // stray arguments refused), the one-line messages on stderr with their exit
-// codes (kExitBadInput for bad input, kExitRuntime for a failed run), --help,
-// and the layout of the help text. Every message starts with
+// codes (kExitBadInput for bad input, kExitRuntime for a failed run), and
+// --help and --help-all (their texts: app/help_layout.hpp). Every message starts with
 // "mdrmap COMMAND: error: ", COMMAND the subcommand's name.
 #include <string>
 #include <vector>
@@ -38,7 +38,8 @@ int report_parse_error(const std::string& command);
 /// else is rethrown.
 int report_run_error(const std::string& command, const std::string& hint);
 
-/// "--a, --b, ..., --help": the options `names` (without dashes) and --help.
+/// "--a, --b, ..., --help, --help-all": the options `names` (without dashes)
+/// and the two help options.
 std::string all_option_names(const std::vector<std::string>& names);
 
 /// For an option name G<k> or tau<k> with k past the spectrum's last term
@@ -69,26 +70,19 @@ bool asks_for_help(const std::vector<std::string>& args);
 /// Prints `text` to stdout: kExitOk, or kExitRuntime if it could not be written.
 int print_help(const std::string& text);
 
-/// A help entry: "  OPTION" padded to column 17 (on a line of its own when
-/// longer), then `text` wrapped at spaces to 79 columns, indented to 17.
-std::string help_entry(const std::string& option, const std::string& text);
+/// Whether `args` ask for every option: --help-all before any "--".
+bool asks_for_help_all(const std::vector<std::string>& args);
 
-/// The help entry of a table parameter: "--NAME SYMBOL" and
-/// parameter_help_text (its unit, meaning, range and default).
-std::string parameter_entry(const ParamSpec& p);
-
-/// The help entries of the relaxation spectrum and the temperature: --prony,
-/// --prony-file, --T, --wlf, with the ranges of the table's branch specs.
-std::string rheology_help();
-
-/// The frame of a subcommand's main: with --help (asks_for_help) prints
-/// help(); else parses `args` (parse: Args or throws, report_parse_error) and
-/// runs the result (run: the exit code or throws, report_run_error with
-/// `out_of_memory_hint`).
+/// The frame of a subcommand's main: with --help-all (asks_for_help_all)
+/// prints help_all(), with --help (asks_for_help) help(); else parses `args` (parse: Args or
+/// throws, report_parse_error) and runs the result (run: the exit code or throws, report_run_error
+/// with `out_of_memory_hint`).
 template <class Args>
 int command_main(const std::string& command, const std::vector<std::string>& args,
-                 std::string (*help)(), Args (*parse)(const std::vector<std::string>&),
-                 int (*run)(const Args&), const std::string& out_of_memory_hint) {
+                 std::string (*help)(), std::string (*help_all)(),
+                 Args (*parse)(const std::vector<std::string>&), int (*run)(const Args&),
+                 const std::string& out_of_memory_hint) {
+  if (asks_for_help_all(args)) return print_help(help_all());
   if (asks_for_help(args)) return print_help(help());
   Args a;
   try {

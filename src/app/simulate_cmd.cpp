@@ -8,6 +8,7 @@
 #include "app/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
+#include "app/help_layout.hpp"
 #include "app/output_file.hpp"
 #include "app/simulation.hpp"
 #include "core/model/case.hpp"
@@ -55,67 +56,72 @@ int run(const SimulateArgs& a) {
 
 // --- Help ----------------------------------------------------------------------
 
-std::string profile_help() {
-  return help_entry("--profile P",
-                    "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its "
-                    "surface to the plane) or power (f = A r^n, --n --A); MDR image g(x) = "
-                    "kappa_n A |x|^n. The cone and power profiles are solved by the spectrum "
-                    "solver (auto picks it); the other solvers take the parabola only. Their "
-                    "stationary states: mdrmap stationary. Default: parabola");
-}
-
-/// One help entry per table parameter of the sampling part or of the others.
-std::string parameter_help(bool sampling) {
-  std::string s;
-  for (const auto& p : case_parameters()) {
-    if ((p.part == Part::Sampling) != sampling) continue;
-    s += parameter_entry(p);
-  }
-  return s;
-}
-
-/// The required options of the table, as the usage line gives them: each
-/// one_of group as "(--d D | --F0 F0)" where its first member stands.
-std::string required_usage() {
-  std::string s;
-  for (const auto& p : case_parameters()) {
-    if (p.required && p.profile == nullptr) s += std::string(" --") + p.name + " " + p.symbol;
-    if (!p.one_of) continue;
-    const auto members = group_members(p.one_of);
-    if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
-  }
-  return s + "\n           (--R R | --profile cone --beta DEG | --profile power --n N --A A)";
-}
-
-std::string history_help() {
+std::vector<HelpEntry> history_entries() {
   const ParamSpec &w = segment_velocity_spec(), &T = segment_duration_spec();
-  return help_entry("--v1 V1", "one step: the sliding velocity from t = 0 on (" +
-                                   std::string(dim_name(w.dim)) + "), " + w.allowed() +
-                                   "; 0 stops the indenter, V1 > V0 is a speed-up") +
-         help_entry("--t-end T", "with --v1: how long the step is followed (" +
-                                     std::string(dim_name(T.dim)) + "), " + T.allowed() +
-                                     ". Default: 6 tau (with a spectrum: 6 times the longest "
-                                     "shifted time aT max(tau, tauk)); for a purely elastic "
-                                     "foundation, 6 a1/min(V0,V1) (6 a1/V0 if V1 = 0), a0 in "
-                                     "place of a1 under --F0") +
-         help_entry("--history W1:T1,W2:T2,...",
-                    "segments one after another from t = 0: sliding velocity Wk (" +
-                        std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
-                        "duration Tk (" + dim_name(T.dim) + "), " + T.allowed() + "; at most " +
-                        std::to_string(kMaxSegments) +
-                        " segments. --v1 V1 --t-end T is --history V1:T; give one of the two "
-                        "forms, not both");
+  std::vector<HelpEntry> e = parameter_entries(Part::History);
+  e.push_back({"--v1 V1", "one step: the sliding velocity from t = 0 on (" +
+                              std::string(dim_name(w.dim)) + "), " + w.allowed() +
+                              "; 0 stops the indenter, V1 > V0 is a speed-up"});
+  e.push_back({"--t-end T", "with --v1: how long the step is followed (" +
+                                std::string(dim_name(T.dim)) + "), " + T.allowed() +
+                                ". Default: 6 tau (with a spectrum: 6 times the longest shifted "
+                                "time aT max(tau, tauk)); for a purely elastic foundation, 6 "
+                                "a1/min(V0,V1) (6 a1/V0 if V1 = 0), a0 in place of a1 under --F0"});
+  e.push_back({"--history W1:T1,W2:T2,...",
+               "segments one after another from t = 0: sliding velocity Wk (" +
+                   std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
+                   "duration Tk (" + dim_name(T.dim) + "), " + T.allowed() + "; at most " +
+                   std::to_string(kMaxSegments) +
+                   " segments. --v1 V1 --t-end T is --history V1:T; give one of the two forms, "
+                   "not both"});
+  return e;
 }
 
-std::string sampling_help() {
-  return parameter_help(true) +
-         help_entry("--spacing S",
-                    "linear or log: where the N instants of a segment k (start t_k, duration "
-                    "T_k) lie. Default: linear") +
-         "                   linear  t_k + j T_k/(N-1), j = 0..N-1\n"
-         "                   log     t_k, then t_k + T_k 10^(-D (N-1-j)/(N-2)),\n"
-         "                           j = 1..N-1 (D = --log-decades): a long hold and\n"
-         "                           the transient at its start both resolved\n";
+std::vector<HelpEntry> output_entries() {
+  std::vector<HelpEntry> e = parameter_entries(Part::Sampling);
+  e.push_back({"--spacing S",
+               "linear or log: where the N instants of a segment k (start t_k, duration T_k) lie. "
+               "Default: linear",
+               "                   linear  t_k + j T_k/(N-1), j = 0..N-1\n"
+               "                   log     t_k, then t_k + T_k 10^(-D (N-1-j)/(N-2)),\n"
+               "                           j = 1..N-1 (D = --log-decades): a long hold and\n"
+               "                           the transient at its start both resolved\n"});
+  e.push_back(output_entry());
+  return e;
+}
+
+std::vector<HelpEntry> solver_entries() {
+  return {{"--rtol E", "target accuracy: bound on the case error (see the output), a number in "
+                       "(0, 0.1]. Default: 1e-4"},
+          {"--solver S", "auto, exact, mdr, baseline or spectrum. Default: auto",
+           "                   exact     continuum (dx -> 0) solution, semi-analytic\n"
+           "                   mdr       discrete MDR element simulation, error control\n"
+           "                   baseline  the paper's brute-force method, for reference\n"
+           "                   spectrum  element row of any rheology (--prony), exact\n"
+           "                             exponential updates, error control\n"
+           "                   auto      the cheapest solver that meets rtol (exact at\n"
+           "                             fixed depth, the load solver under --F0,\n"
+           "                             spectrum with --prony or a cone or power profile)\n"}};
+}
+
+/// The options of simulate, in groups: the short help gives their labels,
+/// the full help their entries.
+std::vector<HelpSection> sections() {
+  std::vector<HelpEntry> geometry = {profile_entry(true)};
+  for (const Part part : {Part::Loading, Part::Indenter})
+    for (auto& e : parameter_entries(part))
+      geometry.push_back(e);
+  std::vector<HelpEntry> material = parameter_entries(Part::Material);
+  for (auto& e : rheology_entries())
+    material.push_back(e);
+  return {
+      {"geometry", "Case geometry and loading", geometry},
+      {"material", "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
+       material},
+      {"history", "Velocity history: V0 before t = 0, then --v1 or --history", history_entries()},
+      {"output", "Output and sampling, per segment", output_entries()},
+      {"solver", "Solver", solver_entries()},
+      {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
 }
 
 std::string output_help() {
@@ -173,13 +179,26 @@ digits, so they read back to the same double.
 )";
 }
 
+std::string usage() {
+  return "Usage: mdrmap simulate" + case_usage(true) +
+         "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n";
+}
+
+std::string examples() {
+  return R"(Examples:
+  mdrmap simulate --d 0.1 --R 10 --tau 1 --v 2 --v1 0.5 --output step.csv
+  mdrmap simulate --d 0.1 --R 10 --tau 1 --v 1 --history 1:2,0:1000,1:5 \
+      --samples 101 --spacing log       (slide-hold-slide: a hold of 1000 tau)
+  mdrmap simulate --F0 0.1 --R 10 --tau 1 --v 1 --history 0.1:20,1:20
+                                        (load control: a step down and up)
+)";
+}
+
 } // namespace
 
-std::string simulate_help() {
-  return "Usage: mdrmap simulate" + required_usage() +
+std::string simulate_help_all() {
+  return usage() +
          R"(
-           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]
-
 Computes the response of a viscoelastic contact to changes of the sliding
 velocity, in the method of dimensionality reduction (MDR). A rigid indenter (a
 parabola, MDR profile x^2/R; or --profile cone or power) is held at indentation
@@ -200,40 +219,8 @@ edge stays at -a1, under load the depth d and a1 are printed too.
 Any consistent units work (e.g. mm, s, MPa): d, R, a2 are lengths, tau and t
 times, velocities length/time; forces come out in units of G * length^2.
 
-Case parameters:
-)" + profile_help() +
-         parameter_help(false) +
-         "\nRelaxation spectrum and temperature (optional; none: the Kelvin foundation):\n" +
-         rheology_help() + "\nVelocity history after t = 0 (--v1 or --history):\n" +
-         history_help() + "\nSampling, per segment:\n" + sampling_help() + R"(
-Other options:
-  --rtol E       target accuracy: bound on the case error (below), a number
-                 in (0, 0.1]. Default: 1e-4
-  --solver S     auto, exact, mdr, baseline or spectrum. Default: auto
-                   exact     continuum (dx -> 0) solution, semi-analytic
-                   mdr       discrete MDR element simulation with error control
-                   baseline  the paper's brute-force method, for reference
-                   spectrum  element row of any rheology (--prony), exact
-                             exponential updates, error control
-                   auto      the cheapest solver that meets rtol (exact at
-                             fixed depth, the load solver under --F0, spectrum
-                             with --prony or a cone or power profile)
-  --output FILE  write to FILE instead of stdout. A regular file (or the
-                 file a symbolic link points to) is replaced at once when
-                 the run succeeds and left untouched when it fails; a
-                 device or a FIFO is written to, never replaced (a FIFO
-                 needs its reader running); "-" means stdout
-  --help         print this text and exit
-
-)" + output_help() +
-         R"(
-Examples:
-  mdrmap simulate --d 0.1 --R 10 --tau 1 --v 2 --v1 0.5 --output step.csv
-  mdrmap simulate --d 0.1 --R 10 --tau 1 --v 1 --history 1:2,0:1000,1:5 \
-      --samples 101 --spacing log       (slide-hold-slide: a hold of 1000 tau)
-  mdrmap simulate --F0 0.1 --R 10 --tau 1 --v 1 --history 0.1:20,1:20
-                                        (load control: a step down and up)
-
+)" + full_options(sections()) +
+         "\n" + output_help() + "\n" + examples() + R"(
 Exit codes:
   0  success
   1  runtime failure (the solver or writing the output failed)
@@ -241,8 +228,26 @@ Exit codes:
 )";
 }
 
+std::string simulate_help() {
+  return usage() + R"(
+One case: a rigid indenter slides on a viscoelastic foundation at velocity V0
+until t = 0, then follows a velocity step or history; prints FN, Fx, mu and
+the contact's trailing edge a2 over time as CSV, with event metrics.
+
+)" + options_summary(sections()) +
+         "\n" + examples() + "\n" + full_list_pointer(kCommand);
+}
+
+std::string simulate_section_help(const std::string& key) {
+  std::vector<HelpSection> one;
+  for (const auto& sec : sections())
+    if (sec.key == key) one.push_back(sec);
+  return full_options(one);
+}
+
 int simulate_main(const std::vector<std::string>& args) {
-  return command_main(kCommand, args, simulate_help, parse_args, run, "try fewer --samples");
+  return command_main(kCommand, args, simulate_help, simulate_help_all, parse_args, run,
+                      "try fewer --samples");
 }
 
 } // namespace mdrmap::app

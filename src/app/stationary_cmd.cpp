@@ -16,6 +16,7 @@
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/exit_codes.hpp"
+#include "app/help_layout.hpp"
 #include "app/output_file.hpp"
 #include "app/prony_input.hpp"
 #include "app/stationary_input.hpp"
@@ -119,32 +120,49 @@ int run(const StationaryArgs& a) {
 
 // --- Help ----------------------------------------------------------------------
 
-/// The profile and the table's case parameters (not v, not the sampling),
-/// as simulate's help gives them.
-std::string case_help() {
-  std::string s =
-      help_entry("--profile P", "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle "
-                                "of its surface to the plane) or power (f = A r^n, --n --A); MDR "
-                                "image g(x) = kappa_n A |x|^n. Default: parabola");
-  for (const auto& p : case_parameters())
-    if (p.part != Part::Sampling && p.part != Part::History) s += parameter_entry(p);
-  return s;
+/// The profile and the table's geometry and loading parameters, as
+/// simulate's help gives them.
+std::vector<HelpEntry> geometry_entries() {
+  std::vector<HelpEntry> e = {profile_entry(false)};
+  for (const Part part : {Part::Loading, Part::Indenter})
+    for (auto& p : parameter_entries(part))
+      e.push_back(p);
+  return e;
 }
 
-std::string velocity_help() {
+std::vector<HelpEntry> velocity_entries() {
   const ParamSpec& v = *find_parameter("v");
   const std::string unit = std::string("(") + dim_name(v.dim) + ") ", range = v.allowed();
-  return help_entry("--v V", unit + "one velocity, " + range) +
-         help_entry("--v-list V1,V2,...", unit + "velocities in the order given, each " + range +
-                                              "; " + velocity_count_text()) +
-         help_entry("--v-range LO:HI:N",
-                    unit +
-                        "N velocities equally spaced in log v from LO to HI, the ends "
-                        "exactly LO and HI: LO and HI each " +
-                        range + ", LO < HI; N an integer from 2 to " +
-                        std::to_string(kMaxVelocities)) +
-         "Each velocity must pass the checks of --v in mdrmap simulate: v tau / a1 (a0\n"
-         "under --F0) and the stationary contact at v representable in doubles.\n";
+  return {{"--v V", unit + "one velocity, " + range},
+          {"--v-list V1,V2,...",
+           unit + "velocities in the order given, each " + range + "; " + velocity_count_text()},
+          {"--v-range LO:HI:N", unit +
+                                    "N velocities equally spaced in log v from LO to HI, the "
+                                    "ends exactly LO and HI: LO and HI each " +
+                                    range + ", LO < HI; N an integer from 2 to " +
+                                    std::to_string(kMaxVelocities)}};
+}
+
+/// The options of stationary, in groups: the short help gives their labels,
+/// the full help their entries.
+std::vector<HelpSection> sections() {
+  std::vector<HelpEntry> material = parameter_entries(Part::Material);
+  for (auto& e : rheology_entries())
+    material.push_back(e);
+  return {{"geometry", "Case geometry and loading", geometry_entries()},
+          {"material",
+           "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
+           material},
+          {"velocity", "Velocities (exactly one of --v, --v-list, --v-range)", velocity_entries(),
+           "Each velocity must pass the checks of --v in mdrmap simulate: v tau / a1 (a0\n"
+           "under --F0) and the stationary contact at v representable in doubles.\n"},
+          {"output", "Output", {output_entry()}},
+          {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
+}
+
+std::string usage() {
+  return "Usage: mdrmap stationary" + case_usage(false) +
+         "\n           (--v V | --v-list V1,V2,... | --v-range LO:HI:N) [options]\n";
 }
 
 std::string output_help() {
@@ -167,14 +185,17 @@ significant digits, so they read back to the same double.
 )";
 }
 
-std::string examples_help() {
-  return R"(
-Examples:
+std::string examples() {
+  return R"(Examples:
   mdrmap stationary --d 0.1 --R 10 --tau 1 --v-range 1e-3:1e3:61
   mdrmap stationary --profile cone --beta 10 --d 0.01 --tau 1 --v-list 0.01,1
   mdrmap stationary --profile power --n 1.5 --A 1 --F0 0.01 --tau 0 \
       --prony 1:0.1,2:10 --v 1 --output power.csv
+)";
+}
 
+std::string exit_codes() {
+  return R"(
 Exit codes:
   0  success
   1  runtime failure (computing a state or writing the output failed)
@@ -185,11 +206,8 @@ Exit codes:
 
 } // namespace
 
-std::string stationary_help() {
-  return R"(Usage: mdrmap stationary (--d D | --F0 F0) --tau TAU
-           (--R R | --profile cone --beta DEG | --profile power --n N --A A)
-           (--v V | --v-list V1,V2,... | --v-range LO:HI:N) [options]
-
+std::string stationary_help_all() {
+  return usage() + R"(
 Prints the stationary sliding states of one case at one or more velocities,
 in the method of dimensionality reduction (MDR): the state that the contact
 reaches after sliding steadily at the velocity v for long enough, from the
@@ -202,25 +220,22 @@ without its velocity history and sampling.
 Any consistent units work (e.g. mm, s, MPa): d, R, a1, a2 are lengths, tau a
 time, velocities length/time; forces come out in units of G * length^2.
 
-Case parameters:
-)" + case_help() +
-         "\nRelaxation spectrum and temperature (optional; none: the Kelvin foundation):\n" +
-         rheology_help() + "\nVelocities (exactly one of --v, --v-list, --v-range):\n" +
-         velocity_help() + R"(
-Other options:
-  --output FILE  write to FILE instead of stdout, as mdrmap simulate does: a
-                 regular file (or the file a symbolic link points to) is
-                 replaced at once when the run succeeds and left untouched
-                 when it fails; a device or a FIFO is written to, never
-                 replaced; "-" means stdout
-  --help         print this text and exit
+)" + full_options(sections()) +
+         "\n" + output_help() + "\n" + examples() + exit_codes();
+}
 
-)" + output_help() +
-         examples_help();
+std::string stationary_help() {
+  return usage() + R"(
+The stationary sliding states of one case (any profile and rheology, fixed
+depth or load) at one or more velocities, as CSV: v,d,a1,a2,FN,Fx,mu.
+
+)" + options_summary(sections()) +
+         "\n" + examples() + "\n" + full_list_pointer(kCommand);
 }
 
 int stationary_main(const std::vector<std::string>& args) {
-  return command_main(kCommand, args, stationary_help, parse_args, run, "try fewer velocities");
+  return command_main(kCommand, args, stationary_help, stationary_help_all, parse_args, run,
+                      "try fewer velocities");
 }
 
 } // namespace mdrmap::app

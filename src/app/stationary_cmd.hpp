@@ -9,8 +9,12 @@
 
 namespace mdrmap::app {
 
-/// The text of `mdrmap stationary --help`.
+/// The text of `mdrmap stationary --help`: the usage and the options in groups.
 std::string stationary_help();
+
+/// The text of `mdrmap stationary --help-all` (and `mdrmap help
+/// stationary`): every option, the output and the exit codes.
+std::string stationary_help_all();
 
 /// Runs `mdrmap stationary` with `args` (the arguments after the subcommand
 /// name). Writes the CSV to stdout or --output, diagnostics to stderr, and

@@ -18,6 +18,7 @@
 
 #include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
+#include "app/study_options.hpp"
 #include "core/model/params.hpp"
 #include "mdrmap/version.hpp"
 #include "study/runner.hpp"
@@ -129,41 +130,6 @@ struct StudyArgs {
   std::vector<std::string> args; // as given, for the resume command
 };
 
-const char* const kRunOverrides[][2] = {{"samples", "run.samples"},
-                                        {"rtol", "run.rtol"},
-                                        {"solver", "run.solver"},
-                                        {"t-end-over-tau", "run.t_end_over_tau"},
-                                        {"timeseries", "run.timeseries"},
-                                        {"G", "run.G"},
-                                        {"v1", "grid.v1"},
-                                        {"v1-over-v", "grid.v1_over_v"},
-                                        {"temperature", "grid.temperature"},
-                                        {"wlf", "run.wlf"},
-                                        {"profile", "run.profile"}};
-
-/// The override options and the keys they set: the run's, the seed's step,
-/// the temperature and its WLF constants, every case parameter of the core's
-/// table as a grid column (--d, --F0, --R, --tau, --aT, --v, ...; G stays the
-/// seed's [run] G; an old spelling, --FN, sets grid.FN, which the config reads
-/// as its parameter) and a spectrum's terms (--G1, --tau1, ..., --G32, --tau32).
-const std::vector<std::pair<std::string, std::string>>& overrides() {
-  static const auto all = [] {
-    std::vector<std::pair<std::string, std::string>> o;
-    for (const auto& ov : kRunOverrides)
-      o.emplace_back(ov[0], ov[1]);
-    for (const ParamSpec& p : case_parameters())
-      if (p.part != Part::Sampling && std::string(p.name) != "G")
-        o.emplace_back(p.name, std::string("grid.") + p.name);
-    for (const ParamAlias& a : parameter_aliases())
-      o.emplace_back(a.alias, std::string("grid.") + a.alias);
-    for (const ParamSpec* p : {&branch_modulus_spec(), &branch_time_spec()})
-      for (std::size_t k = 1; k <= kMaxBranches; ++k) // a spectrum's terms: --G1 .. --tau32
-        o.emplace_back(p->name + std::to_string(k), "grid." + (p->name + std::to_string(k)));
-    return o;
-  }();
-  return all;
-}
-
 /// Two options of one group of the table (--d and --F0: the loading), or
 /// both spellings of one parameter (--F0 and --FN), set the same thing:
 /// refused, as simulate refuses them.
@@ -193,8 +159,8 @@ po::options_description options() {
       "quiet", po::bool_switch(), "")("help", po::bool_switch(), "")("chunk-seconds",
                                                                      po::value<std::string>(), "")(
       "set", po::value<std::vector<std::string>>()->composing(), "");
-  for (const auto& ov : overrides())
-    o.add_options()(ov.first.c_str(), po::value<std::string>(), "");
+  for (const auto& ov : study_overrides())
+    o.add_options()(ov.option.c_str(), po::value<std::string>(), "");
   return o;
 }
 
@@ -253,8 +219,8 @@ StudyArgs parse(const std::vector<std::string>& args, bool& help) {
     a.chunk_seconds = x;
   }
   refuse_two_of_a_group(vm);
-  for (const auto& ov : overrides())
-    if (vm.count(ov.first)) a.overrides.emplace_back(ov.second, vm[ov.first].as<std::string>());
+  for (const auto& ov : study_overrides())
+    if (vm.count(ov.option)) a.overrides.emplace_back(ov.key, vm[ov.option].as<std::string>());
   if (vm.count("set"))
     for (const std::string& kv : vm["set"].as<std::vector<std::string>>()) {
       const std::size_t eq = kv.find('=');
@@ -276,76 +242,6 @@ void print_error(const InvalidInput& e) {
 }
 
 } // namespace
-
-std::string study_help() {
-  return R"(Usage: mpirun -np P mdrmap study --config FILE.ini [--output MAP.h5] [--resume | --overwrite]
-                 [--quiet] [overrides...]
-
-Runs a parameter study: every case of the config (a grid over the case
-parameters d or F0, R, tau, G, v, optionally a relaxation spectrum's terms
-Gk, tauk and the shift aT or the temperature, and the history's segment
-velocities and durations, or a CSV list of cases) is one velocity history
-under a fixed depth d or a prescribed normal load F0, solved as by 'mdrmap
-simulate'. Rank 0 hands out cases in chunks on request and computes too;
-every rank writes its results into one HDF5 friction map (schema
-mdrmap-map/2, docs/map-schema.md): the event metrics of every velocity
-change (a, b, D_c, peaks), the closed-form stationary states and the
-residuals between the two. Works with P = 1.
-
-Options:
-  --config FILE     the study (INI: [grid] or [cases], [history], [run]; see
-                    docs/map-schema.md)
-  --output MAP.h5   the map file. Default: the config's name with .h5, in the
-                    current directory. An existing file is never touched
-                    without --resume or --overwrite; one that is not a
-                    regular file (a FIFO, a device) is refused.
-  --resume          continue MAP.h5: run only the cases not yet done. Refused
-                    when the study (config and overrides) differs from the one
-                    stored in the file.
-  --overwrite       replace MAP.h5, only if it is an mdrmap map. The new map is
-                    built under a temporary name and renamed when created.
-  --quiet           no progress output (errors and the summary still print)
-  --chunk-seconds S target compute time of one chunk of cases (default 0.2):
-                    larger means fewer dispatch messages, smaller means less
-                    work lost to a kill and a shorter tail
-  --help            this text
-
-Overrides (win over the config file; values as in the INI; all are applied,
-then the study is checked: a new history segment takes its two keys):
-  --set SECTION.KEY=VALUE   any key, e.g. --set history.T1_over_tau=logspace:1:1000:4
-                            --set grid.F0=1e-3 --set run.spacing=log (repeatable)
-  --samples N  --rtol E  --solver NAME  --t-end-over-tau X  --timeseries true|false
-  --G G  --d SPEC  --F0 SPEC  --R SPEC  --tau SPEC  --aT SPEC  --v SPEC
-                            (--FN, grid.FN, a key or column FN: the old
-                            spelling of F0, the prescribed normal load)
-  --v1 SPEC  --v1-over-v SPEC
-  --Gk SPEC  --tauk SPEC    a relaxation spectrum's term k = 1..32 (grid.Gk, grid.tauk)
-  --temperature SPEC  --wlf C1:C2:TREF   the temperature, shifting the times by
-                            WLF (grid.temperature, run.wlf)
-  --profile P  --beta SPEC  --n SPEC  --A SPEC   the indenter (run.profile:
-                            parabola, default, with R; cone with beta; power
-                            with n and A, columns grid.beta, grid.n, grid.A).
-                            The transient solvers take the parabola only so
-                            far: a cone's or power law's case fails (status -1)
-  (SPEC: a number, a comma list, linspace:lo:hi:n or logspace:lo:hi:n)
-
-Progress goes to stderr on rank 0: a live bar on a terminal, a line every 10 s
-in a batch log, then one summary line.
-
-Signals: SIGTERM, SIGINT or SIGUSR1 (what batch systems send before the wall
-time limit) make every rank stop taking work, write what it finished, and
-exit with code 3; the message says how to resume.
-
-Exit codes: 0 study complete (failed cases are recorded in the map: status
--1, with their message in /failures), 1 runtime failure, 2 bad input, 3 interrupted
-(resume with --resume).
-
-A bad input is one line from rank 0, the first of the output. Open MPI's
-mpirun follows any non-zero exit with a banner of about ten lines ("Primary
-job terminated normally, but 1 process returned a non-zero exit code ...");
-'mpirun -q' leaves the line alone (the exit code is the same).
-)";
-}
 
 namespace {
 
@@ -455,17 +351,18 @@ void print_outcome(const study::StudySummary& sum, const StudyArgs& a, int size,
 
 int study_main(const std::vector<std::string>& args, int argc, char** argv) {
   bool help = false;
+  const bool help_all = asks_for_help_all(args);
   StudyArgs a;
   const char* env_rank = std::getenv("OMPI_COMM_WORLD_RANK");
   if (!env_rank) env_rank = std::getenv("PMI_RANK");
   const bool first = !env_rank || std::string(env_rank) == "0";
   try {
-    a = parse(args, help);
+    if (!help_all) a = parse(args, help);
   } catch (const InvalidInput& e) {
     return refuse_options(e, env_rank, first, argc, argv);
   }
-  if (help) {
-    if (first) std::fputs(study_help().c_str(), stdout);
+  if (help || help_all) {
+    if (first) std::fputs((help_all ? study_help_all() : study_help()).c_str(), stdout);
     return kExitOk;
   }
 

@@ -186,7 +186,7 @@ def test_stationary_of_each_profile(load):
 
 def test_parameters_are_the_table_of_the_help(exe):
     table = mdrmap.parameters()
-    code, out, _ = run_cli(exe, ["--help"])
+    code, out, _ = run_cli(exe, ["--help-all"])
     assert code == 0
     flat = " ".join(out.split())
     names = [p["name"] for p in table]

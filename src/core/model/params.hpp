@@ -61,9 +61,10 @@ struct ParamSpec {
   [[noreturn]] void refuse(double x) const;
 };
 
-/// The scalar parameters of a case, in the order of the help text: the
-/// loading, the parabola's R and the material, the history's v0, the other
-/// profiles' parameters (beta, n, A), then the sampling.
+/// The scalar parameters of a case: the loading, the parabola's R and the
+/// material, the history's v0, the other profiles' parameters (beta, n, A),
+/// then the sampling. (The help texts group them by `part`, in this order
+/// within a part.)
 const std::vector<ParamSpec>& case_parameters();
 
 /// The parameters of one history segment ("w" velocity, "T" duration): the

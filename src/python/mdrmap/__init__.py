@@ -272,8 +272,8 @@ stationary.__doc__ = _doc.docstring(
 
 
 def parameters():
-    """The parameter table, one dict per parameter in the order of
-    `mdrmap simulate --help`: name (option), keyword, symbol, unit, range,
+    """The parameter table, one dict per parameter in the table's order
+    (`mdrmap simulate --help-all` groups them by part): name (option), keyword, symbol, unit, range,
     meaning, required, one_of (group or None), default (None if required or
     in a group), sampling (a sampling parameter) and help (the CLI's text)."""
     out = []
