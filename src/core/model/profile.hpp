@@ -26,6 +26,19 @@ Profile parse_profile(const std::string& name);
 /// kappa_n = sqrt(pi) Gamma(n/2 + 1) / Gamma(n/2 + 1/2): 2 for n = 2, pi/2 for n = 1.
 double mdr_kappa(double n);
 
+/// x^n (x >= 0) for the profiles' exponents: exact forms where they exist
+/// (the cone's n = 1 and its slope's 0, 2, 1/2 and 3/2), pow otherwise (it
+/// was half the time of a cone's or a power law's case). The indenter and
+/// the element row both use it, so they agree bit for bit.
+inline double profile_pow(double x, double n) {
+  if (n == 1.0) return x;
+  if (n == 0.0) return 1.0;
+  if (n == 2.0) return x * x;
+  if (n == 0.5) return std::sqrt(x);
+  if (n == 1.5) return x * std::sqrt(x);
+  return std::pow(x, n);
+}
+
 struct Indenter {
   Profile profile = Profile::Parabola;
   double R = 0.0;    ///< parabola: radius of curvature, > 0
@@ -40,18 +53,18 @@ struct Indenter {
   double coefficient() const;
   double g(double x) const {
     if (parabolic()) return x * x / R;
-    return coefficient() * std::pow(std::fabs(x), exponent());
+    return coefficient() * profile_pow(std::fabs(x), exponent());
   }
   double slope(double x) const {
     if (parabolic()) return 2.0 * x / R;
-    const double m = exponent(), s = m * coefficient() * std::pow(std::fabs(x), m - 1.0);
+    const double m = exponent(), s = m * coefficient() * profile_pow(std::fabs(x), m - 1.0);
     return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
   }
   /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
   /// solvers ask for it at every sample.)
   double contact_radius(double d) const {
     if (parabolic()) return std::sqrt(R) * std::sqrt(d);
-    return std::pow(d / coefficient(), 1.0 / exponent());
+    return profile_pow(d / coefficient(), 1.0 / exponent());
   }
   /// The same as the element-row solvers form it: sqrt(R d) for the parabola
   /// (their arithmetic since the seed, bit for bit), contact_radius otherwise.

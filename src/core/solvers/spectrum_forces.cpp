@@ -298,7 +298,7 @@ double Row::Layer::integral() const {
 // from b0 at the tip to be at e (int_0^e x g' = e g(e) - int_0^e g).
 void Row::sliver_forces(double e, double b0, double be, double& FN, double& Fx) const {
   const KnownForces k = known_forces(0.0, e);
-  const double ge = g(e), Ig = gc_ * std::pow(e, gn_ + 1.0) / (gn_ + 1.0);
+  const double ge = g(e), Ig = gc_ * profile_pow(e, gn_ + 1.0) / (gn_ + 1.0);
   FN += k.N + 0.5 * e * (b0 + be);
   Fx += k.X - (b0 * ge + (be - b0) * (ge - Ig / e));
 }
@@ -365,10 +365,10 @@ double Row::known_p(double x, int side) const {
 Row::KnownForces Row::known_forces(double l, double r) const {
   const double n = gn_, c = gc_;
   auto G1 = [&](double t) {
-    return std::copysign(c * std::pow(std::fabs(t), n + 1.0) / (n + 1.0), t);
+    return std::copysign(c * profile_pow(std::fabs(t), n + 1.0) / (n + 1.0), t);
   };
   auto G2 = [&](double t) {
-    return std::copysign(c * c * n * n * std::pow(std::fabs(t), 2.0 * n - 1.0) / (2.0 * n - 1.0),
+    return std::copysign(c * c * n * n * profile_pow(std::fabs(t), 2.0 * n - 1.0) / (2.0 * n - 1.0),
                          t);
   };
   const double L = r - l, gl = g(l), gr = g(r);

@@ -284,18 +284,18 @@ private:
   /// g'(x) w: how fast the indenter rises under a point at x moving at w.
   double lift(double x, double w) const { return parab_ ? 2.0 * x * w / R_ : slope(x) * w; }
   double radius(double d) const {
-    return parab_ ? std::sqrt(R_ * d) : std::pow(d / gc_, 1.0 / gn_);
+    return parab_ ? std::sqrt(R_ * d) : profile_pow(d / gc_, 1.0 / gn_);
   }
   bool inside(double x, double d) const { return parab_ ? x * x <= R_ * d : g(x) <= d; }
   /// Another profile's g = c |x|^n and g' (Indenter::g, slope, bit for bit,
   /// with c and n formed once: the hot path asks at every sub-step).
-  double g(double x) const { return gc_ * std::pow(std::fabs(x), gn_); }
+  double g(double x) const { return gc_ * profile_pow(std::fabs(x), gn_); }
   /// g''(x) (x != 0).
   double curvature(double x) const {
-    return parab_ ? 2.0 / R_ : gn_ * (gn_ - 1.0) * gc_ * std::pow(std::fabs(x), gn_ - 2.0);
+    return parab_ ? 2.0 / R_ : gn_ * (gn_ - 1.0) * gc_ * profile_pow(std::fabs(x), gn_ - 2.0);
   }
   double slope(double x) const {
-    const double s = gn_ * gc_ * std::pow(std::fabs(x), gn_ - 1.0);
+    const double s = gn_ * gc_ * profile_pow(std::fabs(x), gn_ - 1.0);
     return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
   }
   /// The largest travel of a sub-step where the contact is a: sub_travel a,
