@@ -151,3 +151,17 @@ def test_to_dataframe_without_pandas_is_one_clear_error(monkeypatch):
         r.to_dataframe()
     text = str(e.value)
     assert "\n" not in text and "needs pandas" in text and "to_xarray()" in text
+
+
+def test_plot_run_reads_a_cone_csv_of_the_program(exe, tmp_path):
+    """A `# case` line with a word (profile=cone) is read, not refused."""
+    pytest.importorskip("matplotlib")
+    csv = tmp_path / "cone.csv"
+    subprocess.run([exe, "simulate", "--profile", "cone", "--beta", "10", "--d", "0.1", "--tau",
+                    "1", "--v", "1", "--v1", "10", "--samples", "11", "--output", str(csv)],
+                   check=True, timeout=300)
+    code, out, err = python_m("plot_run", "--csv", "cone.csv", "--x", "slip", "-o", "c.png",
+                              cwd=tmp_path)
+    assert code == 0, err
+    r = mdrmap.simulate(profile="cone", beta=10, d=0.1, tau=1, v=1, v1=10, samples=11)
+    assert f"mu before t = 0: {r.pre['mu']:.6g}" in out

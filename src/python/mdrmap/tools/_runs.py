@@ -26,6 +26,8 @@ DEPTH_HEADER = "t,segment,FN,Fx,mu,a2"
 # the old names of case parameters -> today's: the prescribed load F0 was FN
 # in the `# case` line of an earlier mdrmap (and in the tools' scales.txt)
 CASE_ALIASES = {"FN": "F0"}
+# the `# case` fields that are words, not numbers (the indenter's profile)
+WORDS = ("profile",)
 
 
 def case_names(d):
@@ -107,7 +109,7 @@ def read_csv(path, np):
     if len(case_lines) != 1 or len(pre_lines) != 1:
         raise UserError(f"{path}: needs one '# case' and one '# pre' line")
     case_text = case_names(fields(case_lines[0]))
-    case = {k: number(v, f"{path}: {k}") for k, v in case_text.items()
+    case = {k: v if k in WORDS else number(v, f"{path}: {k}") for k, v in case_text.items()
             if k not in ("history", "spacing", "prony")}
     if "history" not in case_text:
         raise UserError(f"{path}: its '# case' line has no history")
@@ -136,7 +138,7 @@ def read_csv(path, np):
 def from_result(r, name):
     """A Run of an mdrmap.simulate Result."""
     names = (LOAD_HEADER if r.load else DEPTH_HEADER).split(",")
-    case = {k: float(v) for k, v in r.case.items()
+    case = {k: float(v) if isinstance(v, (int, float)) else v for k, v in r.case.items()
             if k not in ("history", "prony", "spacing")}
     return Run(name, case, dict(r.pre), list(r.events), {n: getattr(r, n) for n in names},
                r.load, [tuple(p) for p in r.case["history"]], dict(r.scales))
