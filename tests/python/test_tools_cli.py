@@ -165,3 +165,20 @@ def test_plot_run_reads_a_cone_csv_of_the_program(exe, tmp_path):
     assert code == 0, err
     r = mdrmap.simulate(profile="cone", beta=10, d=0.1, tau=1, v=1, v1=10, samples=11)
     assert f"mu before t = 0: {r.pre['mu']:.6g}" in out
+
+
+def test_a_missing_module_is_one_line(tmp_path):
+    """A tool whose plotting library this Python lacks says so in one line
+    (exit 2), not with a traceback: a matplotlib that cannot be imported."""
+    fake = tmp_path / "fake" / "matplotlib"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text(
+        "raise ModuleNotFoundError(\"No module named 'matplotlib'\", name='matplotlib')\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(tmp_path / "fake"), os.environ.get("PYTHONPATH", "")]))
+    p = subprocess.run([sys.executable, "-m", "mdrmap", "plot_run", *keywords(CASE), "-o",
+                        "x.png"], capture_output=True, text=True, timeout=300, env=env,
+                       cwd=tmp_path)
+    assert p.returncode == 2, p.stderr
+    assert p.stderr.count("\n") == 1 and "needs the Python module matplotlib" in p.stderr
+    assert not (tmp_path / "x.png").exists()
