@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# pyrun-needs: numpy matplotlib h5py
+# pyrun-needs: numpy matplotlib h5py mdrmap
 """The figure (docs/profiles.md) of stationary friction against velocity for the indenter
 profiles on the Kelvin foundation (docs/design.md, "Indenter profiles").
 
@@ -31,8 +31,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import UserError, read_masked, run_tool  # noqa: E402
+from mdrmap.tools._maplib import UserError, read_masked, run_tool
 
 PROG = "plot_profiles"
 # (profile, param) of part 7's CSV -> label, colour, line style

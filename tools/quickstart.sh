@@ -95,8 +95,8 @@ study() {
 # saturates after about 10 tau (0.196 a0/R at zeta0 = 1).
 study shs_holds jobs/examples/shs_holds.ini
 echo
-echo "== healing curve: tools/pyrun tools/map_healing.py $OUT_DIR/shs_holds.h5 -o $OUT_DIR/healing.png"
-tools/pyrun tools/map_healing.py "$OUT_DIR/shs_holds.h5" -o "$OUT_DIR/healing.png"
+echo "== healing curve: tools/pyrun -m mdrmap map_healing $OUT_DIR/shs_holds.h5 -o $OUT_DIR/healing.png"
+tools/pyrun -m mdrmap map_healing "$OUT_DIR/shs_holds.h5" -o "$OUT_DIR/healing.png"
 
 # The seed's experiment as a map: friction coefficient over sliding velocity
 # and depth, before and after a drop to v1 = 0.01 v (561 cases).

@@ -26,7 +26,8 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
   # C++ libraries
   libboost-program-options-dev libgtest-dev libbenchmark-dev
-  # post-processing (tools/*.py; tools/mapxr.py: xarray)
+  # post-processing (python -m mdrmap TOOL, tools/*.py; the tool mapxr: xarray;
+  # Result.to_dataframe: pandas, optional)
   python3-numpy python3-h5py python3-matplotlib python3-xarray python3-h5netcdf
   # the Python module (src/python: pybind11) and its tests and examples
   pybind11-dev python3-dev python3-pytest python3-scipy

@@ -1,8 +1,8 @@
 """Healing in slide-hold-slide tests under load, through the module: the
-table of tools/healing.py (dmu_peak against the hold time) in a few lines.
+table of `python -m mdrmap healing` (dmu_peak against the hold time) in a few lines.
 
     PYTHONPATH=build/python python3 docs/examples/healing.py
-    (the same as: tools/pyrun tools/healing.py --F0 0.0533 --holds 0.1,1,10,100)
+    (the same as: python3 -m mdrmap healing --F0 0.0533 --holds 0.1,1,10,100)
 """
 import math
 

@@ -64,6 +64,21 @@ print(f"module {mdrmap.__file__}: {len(rows)} samples equal the program's")
 EOF
 }
 
+# check_tools PYTHON: `python -m mdrmap --help` lists the tools of the installed
+# package (mdrmap.tools), and one of them runs from it
+check_tools() {
+  local python=$1
+  "$python" -m mdrmap --help >"$WORKDIR/tools.txt" || fail "$python -m mdrmap --help failed"
+  for t in plot_run steps healing map_summary plot_map mapxr; do
+    grep -q "^  $t " "$WORKDIR/tools.txt" || fail "$python -m mdrmap --help does not list $t"
+  done
+  "$python" -m mdrmap steps --help >"$WORKDIR/tool.txt" 2>&1 ||
+    fail "$python -m mdrmap steps --help failed: $(tail -n 3 "$WORKDIR/tool.txt")"
+  "$python" -c 'import mdrmap.tools, sys; assert mdrmap.tools.__file__.startswith(sys.argv[1]), mdrmap.tools.__file__' \
+    "$(dirname "$("$python" -c 'import mdrmap; print(mdrmap.__file__)')")" ||
+    fail "mdrmap.tools is not the installed package's"
+}
+
 install_cmake() {
   local build=${4:?BUILD_DIR} python=${5:?PYTHON} prefix=$WORKDIR/prefix
   log "cmake --install $build --prefix $prefix"
@@ -78,15 +93,17 @@ install_cmake() {
   check_step "$prefix/bin/mdrmap" "$python"
   local share=$prefix/share/mdrmap f
   for f in jobs/study.sbatch jobs/study.pbs jobs/lib/study_job.sh jobs/examples/quick.ini \
-    tools/pyrun tools/map_summary.py tools/maplib.py; do
+    tools/pyrun tools/maps/check_map.py; do
     [[ -f "$share/$f" ]] || fail "no $share/$f"
   done
   [[ -x "$share/tools/pyrun" ]] ||
     fail "the installed tools/pyrun is not executable"
-  # maplib loads the package's map reader from the installed package
-  "$python" "$share/tools/map_summary.py" --help >"$WORKDIR/tool.txt" ||
-    fail "the installed tools/map_summary.py --help failed"
-  grep -q -i usage "$WORKDIR/tool.txt" || fail "the installed map_summary.py printed no usage"
+  check_tools "$python"
+  # the installed pyrun runs the installed package's tools
+  bash "$share/tools/pyrun" -m mdrmap map_summary --help >"$WORKDIR/tool.txt" ||
+    fail "the installed tools/pyrun -m mdrmap map_summary --help failed"
+  grep -q "^usage: python -m mdrmap map_summary" "$WORKDIR/tool.txt" ||
+    fail "the installed pyrun's map_summary printed no usage"
   # the installed job script, run outside a checkout, runs PREFIX/bin/mdrmap
   if [[ "$(id -u)" == 0 ]]; then export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1; fi
   CONFIG=$share/jobs/examples/quick.ini OUTPUT=$WORKDIR/quick.h5 NP=1 MDRMAP='' \
@@ -137,6 +154,7 @@ install_pip() {
     'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
     fail "import mdrmap in the venv does not load the installed package"
   check_step "$venv/bin/mdrmap" "$venv/bin/python"
+  check_tools "$venv/bin/python"
   log "ok"
 }
 

@@ -5,8 +5,8 @@
 # `axes`, `shape` and `log` (far beyond an object header's 64 KiB: dense
 # attribute storage). The map is created and completed (2 cases, 2 samples per
 # segment), check_map.py finds it complete, and the tools read /grid:
-# tools/mapxr.py opens the map with every axis (to_grid makes it 1-D over v:
-# the axes of one value are scalar coordinates), tools/map_summary.py summarises it.
+# python -m mdrmap mapxr opens the map with every axis (to_grid makes it 1-D over v:
+# the axes of one value are scalar coordinates), python -m mdrmap map_summary summarises it.
 source "$(dirname "$0")/common.sh"
 np=$1
 dir="$WORKDIR/long_history"
@@ -33,8 +33,7 @@ import sys
 
 import h5py
 
-sys.path.insert(0, sys.argv[1])
-import mapxr  # noqa: E402
+from mdrmap.tools import mapxr  # (sys.argv[1]: the source tree's tools/, unused)
 
 path, K = sys.argv[2], int(sys.argv[3])
 axes = ["d", "R", "tau", "G", "v"] + [f"{x}{k}_over_{r}" for k in range(1, K + 1)
@@ -62,7 +61,7 @@ print(f"to_grid: {dict(g.sizes)}, {len(axes) - 1} axes of one value as scalar co
 print(f"/grid: {len(axes)} axes; open_map: {dict(ds.sizes)}")
 PY
 "$PYRUN" "$dir/read.py" "$SRCDIR/tools" "$out" "$K" || fail "reading the $K-segment map"
-"$PYRUN" "$SRCDIR/tools/map_summary.py" "$out" --no-config >"$dir/summary.txt" ||
-  fail "map_summary.py on the $K-segment map"
+"$PYRUN" -m mdrmap map_summary "$out" --no-config >"$dir/summary.txt" ||
+  fail "map_summary on the $K-segment map"
 grep -q "grid: $((2 * K + 5)) axes" "$dir/summary.txt" || fail "map_summary: $(head -20 "$dir/summary.txt")"
 echo "PASS: a $K-segment grid: map created and complete ($(du -h "$out" | cut -f1)), tools read it"

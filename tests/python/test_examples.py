@@ -1,6 +1,7 @@
 """The two examples of docs/examples run as a user runs them: the fit recovers
 tau and d within their confidence intervals; the healing table through the
-module equals tools/healing.py's (which runs `mdrmap simulate`)."""
+module equals the tool's (python -m mdrmap healing, which computes its runs with
+mdrmap.simulate itself)."""
 import os
 import subprocess
 import sys
@@ -21,7 +22,7 @@ def test_fit_recovers_tau_and_d(srcdir):
 
 def test_healing_through_the_module_equals_the_tool(srcdir, exe):
     mine = run([sys.executable, f"{srcdir}/docs/examples/healing.py"])
-    theirs = run([f"{srcdir}/tools/pyrun", f"{srcdir}/tools/healing.py", "--F0", "0.0533",
-                  "--holds", "0.1,1,10,100", "--mdrmap", exe], env=dict(os.environ))
+    theirs = run([sys.executable, "-m", "mdrmap", "healing", "--F0", "0.0533",
+                  "--holds", "0.1,1,10,100"], env=dict(os.environ))
     assert mine == theirs
     assert "slope" in mine and len(mine.splitlines()) == 8

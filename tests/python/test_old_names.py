@@ -6,7 +6,6 @@ and maps and CSVs written before the rename are read (and resumed) with the
 load as F0."""
 import os
 import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -160,11 +159,7 @@ def test_an_old_map_with_cases_fn_resumes_and_reads_as_f0(exe, tmp_path):
 
 
 def test_tools_read_an_old_csv_case_line(exe, srcdir, tmp_path):
-    sys.path.insert(0, os.path.join(srcdir, "tools"))
-    try:
-        import simcsv
-    finally:
-        sys.path.pop(0)
+    from mdrmap.tools import _runs
     out = tmp_path / "new.csv"
     p = subprocess.run([exe, "simulate", "--F0", "0.1", "--R", "10", "--tau", "1", "--v", "1",
                         "--v1", "0.5", "--samples", "5", "--output", str(out)],
@@ -175,6 +170,6 @@ def test_tools_read_an_old_csv_case_line(exe, srcdir, tmp_path):
     old = tmp_path / "old.csv"
     old.write_text(text.replace("\n# case F0=", "\n# case FN="))
     for path in (out, old):
-        run = simcsv.read_csv(str(path), np)
+        run = _runs.read_csv(str(path), np)
         assert run.case["F0"] == 0.1 and "FN" not in run.case
         assert run.load and run.col["FN"].shape == (5,)

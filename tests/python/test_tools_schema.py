@@ -1,4 +1,4 @@
-"""The map tools (tools/*.py) take scales, case columns and units from the map
+"""The map tools (python -m mdrmap TOOL) take scales, case columns and units from the map
 (/scales, /schema), not from their own lists or formulas: on a copy of an
 example map whose /scales/length is doubled, whose /schema relabels a unit
 and drops a case column, their output changes accordingly; a map without
@@ -58,7 +58,7 @@ def maps(exe, srcdir, tmp_path_factory):
 
 
 def tool(srcdir, name, *args, code=0):
-    p = subprocess.run([sys.executable, os.path.join(srcdir, "tools", f"{name}.py"), *args],
+    p = subprocess.run([sys.executable, "-m", "mdrmap", name, *args],
                        capture_output=True, text=True, timeout=300)
     assert p.returncode == code, f"{name} {args}: exit {p.returncode}\n{p.stdout}\n{p.stderr}"
     return p.stdout, p.stderr
@@ -131,7 +131,8 @@ def test_map_without_scales_or_schema_is_refused(maps, srcdir, tmp_path, name):
 def test_no_tool_recomputes_a_hertz_scale(srcdir):
     found = []
     roots = [os.path.join(srcdir, "tools"), os.path.join(srcdir, "tools", "maps"),
-             os.path.join(srcdir, "src", "python", "mdrmap")]
+             os.path.join(srcdir, "src", "python", "mdrmap"),
+             os.path.join(srcdir, "src", "python", "mdrmap", "tools")]
     for root in roots:
         for name in sorted(os.listdir(root)):
             if not name.endswith(".py"):
@@ -145,19 +146,24 @@ def test_no_tool_recomputes_a_hertz_scale(srcdir):
 
 
 def test_history_tools_take_the_scales_mdrmap_gives(exe, srcdir, tmp_path):
-    """tools/steps.py measures by the case's /scales from mdrmap (a probe map,
-    kept as scales.txt beside the CSVs), not by a formula: doubling the
-    length and friction scales there halves D_c and mu of the table read back."""
+    """python -m mdrmap steps measures by the case's scales from mdrmap (each
+    run's Result.scales, kept as the `# scales` line of the CSVs), not by a
+    formula: doubling the length and friction scales there halves D_c and mu
+    of the table read back."""
     args = ["--d", "0.01", "--R", "100", "--samples", "21", "--zeta0", "1", "--csv-dir",
             str(tmp_path)]
-    first, _ = tool(srcdir, "steps", *args, "--mdrmap", exe)
-    path = tmp_path / "scales.txt"
-    text = path.read_text()
-    assert "length=" in text and "friction=" in text
-    fields = dict(t.split("=", 1) for t in text.split())
-    for k in ("length", "friction"):
-        fields[k] = repr(2 * float(fields[k]))
-    path.write_text(" ".join(f"{k}={v}" for k, v in fields.items()) + "\n")
+    first, _ = tool(srcdir, "steps", *args)
+    csvs = sorted(tmp_path.glob("step_*.csv"))
+    assert len(csvs) == 2
+    for path in csvs:
+        lines = path.read_text().splitlines(True)
+        k = next(i for i, ln in enumerate(lines) if ln.startswith("# scales "))
+        fields = dict(t.split("=", 1) for t in lines[k].split()[2:])
+        assert "length" in fields and "friction" in fields
+        for name in ("length", "friction"):
+            fields[name] = repr(2 * float(fields[name]))
+        lines[k] = "# scales " + " ".join(f"{n}={v}" for n, v in fields.items()) + "\n"
+        path.write_text("".join(lines))
     again, _ = tool(srcdir, "steps", *args, "--from-csv")
     table = {n: [ln.split() for ln in o.splitlines() if ln.startswith("1 ")]
              for n, o in (("first", first), ("again", again))}

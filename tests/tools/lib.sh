@@ -2,7 +2,8 @@
 # Shared helpers of the tool tests (sourced; W, PYRUN set by the caller).
 #   fail MSG        print FAIL: MSG on stderr, exit 1
 #   ok MSG          count a passed check and print it
-#   py ARGS...      run a Python tool through tools/pyrun
+#   py TOOL ARGS... run a tool of the package (python -m mdrmap TOOL) through
+#                   tools/pyrun; py SCRIPT.py ARGS... a script
 #   run NAME CMD... CMD must exit 0 without a traceback; stdout in $W/NAME.out,
 #                   stderr in $W/NAME.err
 #   tool_test_args SUBDIR MDRMAP_EXE PYRUN SRCDIR WORKDIR
@@ -48,7 +49,13 @@ ok() {
   checks=$((checks + 1))
   echo "ok $checks: $*"
 }
-py() { bash "$PYRUN" "$@"; }
+py() {
+  if [[ "$1" != */* && "$1" != *.py ]]; then
+    bash "$PYRUN" -m mdrmap "$@"
+  else
+    bash "$PYRUN" "$@"
+  fi
+}
 
 run() {
   local name=$1

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# End-to-end test of the mdrmap-map/2 tools (tools/map_healing.py,
-# tools/map_steps.py, tools/map_rate_state.py, tools/map_friction_velocity.py)
+# End-to-end test of the mdrmap-map/2 tools (python -m mdrmap map_healing,
+# python -m mdrmap map_steps, python -m mdrmap map_rate_state, python -m mdrmap map_friction_velocity)
 # on maps of the example studies made here.
 #
 #   bash tests/tools/test_map_tools.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
@@ -39,10 +39,10 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 tool_test_args map_tools_test "$@"
 allow_mpi_here
-HE="$SRCDIR/tools/map_healing.py"
-ST="$SRCDIR/tools/map_steps.py"
-RS="$SRCDIR/tools/map_rate_state.py"
-FV="$SRCDIR/tools/map_friction_velocity.py"
+HE=map_healing
+ST=map_steps
+RS=map_rate_state
+FV=map_friction_velocity
 
 # bad NAME EXPECTED CMD...: refuses (lib.sh), counted as a passed check
 bad() {
@@ -107,7 +107,7 @@ for tool in "$HE" "$ST" "$RS" "$FV"; do
   t=$(basename "$tool" .py)
   run "help_$t" py "$tool" --help
   grep -q "^usage: " "$W/help_$t.out" || fail "$t --help: no usage line"
-  expect_in "help_$t" "$W/help_$t.out" "tools/pyrun tools/$t.py"
+  expect_in "help_$t" "$W/help_$t.out" "python3 -m mdrmap $t"
 done
 ok "--help of the four tools: a usage line and an example"
 

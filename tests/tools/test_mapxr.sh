@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Test of the map's self-description through xarray (tools/mapxr.py): maps made
+# Test of the map's self-description through xarray (python -m mdrmap mapxr): maps made
 # here with `mpirun -np 2 mdrmap study` open with xarray.open_dataset(engine=
 # "h5netcdf", group=...) with named dimensions (case, event, sample) and the grid's
 # axes as coordinates of /grid; mapxr.open_map merges the groups with the
@@ -23,8 +23,8 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 tool_test_args mapxr_test "$@"
 allow_mpi_here
-XR="$SRCDIR/tools/mapxr.py"
-MS="$SRCDIR/tools/map_summary.py"
+XR=mapxr
+MS=map_summary
 
 study() {
   mpirun -np 2 "$MDRMAP" study --quiet "$@" >"$W/study.log" 2>&1 || {
@@ -98,9 +98,8 @@ import h5py
 import numpy as np
 import xarray as xr
 
-sys.path.insert(0, sys.argv[1])
-import mapxr  # noqa: E402
-from maplib import case_columns, schema  # noqa: E402
+from mdrmap.tools import mapxr  # (sys.argv[1]: the source tree's tools/, unused)
+from mdrmap.tools._maplib import case_columns, schema
 
 grid5, cases, old = sys.argv[2:5]
 warnings.simplefilter("error")  # no phony-dimension or decoding warnings either

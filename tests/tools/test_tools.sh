@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# End-to-end test of the post-processing tools (tools/plot_timeseries.py,
-# tools/plot_map.py, tools/map_summary.py) on small maps made here.
+# End-to-end test of the post-processing tools (python -m mdrmap plot_timeseries,
+# python -m mdrmap plot_map, python -m mdrmap map_summary) on small maps made here.
 #
 #   bash tests/tools/test_tools.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
 #
@@ -38,9 +38,9 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 tool_test_args tools_test "$@"
 allow_mpi_here
-TS="$SRCDIR/tools/plot_timeseries.py"
-PM="$SRCDIR/tools/plot_map.py"
-MS="$SRCDIR/tools/map_summary.py"
+TS=plot_timeseries
+PM=plot_map
+MS=map_summary
 JOBS=${TOOLS_TEST_JOBS:-2}
 started=()
 bad_names=()

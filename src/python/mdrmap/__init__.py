@@ -210,6 +210,9 @@ class Result:
              material has a spectrum
     scales   the case's scales (the CSV's `# scales` line, the map's /scales):
              length, depth, force, friction, time
+
+    to_dataframe() gives the samples as a pandas DataFrame, to_xarray() as an
+    xarray Dataset (the columns of the CSV, one row per sample).
     """
 
     def __init__(self, fields):
@@ -219,6 +222,47 @@ class Result:
     def load(self):
         """Whether the case is load-controlled (F0 given)."""
         return "F0" in self.case
+
+    @property
+    def columns(self):
+        """The names of the per-sample arrays, in the CSV's order: t, segment,
+        FN, Fx, mu, a2 (and d, a1 under load)."""
+        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else [])
+
+    def _attrs(self):
+        return {"case": dict(self.case), "pre": dict(self.pre), "scales": dict(self.scales),
+                "info": dict(self.info), "events": [dict(e) for e in self.events]}
+
+    def to_dataframe(self):
+        """The samples as a pandas DataFrame: one row per sample, the columns
+        of `columns` (the CSV's); .attrs holds case, pre, scales, info and
+        events (copies). Raises ImportError (one line) without pandas."""
+        try:
+            import pandas
+        except ImportError:
+            raise ImportError("mdrmap.Result.to_dataframe needs pandas, which this Python "
+                              "cannot import (pip install pandas; Debian: apt-get install "
+                              "python3-pandas); Result.to_xarray() gives an xarray Dataset, "
+                              "the arrays r.t, r.mu, ... need neither") from None
+        df = pandas.DataFrame({name: getattr(self, name) for name in self.columns})
+        df.attrs.update(self._attrs())
+        return df
+
+    def to_xarray(self):
+        """The samples as an xarray Dataset over the dimension `sample`: t
+        and segment as coordinates, the other columns as variables; .attrs
+        holds case, pre, scales, info and events (copies). Raises ImportError
+        (one line) without xarray."""
+        try:
+            import xarray
+        except ImportError:
+            raise ImportError("mdrmap.Result.to_xarray needs xarray, which this Python cannot "
+                              "import (pip install xarray; Debian: apt-get install "
+                              "python3-xarray)") from None
+        coords = {name: ("sample", getattr(self, name)) for name in ("t", "segment")}
+        data = {name: ("sample", getattr(self, name)) for name in self.columns
+                if name not in coords}
+        return xarray.Dataset(data, coords=coords, attrs=self._attrs())
 
     def __repr__(self):
         return (f"<mdrmap.Result {self.t.size} samples, {len(self.events)} events, "

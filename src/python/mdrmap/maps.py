@@ -47,7 +47,7 @@ first reads the structure of every dataset it opens (dimension scales,
 attributes, first element) with h5py in a child process, so that a damaged
 map on which HDF5 loops for ever or crashes raises MapError (after
 open_map's `timeout`, 60 s by default) instead of hanging the caller. Needs h5py, xarray and
-h5netcdf (imported when called). tools/mapxr.py is the command line of this
+h5netcdf (imported when called). python -m mdrmap mapxr is the command line of this
 module.
 """
 
@@ -207,7 +207,7 @@ def open_h5(path, h5py, warn=None, versions=(1, 2)):
     """PATH opened read-only with h5py; MapError (one line) unless it is a
     readable map of one of the layouts `versions`. `warn(message)` reports a
     map of an unknown schema name (default: a MapWarning). The one opener of
-    the package and the tools (tools/maplib.py)."""
+    the package and the tools (mdrmap.tools)."""
     check_file(path)
     try:
         f = h5py.File(path, "r")

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """The friction-velocity curve of an mdrmap-map/2 map: stationary friction against
 the sliding velocity in similarity variables.
@@ -23,8 +22,8 @@ same velocities (analytic), with their deviations from zeta0* and mu*. Cases
 with tau = 0 (no viscosity: mu = 0) and cases not done are skipped and counted.
 
 Usage:
-    tools/pyrun tools/map_friction_velocity.py load_sweep.h5 -o friction_velocity.png
-    tools/pyrun tools/map_friction_velocity.py load_sweep.h5 --select R=1 -o fv.png
+    python3 -m mdrmap map_friction_velocity load_sweep.h5 -o friction_velocity.png
+    python3 -m mdrmap map_friction_velocity load_sweep.h5 --select R=1 -o fv.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -33,8 +32,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import (MU_STAR, SELECT_HELP, ZETA0_STAR, UserError, add_figure_options,  # noqa: E402
+from ._maplib import (MU_STAR, SELECT_HELP, ZETA0_STAR, UserError, add_figure_options,
                     add_select_option, fmt, map_tool_parser, open_map2, parse_map_tool_args,
                     read_masked, run_tool, save_figure, select_cases)
 

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy h5py
 """Summarise what an mdrmap map holds, and export its rows to CSV.
 
@@ -42,9 +41,9 @@ all must hold; `=` compares with a relative tolerance of 1e-9); it applies to
 the printed summary too.
 
 Usage:
-    tools/pyrun tools/map_summary.py MAP.h5
-    tools/pyrun tools/map_summary.py MAP.h5 --top 10 --csv rows.csv --where status=1
-    tools/pyrun tools/map_summary.py MAP.h5 -o summary.txt
+    python3 -m mdrmap map_summary MAP.h5
+    python3 -m mdrmap map_summary MAP.h5 --top 10 --csv rows.csv --where status=1
+    python3 -m mdrmap map_summary MAP.h5 -o summary.txt
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -55,7 +54,7 @@ import os
 import re
 import sys
 
-from maplib import (SCHEMA2, Parser, UserError, fmt, load_cases, open_map, read_masked, run_tool,
+from ._maplib import (SCHEMA2, Parser, UserError, fmt, load_cases, open_map, read_masked, run_tool,
                     scale_of, scale_symbol, text)
 
 PROG = "map_summary"

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py mdrmap
 """The master curve of a map over velocity and temperature (or aT): the
 stationary friction before t = 0 (results/mu_pre) of every done case against
@@ -16,16 +15,14 @@ closed form at the case's temperature, to rounding) from it. The reference
 curve is the thin black line.
 
 Usage:
-    tools/pyrun tools/map_master_curve.py master_curve.h5 -o master_curve.png
+    python3 -m mdrmap map_master_curve master_curve.h5 -o master_curve.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
 
-import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import (UserError, add_figure_options, add_select_option, fmt,  # noqa: E402
+from ._maplib import (UserError, add_figure_options, add_select_option, fmt,
                     maps, map_tool_parser, open_map2, parse_map_tool_args, read_masked, run_tool,
                     save_figure, select_cases)
 

@@ -1,10 +1,9 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy h5py xarray h5netcdf
 """Open an mdrmap map as an xarray Dataset; turn a grid study into an N-dimensional one.
 
-As a module (with tools/ on sys.path):
+As a module:
 
-    import mapxr
+    from mdrmap.tools import mapxr
     ds = mapxr.open_map("MAP.h5")   # one Dataset: every per-case dataset of the map
     g = mapxr.to_grid(ds)           # grid maps: one dimension per grid axis
 
@@ -56,27 +55,22 @@ build, and is its command line: prints the Dataset (with --grid, the
 N-dimensional one).
 
 Usage:
-    tools/pyrun tools/mapxr.py MAP.h5
-    tools/pyrun tools/mapxr.py MAP.h5 --grid
-    tools/pyrun tools/mapxr.py MAP.h5 --grid --var mu_peak --var residual_mu_pre
+    python3 -m mdrmap mapxr MAP.h5
+    python3 -m mdrmap mapxr MAP.h5 --grid
+    python3 -m mdrmap mapxr MAP.h5 --grid --var mu_peak --var residual_mu_pre
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
 
 import argparse
-import os
 import sys
 import warnings
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from maplib import Parser, UserError, run_tool  # noqa: E402
-from maplib import maps as maplib_maps  # noqa: E402
+from ._maplib import Parser, UserError, run_tool
+from .. import maps as _maps
 
 PROG = "mapxr"
 
-
-_maps = maplib_maps
 
 
 def open_map(path):

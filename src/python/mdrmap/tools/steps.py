@@ -1,7 +1,7 @@
-#!/usr/bin/env python3
-# pyrun-needs: numpy matplotlib
+# pyrun-needs: numpy matplotlib mdrmap
 """Velocity-step responses under load (or at fixed depth), with a table of
-the rate-and-state numbers: runs `mdrmap simulate` (or reads its CSVs) and
+the rate-and-state numbers: computes the runs with
+mdrmap.simulate in this process (or reads CSVs of `mdrmap simulate`) and
 plots friction and depth against slip.
 
 For each zeta0 = v0 tau / a0 (a0 the Hertz radius of F0; a1 the leading edge at
@@ -11,7 +11,9 @@ lasts max(30 tau, 30 a0 / v_after), long enough to settle, sampled on a log
 scale (6 decades). Per run it prints, in units of a0/R for mu:
 
   mu_pre   stationary mu at v0 (the '# pre' line)
-  jump     mu(0+) - mu_pre, the direct response to the step
+  jump     mu(0+) - mu_pre, the direct response to the step (without a
+           parallel dashpot, --prony with --tau 0: mu_peak - mu_pre, the
+           convention of mdrmap's event metrics, docs/design.md)
   mu_end   mu at the segment's end (the new stationary state)
   D_c      slip over which |mu - mu_end| falls to 1/e of |mu(0+) - mu_end|,
            in units of a0 (linear interpolation between samples)
@@ -24,22 +26,26 @@ The figure: mu/(a0/R) (top) and d/d0 (bottom, load control) against slip/a0
 since the step (log scale), step up left, step down right, one colour per
 zeta0; the dotted lines are the levels before the step.
 
-Usage:
-    tools/pyrun tools/steps.py --F0 0.0533 --R 100 --mdrmap build/src/mdrmap -o steps.png
-    tools/pyrun tools/steps.py --F0 0.0533 --csv-dir runs --from-csv -o steps.png
+With --prony G1:TAU1,... the material has a relaxation spectrum, as with
+`mdrmap simulate --prony` (--G its long-term modulus, --tau the parallel
+dashpot's time, 0 for none); tau above is then the case's time scale
+(mdrmap's Result.scales["time"]).
 
-Exit codes: 0 success, 2 bad input or a failing mdrmap run (one line on stderr).
+Usage:
+    python3 -m mdrmap steps --F0 0.0533 --R 100 -o steps.png
+    python3 -m mdrmap steps --F0 0.0533 --csv-dir runs --from-csv -o steps.png
+    python3 -m mdrmap steps --F0 0.0533 --tau 0 --prony 1:1,1:0.01 -o steps.png
+
+Exit codes: 0 success, 2 bad input or a run mdrmap refuses or cannot compute
+(one line on stderr).
 """
 
 import argparse
 import math
-import os
 import sys
-import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import Parser, UserError, run_tool, save_figure  # noqa: E402
-import simcsv  # noqa: E402
+from ._maplib import Parser, UserError, run_tool, save_figure
+from . import _runs as runs_io
 
 PROG = "steps"
 
@@ -74,6 +80,8 @@ def measure(run, ratio_log, np):
     t, mu = run.col["t"][seg], run.col["mu"][seg]
     w = run.history()[0][0]
     mu_pre, mu0, mu_end = run.pre["mu"], mu[0], mu[-1]
+    if run.case.get("tau") == 0 and run.events and "mu_peak" in run.events[0]:
+        mu0 = run.events[0]["mu_peak"]  # no parallel dashpot: the direct effect is the peak
     m = {"mu_pre": mu_pre / mu_ref, "jump": (mu0 - mu_pre) / mu_ref, "mu_end": mu_end / mu_ref,
          "D_c": one_over_e_slip(w * t, mu, mu_end) / a}
     m["a"] = m["jump"] / ratio_log
@@ -128,35 +136,37 @@ def plot(runs, zetas, a, output, dpi, load):
     save_figure(fig, output, dpi)
 
 
-def main():
+def main(argv=None):
     p = Parser(prog=PROG, description=__doc__.split("\n\n")[0],
                formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    simcsv.add_common(p)
+    runs_io.add_common(p)
     p.add_argument("--zeta0", default="0.1,1,10", help="v0 tau / a0 values (default 0.1,1,10)")
     p.add_argument("--ratio", type=float, default=10.0, help="step factor (default 10)")
-    a = p.parse_args()
-    simcsv.check_common(a)
+    a = p.parse_args(argv)
+    runs_io.check_common(a)
     zetas = parse_list(a.zeta0, "zeta0")
     if not (math.isfinite(a.ratio) and a.ratio > 1):
         raise UserError(f"--ratio: must be a finite number > 1, got {a.ratio:g}")
-    base = simcsv.loading_args(a)
+    case = runs_io.case_kwargs(a)
     import numpy as np
 
-    exe = None if a.from_csv else simcsv.find_mdrmap(a.mdrmap)
+    # the case's scales (mdrmap's), to choose the velocities; --from-csv reads
+    # each run with its own
+    sc = None if a.from_csv else runs_io.probe_scales(a)
     runs = {}
-    with tempfile.TemporaryDirectory(prefix="mdrmap_steps_") as tmp:
-        workdir = a.csv_dir or tmp
-        sc = simcsv.case_scales(a, exe, workdir)  # mdrmap's # scales line of the case
-        scale, time = sc["length"], sc["time"]
-        for z in zetas:
-            v0 = z * scale / time
-            for direction, w in (("up", v0 * a.ratio), ("down", v0 / a.ratio)):
+    for z in zetas:
+        for direction in ("up", "down"):
+            kwargs = None
+            if sc is not None:
+                scale, time = sc["length"], sc["time"]
+                v0 = z * scale / time
+                w = v0 * a.ratio if direction == "up" else v0 / a.ratio
                 T = max(30.0 * time, 30.0 * scale / w)
-                args = base + ["--v", repr(v0), "--history", f"{w!r}:{T!r}", "--samples",
-                               str(a.samples), "--spacing", "log", "--log-decades", "6",
-                               "--rtol", repr(a.rtol)]
-                runs[(z, direction)] = simcsv.obtain(a, exe, workdir, f"step_{direction}_{z:g}.csv",
-                                                     args, np, sc)
+                kwargs = dict(case, v=v0, history=[(w, T)], samples=a.samples, spacing="log",
+                              log_decades=6, rtol=a.rtol)
+            runs[(z, direction)] = runs_io.obtain(a, f"step_{direction}_{z:g}.csv", kwargs, np,
+                                                 PROG)
+    scale = runs[(zetas[0], "up")].sc["length"]
     load = a.F0 is not None
     unit = "a0/R" if load else "a1/R"
     cols = ["mu_pre", "jump", "mu_end", "D_c", "a", "a-b", "b", "d_end", "settle"]

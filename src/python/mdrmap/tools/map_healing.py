@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """The healing curve of a slide-hold-slide mdrmap-map/2 map: the friction peak
 after the reslide against the hold time.
@@ -24,8 +23,8 @@ over all holds of the curve ("per decade"). Cases not done or with tau = 0 are
 skipped and counted.
 
 Usage:
-    tools/pyrun tools/map_healing.py shs_holds.h5 -o healing.png
-    tools/pyrun tools/map_healing.py shs_holds.h5 --select v=0.1 -o healing.png
+    python3 -m mdrmap map_healing shs_holds.h5 -o healing.png
+    python3 -m mdrmap map_healing shs_holds.h5 --select v=0.1 -o healing.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -34,8 +33,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import (SELECT_HELP, UserError, add_figure_options, add_select_option,  # noqa: E402
+from ._maplib import (SELECT_HELP, UserError, add_figure_options, add_select_option,
                     fmt, map_tool_parser, open_map2, parse_map_tool_args, read_masked, run_tool,
                     save_figure, select_cases)
 

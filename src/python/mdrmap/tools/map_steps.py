@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """Step responses in scaled variables from an mdrmap-map/2 map with time series.
 
@@ -28,9 +27,9 @@ in units of a/R, the normalised response just after the change and at the
 segment's end, and D_c (events/d_c) in units of a.
 
 Usage:
-    tools/pyrun tools/map_steps.py velocity_steps.h5 -o steps.png
-    tools/pyrun tools/map_steps.py velocity_steps.h5 --event 1 --select v=0.1 -o steps.png
-    tools/pyrun tools/map_steps.py seed_step.h5 --select tau=2,w1_over_v=0.01 -o drop.png
+    python3 -m mdrmap map_steps velocity_steps.h5 -o steps.png
+    python3 -m mdrmap map_steps velocity_steps.h5 --event 1 --select v=0.1 -o steps.png
+    python3 -m mdrmap map_steps seed_step.h5 --select tau=2,w1_over_v=0.01 -o drop.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -39,8 +38,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import (UserError, add_figure_options, add_select_option, fmt,  # noqa: E402
+from ._maplib import (UserError, add_figure_options, add_select_option, fmt,
                     map_tool_parser, open_map2, parse_map_tool_args, read_masked, run_tool,
                     save_figure, select_cases)
 

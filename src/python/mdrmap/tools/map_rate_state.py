@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """Maps of the apparent rate-and-state parameters of one event of an
 mdrmap-map/2 grid study over two of its grid axes.
@@ -27,9 +26,9 @@ Prints a table per panel: how many cells are defined, undefined and not done,
 and the minimum, median and maximum of the defined ones.
 
 Usage:
-    tools/pyrun tools/map_rate_state.py load_sweep.h5 --x v --y F0 -o rate_state.png
-    tools/pyrun tools/map_rate_state.py velocity_steps.h5 --event 1 --x v -o rs.png
-    tools/pyrun tools/map_rate_state.py seed_step.h5 --x v --y w1_over_v --select tau=2 -o rs.png
+    python3 -m mdrmap map_rate_state load_sweep.h5 --x v --y F0 -o rate_state.png
+    python3 -m mdrmap map_rate_state velocity_steps.h5 --event 1 --x v -o rs.png
+    python3 -m mdrmap map_rate_state seed_step.h5 --x v --y w1_over_v --select tau=2 -o rs.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -38,8 +37,7 @@ import math
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import (UserError, add_figure_options, add_select_option, fmt,  # noqa: E402
+from ._maplib import (UserError, add_figure_options, add_select_option, fmt,
                     grid_index, map_tool_parser, nearest_index, open_map2, parse_map_tool_args,
                     read_masked, resolve_axis, run_tool, save_figure, scale_of, scale_symbol)
 

@@ -1,12 +1,12 @@
-#!/usr/bin/env python3
-# pyrun-needs: numpy matplotlib
+# pyrun-needs: numpy matplotlib mdrmap
 """Healing in slide-hold-slide tests under load (or at fixed depth): runs
-`mdrmap simulate` (or reads its CSVs) for a range of hold times and plots the
-friction peak after the reslide against log10(hold time).
+mdrmap.simulate in this process (or reads CSVs of `mdrmap simulate`) for a
+range of hold times and plots the friction peak after the reslide against
+log10(hold time).
 
 Each run slides stationarily at v0 (zeta0 = v0 tau / a0, a0 the Hertz radius
 of F0; a1 the leading edge at fixed depth: mdrmap's scales of the case, from
-its `# scales` line, simcsv.case_scales), holds (velocity 0) for t_hold, then
+Result.scales of a short run of the case), holds (velocity 0) for t_hold, then
 slides again at v0 for max(20 tau, 20 a0 / v0), each segment sampled on a log
 scale (6 decades). dmu_peak = the largest mu of the reslide (its event's
 mu_max, from the solver's solution) minus the
@@ -18,23 +18,27 @@ The figure: dmu_peak/(a0/R) against log10(t_hold/tau) (left), and mu/(a0/R)
 against slip/a0 during the reslide for each hold (right, the middle zeta0
 of the list).
 
-Usage:
-    tools/pyrun tools/healing.py --F0 0.0533 --R 100 --mdrmap build/src/mdrmap -o healing.png
-    tools/pyrun tools/healing.py --F0 0.0533 --holds 0.1,1,10 --zeta0 1 -o h.png
+With --prony G1:TAU1,... the material has a relaxation spectrum, as with
+`mdrmap simulate --prony` (--G its long-term modulus, --tau the parallel
+dashpot's time, 0 for none); tau above is then the case's time scale
+(mdrmap's Result.scales["time"]).
 
-Exit codes: 0 success, 2 bad input or a failing mdrmap run (one line on stderr).
+Usage:
+    python3 -m mdrmap healing --F0 0.0533 --R 100 -o healing.png
+    python3 -m mdrmap healing --F0 0.0533 --holds 0.1,1,10 --zeta0 1 -o h.png
+    python3 -m mdrmap healing --d 0.01 --tau 0 --prony 1:1,1:0.01 -o h.png
+
+Exit codes: 0 success, 2 bad input or a run mdrmap refuses or cannot compute
+(one line on stderr).
 """
 
 import argparse
 import math
-import os
 import sys
-import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from maplib import Parser, UserError, run_tool, save_figure  # noqa: E402
-import simcsv  # noqa: E402
-from steps import parse_list  # noqa: E402
+from ._maplib import Parser, UserError, run_tool, save_figure
+from . import _runs as runs_io
+from .steps import parse_list
 
 PROG = "healing"
 
@@ -98,36 +102,36 @@ def plot(runs, zetas, holds, output, dpi, load, np):
     save_figure(fig, output, dpi)
 
 
-def main():
+def main(argv=None):
     p = Parser(prog=PROG, description=__doc__.split("\n\n")[0],
                formatter_class=argparse.RawDescriptionHelpFormatter, epilog=__doc__)
-    simcsv.add_common(p)
+    runs_io.add_common(p)
     p.add_argument("--zeta0", default="1", help="v0 tau / a0 values (default 1)")
     p.add_argument("--holds", help="hold times in units of tau (default 9 from 0.1 to 1000, "
                                    "log spaced)")
-    a = p.parse_args()
-    simcsv.check_common(a)
+    a = p.parse_args(argv)
+    runs_io.check_common(a)
     zetas = parse_list(a.zeta0, "zeta0")
     holds = parse_list(a.holds, "holds") if a.holds else default_holds()
     if len(set(holds)) != len(holds) or sorted(holds) != holds:
         raise UserError(f"--holds: must increase, got {a.holds}")
-    base = simcsv.loading_args(a)
+    case = runs_io.case_kwargs(a)
     import numpy as np
 
-    exe = None if a.from_csv else simcsv.find_mdrmap(a.mdrmap)
+    # the case's scales (mdrmap's), to choose the velocities; --from-csv reads
+    # each run with its own
+    sc = None if a.from_csv else runs_io.probe_scales(a)
     runs = {}
-    with tempfile.TemporaryDirectory(prefix="mdrmap_healing_") as tmp:
-        workdir = a.csv_dir or tmp
-        sc = simcsv.case_scales(a, exe, workdir)  # mdrmap's # scales line of the case
-        scale, time = sc["length"], sc["time"]
-        for z in zetas:
-            v0 = z * scale / time
-            T = max(20.0 * time, 20.0 * scale / v0)
-            for h in holds:
-                args = base + ["--v", repr(v0), "--history", f"0:{h * time!r},{v0!r}:{T!r}",
-                               "--samples", str(a.samples), "--spacing", "log", "--log-decades",
-                               "6", "--rtol", repr(a.rtol)]
-                runs[(z, h)] = simcsv.obtain(a, exe, workdir, f"shs_{z:g}_{h:.6g}.csv", args, np, sc)
+    for z in zetas:
+        for h in holds:
+            kwargs = None
+            if sc is not None:
+                scale, time = sc["length"], sc["time"]
+                v0 = z * scale / time
+                T = max(20.0 * time, 20.0 * scale / v0)
+                kwargs = dict(case, v=v0, history=[(0.0, h * time), (v0, T)], samples=a.samples,
+                              spacing="log", log_decades=6, rtol=a.rtol)
+            runs[(z, h)] = runs_io.obtain(a, f"shs_{z:g}_{h:.6g}.csv", kwargs, np, PROG)
     load = a.F0 is not None
     unit = "a0/R" if load else "a1/R"
     print(f"# dmu_peak in units of {unit}, slip_peak of {'a0' if load else 'a1'}; "

@@ -12,36 +12,17 @@ reference scales (length, depth, force, friction, time) from /scales. A map
 without /schema or /scales (older ones) is refused in one line naming the
 group; an mdrmap-map/1 map likewise.
 
-The opener and the readers of /schema and /scales are the Python package's
-(src/python/mdrmap/maps.py, loaded from the source tree: the tools need no
-build): one loader for the package and the tools.
+The opener and the readers of /schema and /scales are the package's
+(mdrmap.maps): one map loader for the package and the tools.
 
-Not a script: the tools import it from their own directory.
+Not a tool: the tools of the package (mdrmap.tools) import it.
 """
 import argparse
-import importlib
-import importlib.util
 import math
 import os
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def _load_maps():
-    """src/python/mdrmap/maps.py, the Python package's map reader, as a module
-    (loaded from the source tree: the tools need no build); installed tools
-    (share/mdrmap/tools, no source tree) import the installed package's."""
-    path = os.path.join(HERE, os.pardir, "src", "python", "mdrmap", "maps.py")
-    if not os.path.isfile(path):
-        return importlib.import_module("mdrmap.maps")
-    spec = importlib.util.spec_from_file_location("mdrmap_maps", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-maps = _load_maps()
+from .. import maps
 # the schema names and the readers of text and schema, from the package
 SCHEMA1, SCHEMA2, SCHEMAS = maps.SCHEMA1, maps.SCHEMA2, maps.SCHEMAS
 SCHEMA = SCHEMA2  # what mdrmap writes now
@@ -62,6 +43,13 @@ class UserError(Exception):
 
 
 class Parser(argparse.ArgumentParser):
+    """The tools' argument parser: usage as `python -m mdrmap TOOL`, errors in one line."""
+
+    def __init__(self, *args, prog=None, **kwargs):
+        if prog is not None and " " not in prog:
+            prog = "python -m mdrmap " + prog
+        super().__init__(*args, prog=prog, **kwargs)
+
     def error(self, message):  # one line instead of usage + message
         raise UserError(f"{message} (see --help)")
 

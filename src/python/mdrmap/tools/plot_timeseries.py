@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """Plot the response to velocity changes from an mdrmap map (the seed paper's Figure 2).
 
@@ -38,9 +37,9 @@ first done case. Cases that are pending or failed are skipped, and the tool
 says how many.
 
 Usage:
-    tools/pyrun tools/plot_timeseries.py MAP.h5 -o figure2.png
-    tools/pyrun tools/plot_timeseries.py MAP.h5 --case all --scaled -o figure2.png
-    tools/pyrun tools/plot_timeseries.py MAP.h5 --select d=1e-3,v=10 -o case.png
+    python3 -m mdrmap plot_timeseries MAP.h5 -o figure2.png
+    python3 -m mdrmap plot_timeseries MAP.h5 --case all --scaled -o figure2.png
+    python3 -m mdrmap plot_timeseries MAP.h5 --select d=1e-3,v=10 -o case.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -50,7 +49,7 @@ import math
 import os
 import sys
 
-from maplib import (Parser, UserError, load_cases, open_map, read_masked, run_tool, save_figure,
+from ._maplib import (Parser, UserError, load_cases, open_map, read_masked, run_tool, save_figure,
                     scale_of, scale_symbol)
 
 PROG = "plot_timeseries"

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # pyrun-needs: numpy matplotlib h5py
 """Colour map of one or more quantities of an mdrmap map over two parameters.
 
@@ -40,10 +39,10 @@ Residuals use a symmetric diverging colour map. Cases that are pending or
 failed are drawn grey (not-done) and counted.
 
 Usage:
-    tools/pyrun tools/plot_map.py MAP.h5 -o map.png
-    tools/pyrun tools/plot_map.py MAP.h5 mu_pre mu_after_0 --x v --y d --log-color -o mu.png
-    tools/pyrun tools/plot_map.py MAP.h5 residuals/mu_pre --slice R=1 -o res.png
-    tools/pyrun tools/plot_map.py MAP.h5 mu_after_0 --similarity -o sim.png
+    python3 -m mdrmap plot_map MAP.h5 -o map.png
+    python3 -m mdrmap plot_map MAP.h5 mu_pre mu_after_0 --x v --y d --log-color -o mu.png
+    python3 -m mdrmap plot_map MAP.h5 residuals/mu_pre --slice R=1 -o res.png
+    python3 -m mdrmap plot_map MAP.h5 mu_after_0 --similarity -o sim.png
 
 Exit codes: 0 success, 2 bad input (one line on stderr).
 """
@@ -54,7 +53,7 @@ import os
 import sys
 import textwrap
 
-from maplib import (Parser, UserError, load_cases, open_map, read_masked, resolve_axis,
+from ._maplib import (Parser, UserError, load_cases, open_map, read_masked, resolve_axis,
                     run_tool, save_figure, scale_of, scale_symbol)
 
 PROG = "plot_map"
