@@ -224,7 +224,13 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 // cell (the ones no seam resolves, add_seam) is taken out of the values and
 // integrated exactly (to a relative (c tau_k / a1)^2: u'' is taken in). Without
 // it the rule saw B jump from 0 within the first cell, a first-order error:
-// slow steady sliding (v tau_k / a1 = 1e-5) erred by 1.7e-3 at rtol 1e-3.
+// slow steady sliding (v tau_k / a1 = 1e-5) erred by 1.7e-3 at rtol 1e-3 at
+// fixed depth, 1.6e-3 under load. Which branches have a layer is decided by
+// w alone (w tau_k < dx), not by c: under load c follows the depth rate, and
+// a switch on it made F_N jump in the rate the load balance varies. At rest
+// (w = 0) none forms: a hold's edge creeps at a varying rate, the quasi-steady
+// form does not hold there, and the slow branches' hold layers, kept into the
+// reslide, made the companion disagree (docs/design.md, "Leading-edge layers").
 void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   const double a1 = a1_now();
   const double c = w + (d_ > 0.0 ? a1 / (gn_ * d_) * dd : 0.0);
@@ -232,7 +238,8 @@ void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   for (std::size_t k = 0; k < law_.branches(); ++k) {
     out[k] = BranchLayer{};
     const double tk = law_.tauk(k), width = c * tk;
-    if (c > 0.0 && r > 0.0 && width < dx_) // (u = r t - bend t^2 / 2: amplitude r + bend tau_k)
+    if (w > 0.0 && w * tk < dx_ && c > 0.0 &&
+        r > 0.0) // (u = r t - bend t^2 / 2: amp r + bend tau_k)
       out[k] = BranchLayer{-law_.Gk(k) * tk * (r + bend * tk), width};
   }
 }
@@ -243,7 +250,6 @@ void Row::entry_layers(double w, double dd, BranchLayer* out) const {
 // exp(-40)), so that the forces do not jump at a change.
 Row::Layer Row::leading_layer() const {
   Layer l;
-  if (!layers_) return l;
   l.n = law_.branches();
   entry_layers(w_, dd_, l.now);
   l.s_c = position(lead_) + a1_now();
