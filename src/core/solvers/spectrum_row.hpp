@@ -232,6 +232,7 @@ private:
     std::size_t n = 0;
     BranchLayer now[kMaxBranches], before[kMaxBranches];
     double s_c = 0.0;   ///< where the material at the edge at the change is now (< 0: gone)
+    double shift = 0.0; ///< added to today's layers (s < s_c): L continuous at s_c
     double reach = 0.0; ///< beyond it L is below rounding
     double at(double s) const;
     double integral() const;
