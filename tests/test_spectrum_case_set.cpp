@@ -52,7 +52,7 @@ constexpr KnownFailure kKnownFailures[] = {
     // NOT AFFORDED: the run takes 4.0 s (a/dx 150, estimate 2.5e-5; before
     // the leading edge's layers were taken out under load it stopped at its
     // work budget after 11.6 s); its reference to rtol/10 = 1e-5 needs a/dx
-    // 1024 (at 256: 1.8e-5 in 25 s, ratio 2.8), several minutes of CPU. At
+    // 512 at least (at 256: 1.8e-5 in 25 s, ratio 2.8), minutes of CPU. At
     // rtol 1e-3 the case passes (0.2 s, a/dx 32).
     {"load polyisobutylene drop-hold-reslide", 1e-4},
     {"load polyisobutylene drop-hold-reslide", 1e-4},
