@@ -2,8 +2,9 @@
 // spectrum_baseline.hpp; docs/design.md, "Load control"): N = 0 against the
 // Kelvin load solver, a set of spectrum histories against a refined run with
 // an honest estimate, the pre-state against the closed-form stationary state
-// under load, the depth's creep in a long hold against Lee-Radok, and the
-// brute-force counterpart converging at first order.
+// under load, the depth's creep in a long hold against Lee-Radok, the
+// brute-force counterpart converging at first order, and F_N continuous in
+// the depth where the leading edge retreats past a change's material point.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,6 +23,8 @@
 #include "core/solvers/load.hpp"
 #include "core/solvers/spectrum.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
+#include "core/solvers/spectrum_law.hpp"
+#include "core/solvers/spectrum_row.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {
@@ -301,6 +304,51 @@ TEST(SpectrumLoadLongSegments, AStationarySegmentTakesNoFurtherSteps) {
     EXPECT_LE(err, o.rtol);
     EXPECT_GE(run.info.error_estimate, err / 3.0);
   }
+}
+
+} // namespace
+} // namespace mdrmap
+
+namespace mdrmap {
+namespace {
+
+// The leading edge's layers (docs/design.md, "Leading-edge layers") under
+// load: after a change, the material point that was at the edge then lies s_c
+// behind it; where the edge retreats (the depth falls faster than w lifts it)
+// s_c crosses 0 and the layers of today give way to those before the change.
+// F_N must stay continuous in the end depth of a step there (the load balance
+// solves for it); its slope may change there (by 7e-4 of it: a second
+// difference of 6e-11 of F_N). Before the shift of today's layers, L(0)
+// jumped from today's amplitude to the decayed one before: F_N jumped by
+// 1.2e-5 of itself.
+TEST(SpectrumLayers, ForcesAreContinuousWhereTheEdgeRetreatsPastTheChange) {
+  Case c = step_case(0.1, 10.0, 0.0, 1.0, 1.0); // a1 = 1
+  c.rheology.branches = {{9.0, 1.0}};           // SLS, v tau / a1 = 1e-3: a layer
+  const spectrum::Law law(c.rheology);
+  const RunControl control;
+  const double d = 0.1, a1 = 1.0, dx = a1 / 32.0, w = 2e-3;
+  spectrum::Row row(c, law, d, dx, 1.5 * a1, 0.3, 0.25, 1e-12, control, "test");
+  row.start_stationary(1e-3, d);
+  row.change_velocity(w, 0.0);
+  spectrum::Row::Snapshot snap;
+  row.save(snap);
+  const double dt = 0.1 * dx / w, a_c = a1 - w * dt; // the edge at the change's point
+  const double d_c = a_c * a_c / 10.0;
+  auto FN = [&](double d1) {
+    row.restore(snap);
+    row.advance(dt, d1, (d1 - d) / dt);
+    return row.measure(spectrum::Edge::Predicted).FN;
+  };
+  // second differences over a grid across d_c (a jump J shows as J)
+  const double h = 2e-8 * d;
+  std::vector<double> f;
+  for (int i = -20; i <= 20; ++i)
+    f.push_back(FN(d_c + (i + 0.5) * h));
+  double worst = 0.0;
+  for (std::size_t i = 1; i + 1 < f.size(); ++i)
+    worst = std::max(worst, std::abs(f[i + 1] - 2.0 * f[i] + f[i - 1]) / f[i]);
+  std::printf("largest second difference of F_N across the retreat: %.2e of F_N\n", worst);
+  EXPECT_LT(worst, 1e-9);
 }
 
 } // namespace

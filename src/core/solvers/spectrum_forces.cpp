@@ -224,7 +224,13 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 // cell (the ones no seam resolves, add_seam) is taken out of the values and
 // integrated exactly (to a relative (c tau_k / a1)^2: u'' is taken in). Without
 // it the rule saw B jump from 0 within the first cell, a first-order error:
-// slow steady sliding (v tau_k / a1 = 1e-5) erred by 1.7e-3 at rtol 1e-3.
+// slow steady sliding (v tau_k / a1 = 1e-5) erred by 1.7e-3 at rtol 1e-3 at
+// fixed depth, 1.6e-3 under load. Which branches have a layer is decided by
+// w alone (w tau_k < dx), not by c: under load c follows the depth rate, and
+// a switch on it made F_N jump in the rate the load balance varies. At rest
+// (w = 0) none forms: a hold's edge creeps at a varying rate, the quasi-steady
+// form does not hold there, and the slow branches' hold layers, kept into the
+// reslide, made the companion disagree (docs/design.md, "Leading-edge layers").
 void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   const double a1 = a1_now();
   const double c = w + (d_ > 0.0 ? a1 / (gn_ * d_) * dd : 0.0);
@@ -232,7 +238,8 @@ void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   for (std::size_t k = 0; k < law_.branches(); ++k) {
     out[k] = BranchLayer{};
     const double tk = law_.tauk(k), width = c * tk;
-    if (c > 0.0 && r > 0.0 && width < dx_) // (u = r t - bend t^2 / 2: amplitude r + bend tau_k)
+    if (w > 0.0 && w * tk < dx_ && c > 0.0 &&
+        r > 0.0) // (u = r t - bend t^2 / 2: amp r + bend tau_k)
       out[k] = BranchLayer{-law_.Gk(k) * tk * (r + bend * tk), width};
   }
 }
@@ -240,10 +247,15 @@ void Row::entry_layers(double w, double dd, BranchLayer* out) const {
 // The layers now: the material that entered since the last change (within
 // s_c of the edge) formed today's; the material behind it formed those of
 // before the change, decayed since (exp(-since / tau_k); dropped once below
-// exp(-40)), so that the forces do not jump at a change.
+// exp(-40)), so that the forces do not jump at a change. Today's layers are
+// shifted by a constant that makes L continuous at s_c (B is: the material on
+// either side of it entered at the change): at s_c a branch's layer of today
+// has fallen to amp exp(-s_c / width), the one before to its decayed
+// amplitude, and B - L would jump by their difference inside the contact
+// (after a hold, where no layer formed, by the whole of today's amplitude
+// while since << tau_k), or at the edge itself as s_c crosses 0 under load.
 Row::Layer Row::leading_layer() const {
   Layer l;
-  if (!layers_) return l;
   l.n = law_.branches();
   entry_layers(w_, dd_, l.now);
   l.s_c = position(lead_) + a1_now();
@@ -254,12 +266,17 @@ Row::Layer Row::leading_layer() const {
       l.reach = std::max(l.reach, std::max(l.s_c, 0.0) + 40.0 * l.before[k].width);
     }
     l.reach = std::max(l.reach, 40.0 * l.now[k].width);
+    if (l.s_c > 0.0) {
+      const double x = l.now[k].amp != 0.0 ? l.s_c / l.now[k].width : 40.0;
+      l.shift += l.before[k].amp - (x < 40.0 ? l.now[k].amp * std::exp(-x) : 0.0);
+    }
   }
+  if (l.shift != 0.0) l.reach = std::max(l.reach, l.s_c);
   return l;
 }
 
 double Row::Layer::at(double s) const {
-  double v = 0.0;
+  double v = s < s_c ? shift : 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (s < s_c && now[i].amp != 0.0) v += now[i].amp * std::exp(-s / now[i].width);
     if (s >= s_c && before[i].amp != 0.0)
@@ -271,7 +288,7 @@ double Row::Layer::at(double s) const {
 // (over s >= 0: today's layer up to m = max(s_c, 0), the one before from m)
 double Row::Layer::moment() const {
   const double m = std::max(s_c, 0.0);
-  double v = 0.0;
+  double v = 0.5 * shift * m * m;
   for (std::size_t i = 0; i < n; ++i) {
     const double w = now[i].width, b = before[i].width;
     if (now[i].amp != 0.0) {
@@ -285,7 +302,7 @@ double Row::Layer::moment() const {
 
 double Row::Layer::integral() const {
   const double m = std::max(s_c, 0.0);
-  double v = 0.0;
+  double v = shift * m;
   for (std::size_t i = 0; i < n; ++i) {
     if (now[i].amp != 0.0) v += now[i].amp * now[i].width * -std::expm1(-m / now[i].width);
     if (before[i].amp != 0.0)

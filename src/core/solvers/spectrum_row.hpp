@@ -232,6 +232,7 @@ private:
     std::size_t n = 0;
     BranchLayer now[kMaxBranches], before[kMaxBranches];
     double s_c = 0.0;   ///< where the material at the edge at the change is now (< 0: gone)
+    double shift = 0.0; ///< added to today's layers (s < s_c): L continuous at s_c
     double reach = 0.0; ///< beyond it L is below rounding
     double at(double s) const;
     double integral() const;
@@ -239,7 +240,7 @@ private:
   };
   Layer leading_layer() const;
   /// The layers fresh material forms at the leading edge at w and rate dd
-  /// (zero amplitude where the layer is not thinner than a cell).
+  /// (zero amplitude at rest and where w tau_k is not below a cell).
   void entry_layers(double w, double dd, BranchLayer* out) const;
   template <class Piece>
   void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
@@ -313,10 +314,6 @@ private:
   bool parab_;       // the parabola: Taylor forcing, no tip
   double gc_, gn_;   // the profile's g = gc_ |x|^gn_ (Indenter::coefficient, exponent)
   bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
-  // the leading edge's thin layers integrated exactly (leading_layer): at fixed
-  // depth; under load not yet (a creeping edge's layers formed under a varying
-  // rate and a hold's slow branches cost more than they gain, see design.md)
-  bool layers_;
   double R_, d_, dx_, aw_, phase_, sub_travel_;
   double dd_ = 0.0; // depth rate now (load control)
   std::size_t cap_, stride_;
