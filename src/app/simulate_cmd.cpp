@@ -49,7 +49,8 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
 int run(const SimulateArgs& a) {
   OutputFile out(a.output); // opened before the solver runs: a bad path fails fast
   const Simulation sim = simulate(a.in);
-  write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature);
+  write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature,
+                     a.in.record ? &*a.in.record : nullptr);
   out.commit();
   return kExitOk;
 }
@@ -74,6 +75,13 @@ std::vector<HelpEntry> history_entries() {
                    std::to_string(kMaxSegments) +
                    " segments. --v1 V1 --t-end T is --history V1:T; give one of the two forms, "
                    "not both"});
+  e.push_back({"--history-file FILE",
+               "a lab record as the history: CSV with a header naming the columns t (time) and "
+               "v (load-point velocity), in any order, other columns ignored; '#' comments and "
+               "blank lines allowed; t strictly increasing, v >= 0. V0 is the first row's v, "
+               "t = 0 the first row's time; a row's v holds until the next row's time, the last "
+               "row ends the record. The output rows are the record's rows, with columns v and "
+               "slip. Not with --v, --v1, --t-end, --history or the sampling options"});
   return e;
 }
 
@@ -181,7 +189,8 @@ digits, so they read back to the same double.
 
 std::string usage() {
   return "Usage: mdrmap simulate" + case_usage(true) +
-         "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n";
+         "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n"
+         "       mdrmap simulate ... --history-file RECORD.csv   (no --v, --v1, --history)\n";
 }
 
 std::string examples() {
