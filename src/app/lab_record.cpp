@@ -121,8 +121,8 @@ LabRecord read_lab_record(const std::string& path) {
                                        "and v among them");
   if (r.t.size() < 2)
     throw InvalidInput(kOption, path + ": " + std::to_string(r.t.size()) +
-                                    " rows; a record needs at least two (the first row's time is "
-                                    "t = 0, the last ends the record)");
+                                    " row(s); a record needs at least two (the first row's time "
+                                    "is t = 0, the last ends the record)");
   return r;
 }
 
