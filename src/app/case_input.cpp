@@ -279,6 +279,12 @@ void read_history(const Texts& o, CaseInput& in) {
   if (o.has("history-file")) {
     in.record = read_lab_record(o["history-file"]);
     apply_lab_record(*in.record, c);
+    try { // what validate() says about the history is about the record
+      validate(c);
+    } catch (const InvalidInput& e) {
+      if (e.option() != "history") throw;
+      throw InvalidInput("history-file", o["history-file"] + ": " + e.what());
+    }
   } else if (o.has("history"))
     c.history.segments = parse_history(o["history"]);
   else

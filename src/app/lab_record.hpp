@@ -36,7 +36,8 @@ LabRecord read_lab_record(const std::string& path);
 
 /// Sets c.history (v0 and the segments) and c.sampling.at from the record
 /// as the header comment says. Throws InvalidInput("history-file") where
-/// the record has more velocity changes than a history may have segments.
+/// the first row's v is 0 or the record has more velocity changes than a
+/// history may have segments.
 void apply_lab_record(const LabRecord& r, Case& c);
 
 /// The index in the series of c (a case that apply_lab_record made) of each

@@ -122,14 +122,15 @@ std::vector<HelpSection> sections() {
   std::vector<HelpEntry> material = parameter_entries(Part::Material);
   for (auto& e : rheology_entries())
     material.push_back(e);
-  return {
-      {"geometry", "Case geometry and loading", geometry},
-      {"material", "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
-       material},
-      {"history", "Velocity history: V0 before t = 0, then --v1 or --history", history_entries()},
-      {"output", "Output and sampling, per segment", output_entries()},
-      {"solver", "Solver", solver_entries()},
-      {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
+  return {{"geometry", "Case geometry and loading", geometry},
+          {"material",
+           "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
+           material},
+          {"history", "Velocity history: V0 before t = 0, then --v1 or --history (or a lab record)",
+           history_entries()},
+          {"output", "Output and sampling, per segment", output_entries()},
+          {"solver", "Solver", solver_entries()},
+          {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
 }
 
 std::string output_help() {
