@@ -221,6 +221,27 @@ TEST(LabRecordCli, RecordRowsAreTheHistoryAtTheRecordsTimes) {
   EXPECT_NE(a.out.find(" sampling=record "), std::string::npos);
 }
 
+TEST(LabRecordCli, UnderLoadTheRowsHaveTheLoadColumnsThenVAndSlip) {
+  Files f;
+  // CR LF line ends and an extra column between t and v
+  const std::string rec = f.write("r.csv", "t,FN,v\r\n0,1,1\r\n1,1,1\r\n2,1,0.1\r\n4,1,0.1\r\n");
+  const Outcome o = run_mdrmap(f, "simulate --F0 0.5 --R 10 --tau 1 --history-file " + rec);
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> rows = table(o.out);
+  ASSERT_EQ(rows.size(), 5U);
+  EXPECT_EQ(rows[0], "t,segment,FN,Fx,mu,a2,d,a1,v,slip");
+  EXPECT_EQ(rows[3].substr(0, 4), "2,1,");
+  EXPECT_EQ(rows[4].substr(0, 4), "4,1,");
+  std::vector<double> last;
+  std::istringstream in(rows[4]);
+  for (std::string x; std::getline(in, x, ',');)
+    last.push_back(std::stod(x));
+  ASSERT_EQ(last.size(), 10U);
+  EXPECT_EQ(last[8], 0.1);
+  EXPECT_DOUBLE_EQ(last[9], 2.2);  // 1 x 2 + 0.1 x 2
+  EXPECT_NEAR(last[2], 0.5, 1e-3); // the load holds
+}
+
 TEST(LabRecordCli, SlidingAtTheEndOfALongSegmentIsStationary) {
   Files f;
   const std::string rec = f.write("r.csv", "v,t,Fx\n2,0,1\n1,0.5,1\n1,60,1\n");
