@@ -24,7 +24,9 @@
 //
 // With a lab record (--history-file, app/lab_record.hpp) the rows are the
 // record's, one per row at its time, and two columns follow: v (the row's
-// load-point velocity) and slip (the load-point slip since t = 0).
+// load-point velocity) and slip (the load-point slip since t = 0); the
+// `# case` line then says sampling=record in place of the spacing and the
+// sampling parameters.
 //
 // The `# case` line gives every parameter of the table (core/model/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the

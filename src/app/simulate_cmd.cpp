@@ -165,6 +165,8 @@ std::string output_help() {
   t,segment,FN,Fx,mu,a2               (under --F0: t,segment,FN,Fx,mu,a2,d,a1)
   ... N rows per segment, segment after segment; segment is 0-based, t is
       measured from the first change (t = 0 is the instant just after it) ...
+      (--history-file: one row per row of the record, t measured from its
+      first row, and the columns v and slip after the others)
 zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0; under --F0
 zeta0 = V0 tau / a0, a0 the Hertz contact radius of F0 (F0 = 16/3 G a0^3/R),
 and the columns d and a1 give the depth and the leading edge, a1 = sqrt(R d).
