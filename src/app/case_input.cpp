@@ -20,7 +20,7 @@ namespace {
 /// indenter's profile, the history's two forms, the sampling's spacing and how to run.
 constexpr const char* kIndenterOptions[] = {"profile"};
 constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
-constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
+constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history", "history-file"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
 /// The option texts with the questions the checks ask of them; `spelled`
@@ -164,11 +164,29 @@ void require_profile_options(const Texts& o, Profile profile) {
   }
 }
 
+/// --history-file gives V0 and the whole history: none of --v, --v1,
+/// --t-end, --history with it.
+void require_record_alone(const Texts& o) {
+  for (const char* other : {"v", "v1", "t-end", "history"})
+    if (o.has(other))
+      throw InvalidInput("history-file",
+                         std::string("cannot be combined with --") + other +
+                             ": the record gives V0 (its first row's v) and the whole history");
+  for (const char* other : {"samples", "spacing", "log-decades"})
+    if (o.has(other))
+      throw InvalidInput("history-file", std::string("cannot be combined with --") + other +
+                                             ": the output rows are at the record's times");
+}
+
 void require_options(const Texts& o, Profile profile) {
   require_profile_options(o, profile);
+  const bool record = o.has("history-file");
+  if (record) require_record_alone(o);
   for (const auto& p : case_parameters())
-    if (p.required && p.applies_to(profile) && !o.has(p.name))
+    if (p.required && p.applies_to(profile) && !o.has(p.name) &&
+        !(record && std::string(p.name) == "v"))
       throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
+  if (record) return;
   if (o.has("v1") && o.has("history"))
     throw InvalidInput("history", "cannot be combined with --v1: give either --history "
                                   "W1:T1,W2:T2,... or its one-segment shorthand --v1 V1 "
@@ -256,8 +274,18 @@ Segment one_step(const Texts& o, Case& c) {
 
 /// The history from --history, or the one segment of --v1 V1 [--t-end T];
 /// every value is checked with the segment specs.
-void read_history(const Texts& o, Case& c) {
-  if (o.has("history"))
+void read_history(const Texts& o, CaseInput& in) {
+  Case& c = in.c;
+  if (o.has("history-file")) {
+    in.record = read_lab_record(o["history-file"]);
+    apply_lab_record(*in.record, c);
+    try { // what validate() says about the history is about the record
+      validate(c);
+    } catch (const InvalidInput& e) {
+      if (e.option() != "history") throw;
+      throw InvalidInput("history-file", o["history-file"] + ": " + e.what());
+    }
+  } else if (o.has("history"))
     c.history.segments = parse_history(o["history"]);
   else
     c.history.segments = {one_step(o, c)};
@@ -316,6 +344,7 @@ Spacing parse_spacing(const std::string& text) {
 
 /// Refuses outputs beyond kMaxSamples rows in all.
 void check_total_samples(const Case& c) {
+  if (!c.sampling.at.empty()) return; // a record's rows, as many as it has
   const double rows =
       static_cast<double>(c.sampling.samples) * static_cast<double>(c.history.size());
   if (rows > static_cast<double>(kMaxSamples))
@@ -369,7 +398,7 @@ CaseInput read_canonical(const Texts& o) {
   if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
                                       "drop --log-decades");
-  read_history(o, in.c);
+  read_history(o, in);
   validate(in.c);
   check_total_samples(in.c);
   if (o.has("rtol")) in.rtol = parse_double("rtol", o["rtol"]);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/lab_record.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/model/wlf.hpp"
@@ -37,6 +38,7 @@ struct CaseInput {
   SolverKind solver = SolverKind::Auto;
   double rtol = kDefaultRtol;
   std::optional<TemperatureInput> temperature; ///< given: c.rheology.aT is its WLF shift
+  std::optional<LabRecord> record;             ///< --history-file: the record that made the history
 };
 
 /// Every option read_case_input knows, in the order of simulate's help: the

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "app/lab_record.hpp"
 #include "app/prony_input.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
@@ -52,6 +53,21 @@ void write_rows(std::FILE* out, const Series& s, bool load) {
   }
 }
 
+/// The rows of a lab record (--history-file): its rows only, each with its
+/// load-point velocity v and the slip since t = 0.
+void write_record_rows(std::FILE* out, const Case& c, const Series& s, const LabRecord& r) {
+  const std::vector<std::size_t> rows = record_rows(c);
+  const std::vector<double> slip = record_slip(r);
+  const bool load = c.loading.by_force();
+  for (std::size_t n = 0; n < rows.size() && n < r.v.size(); ++n) {
+    const std::size_t k = rows[n];
+    std::fprintf(out, "%.17g,%d,%.17g,%.17g,%.17g,%.17g", s.t[k], s.segment[k], s.FN[k], s.Fx[k],
+                 s.mu[k], s.a2[k]);
+    if (load) std::fprintf(out, ",%.17g,%.17g", s.d[k], s.a1[k]);
+    std::fprintf(out, ",%.17g,%.17g\n", r.v[n], slip[n]);
+  }
+}
+
 void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
   std::string line = "# event k=" + std::to_string(k);
   for (const auto& [name, value] : event_fields(e))
@@ -70,8 +86,11 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
   if (!c.rheology.branches.empty()) s += " prony=" + format_prony(c.rheology.branches);
   if (temperature)
     s += " T=" + format_double(temperature->T) + " wlf=" + format_wlf(temperature->wlf);
-  s += " history=" + format_history(c.history) + " spacing=" + spacing_name(c.sampling.spacing) +
-       parameters(c, true);
+  s += " history=" + format_history(c.history);
+  if (c.sampling.at.empty())
+    s += " spacing=" + std::string(spacing_name(c.sampling.spacing)) + parameters(c, true);
+  else
+    s += " sampling=record"; // (--history-file: the rows at the record's times)
   if (load) s += " a0=" + format_double(c.a0());
   return s + " zeta0=" + format_double(c.history.v0 * c.rheology.tau / c.edge_scale());
 }
@@ -101,7 +120,8 @@ std::string format_history(const History& h) {
 }
 
 void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
-                        const std::optional<TemperatureInput>& temperature) {
+                        const std::optional<TemperatureInput>& temperature,
+                        const LabRecord* record) {
   const RunInfo& in = rec.info;
   std::fprintf(out,
                "# mdrmap %s (%s) simulate solver=%s rtol=%.17g error_estimate=%.17g "
@@ -122,8 +142,11 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
   std::fputs("# pre", out);
   for (const auto& [name, value] : state_fields(series.pre, load))
     std::fprintf(out, " %s=%.17g", name, value);
-  std::fprintf(out, "\n%s\n", load ? kCsvHeaderLoad : kCsvHeader);
-  write_rows(out, series, load);
+  std::fprintf(out, "\n%s%s\n", load ? kCsvHeaderLoad : kCsvHeader, record ? ",v,slip" : "");
+  if (record)
+    write_record_rows(out, c, series, *record);
+  else
+    write_rows(out, series, load);
 }
 
 } // namespace mdrmap::app

@@ -22,6 +22,12 @@
 //   t,segment,FN,Fx,mu,a2                 (under load t,segment,FN,Fx,mu,a2,d,a1)
 //   <samples rows per segment, segment after segment>
 //
+// With a lab record (--history-file, app/lab_record.hpp) the rows are the
+// record's, one per row at its time, and two columns follow: v (the row's
+// load-point velocity) and slip (the load-point slip since t = 0); the
+// `# case` line then says sampling=record in place of the spacing and the
+// sampling parameters.
+//
 // The `# case` line gives every parameter of the table (core/model/params.hpp) as
 // name=value in the table's order, the parameters of the sampling after the
 // history; of a one_of group (the loading: d or F0) only the member given;
@@ -46,6 +52,7 @@
 #include <optional>
 #include <string>
 
+#include "app/lab_record.hpp"
 #include "app/simulation.hpp"
 #include "core/model/case.hpp"
 
@@ -70,9 +77,12 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
 /// tools measure by (as the map's /scales).
 std::string scales_line(const Case& c);
 
-/// Writes the comment lines, the header and one row per sample to `out`.
-/// Does not flush or check for I/O errors; the caller does (ferror / fclose).
+/// Writes the comment lines, the header and one row per sample to `out`
+/// (with `record`, the case's lab record: one row per row of the record,
+/// with v and slip). Does not flush or check for I/O errors; the caller does
+/// (ferror / fclose).
 void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
-                        const std::optional<TemperatureInput>& temperature = std::nullopt);
+                        const std::optional<TemperatureInput>& temperature = std::nullopt,
+                        const LabRecord* record = nullptr);
 
 } // namespace mdrmap::app

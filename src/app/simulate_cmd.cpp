@@ -49,7 +49,8 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
 int run(const SimulateArgs& a) {
   OutputFile out(a.output); // opened before the solver runs: a bad path fails fast
   const Simulation sim = simulate(a.in);
-  write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature);
+  write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature,
+                     a.in.record ? &*a.in.record : nullptr);
   out.commit();
   return kExitOk;
 }
@@ -74,6 +75,13 @@ std::vector<HelpEntry> history_entries() {
                    std::to_string(kMaxSegments) +
                    " segments. --v1 V1 --t-end T is --history V1:T; give one of the two forms, "
                    "not both"});
+  e.push_back({"--history-file FILE",
+               "a lab record as the history: CSV with a header naming the columns t (time) and "
+               "v (load-point velocity), in any order, other columns ignored; '#' comments and "
+               "blank lines allowed; t strictly increasing, v >= 0. V0 is the first row's v, "
+               "t = 0 the first row's time; a row's v holds until the next row's time, the last "
+               "row ends the record. The output rows are the record's rows, with columns v and "
+               "slip. Not with --v, --v1, --t-end, --history or the sampling options"});
   return e;
 }
 
@@ -114,14 +122,15 @@ std::vector<HelpSection> sections() {
   std::vector<HelpEntry> material = parameter_entries(Part::Material);
   for (auto& e : rheology_entries())
     material.push_back(e);
-  return {
-      {"geometry", "Case geometry and loading", geometry},
-      {"material", "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
-       material},
-      {"history", "Velocity history: V0 before t = 0, then --v1 or --history", history_entries()},
-      {"output", "Output and sampling, per segment", output_entries()},
-      {"solver", "Solver", solver_entries()},
-      {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
+  return {{"geometry", "Case geometry and loading", geometry},
+          {"material",
+           "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
+           material},
+          {"history", "Velocity history: V0 before t = 0, then --v1 or --history (or a lab record)",
+           history_entries()},
+          {"output", "Output and sampling, per segment", output_entries()},
+          {"solver", "Solver", solver_entries()},
+          {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
 }
 
 std::string output_help() {
@@ -156,6 +165,8 @@ std::string output_help() {
   t,segment,FN,Fx,mu,a2               (under --F0: t,segment,FN,Fx,mu,a2,d,a1)
   ... N rows per segment, segment after segment; segment is 0-based, t is
       measured from the first change (t = 0 is the instant just after it) ...
+      (--history-file: one row per row of the record, t measured from its
+      first row, and the columns v and slip after the others)
 zeta0 = V0 tau / a1 is the dimensionless velocity before t = 0; under --F0
 zeta0 = V0 tau / a0, a0 the Hertz contact radius of F0 (F0 = 16/3 G a0^3/R),
 and the columns d and a1 give the depth and the leading edge, a1 = sqrt(R d).
@@ -181,7 +192,8 @@ digits, so they read back to the same double.
 
 std::string usage() {
   return "Usage: mdrmap simulate" + case_usage(true) +
-         "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n";
+         "\n           (--v1 V1 [--t-end T] | --history W1:T1,W2:T2,...) [options]\n"
+         "       mdrmap simulate ... --history-file RECORD.csv   (no --v, --v1, --history)\n";
 }
 
 std::string examples() {

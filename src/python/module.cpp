@@ -121,13 +121,15 @@ py::dict info(const app::SimulateRecord& rec) {
 
 /// The `# case` line as a dict: the profile (other than the parabola), the
 /// table's parameters of the case's profile (of a one_of group the member given), the history as
-/// (w, T) pairs, the spectrum as (G, tau) pairs where it has terms, the spacing; a0 under load;
-/// zeta0.
+/// (w, T) pairs, the spectrum as (G, tau) pairs where it has terms, the spacing (a lab record's:
+/// sampling "record" in place of it and the sampling parameters); a0 under load; zeta0.
 py::dict case_dict(const Case& c) {
   py::dict d;
   if (!c.indenter.parabolic()) d["profile"] = profile_name(c.indenter.profile);
+  const bool record = !c.sampling.at.empty(); // (history_file: no spacing, no samples)
   for (const auto& p : case_parameters())
-    if (p.applies_to(c.indenter.profile) && (!p.one_of || p.get(c) != 0.0)) {
+    if (p.applies_to(c.indenter.profile) && (!p.one_of || p.get(c) != 0.0) &&
+        !(record && p.part == Part::Sampling)) {
       if (p.integer())
         d[p.name] = static_cast<long long>(p.get(c));
       else
@@ -143,7 +145,10 @@ py::dict case_dict(const Case& c) {
       prony.append(py::make_tuple(b.G, b.tau));
     d["prony"] = prony;
   }
-  d["spacing"] = c.sampling.spacing == Spacing::Log ? "log" : "linear";
+  if (record)
+    d["sampling"] = "record";
+  else
+    d["spacing"] = c.sampling.spacing == Spacing::Log ? "log" : "linear";
   if (c.loading.by_force()) d["a0"] = c.a0();
   d["zeta0"] = c.history.v0 * c.rheology.tau / c.edge_scale();
   return d;

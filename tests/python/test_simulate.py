@@ -207,3 +207,23 @@ def test_info_names_the_build():
     assert r.info["version"] == mdrmap.__version__
     assert r.info["commit"] == mdrmap._core.commit
     assert r.info["solver"] == "exact" and r.info["wall_seconds"] >= 0
+
+
+def test_history_file_samples_at_the_records_times(tmp_path):
+    """A lab record: v0 and the history from its rows, a segment per velocity
+    change; the samples at the rows' times (t from the first row), each
+    segment's end too; the case says sampling "record"."""
+    rec = tmp_path / "record.csv"
+    rec.write_text("# step and hold\nmu,v,t\n0.5,1,10\n0.5,1,11\n0.5,0.5,12\n"
+                   "0.5,0.5,14\n0.5,0,15\n0.5,0,17\n")
+    r = mdrmap.simulate(d=0.1, R=10, tau=1, history_file=rec)
+    assert r.case["history"] == [(1.0, 2.0), (0.5, 3.0), (0.0, 2.0)]
+    assert r.case["v"] == 1.0 and r.case["sampling"] == "record"
+    assert "samples" not in r.case and "spacing" not in r.case
+    assert list(r.t) == [0, 1, 2, 2, 4, 5, 5, 7]
+    assert list(r.segment) == [0, 0, 0, 1, 1, 1, 2, 2]
+    ref = mdrmap.simulate(d=0.1, R=10, tau=1, v=1, history=[(1, 2), (0.5, 3), (0, 2)],
+                          samples=3)
+    # instants both have: just after the change at t = 2, and the end at t = 7
+    assert (r.t[3], r.segment[3], r.mu[3]) == (ref.t[3], ref.segment[3], ref.mu[3])
+    assert (r.t[-1], r.mu[-1], r.a2[-1]) == (ref.t[-1], ref.mu[-1], ref.a2[-1])

@@ -102,7 +102,6 @@ TransientTracker::Reference transient_reference(const Case& c) {
 std::vector<EventMetrics> event_metrics(const Case& c, const Series& series,
                                         const std::vector<Transient>& transients,
                                         double error_estimate, const std::vector<Probes>& probes) {
-  const auto N = c.sampling.samples;
   if (series.size() != c.total_samples())
     throw std::invalid_argument("event_metrics: the series does not match the case's samples");
   if (!transients.empty() && transients.size() != c.history.size())
@@ -113,8 +112,8 @@ std::vector<EventMetrics> event_metrics(const Case& c, const Series& series,
   std::vector<EventMetrics> out(c.history.size());
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     EventMetrics& e = out[k];
-    const std::size_t i0 = k * static_cast<std::size_t>(N),
-                      i_end = i0 + static_cast<std::size_t>(N) - 1;
+    const long N = c.sampling.count(k);
+    const std::size_t i0 = c.first_sample(k), i_end = i0 + static_cast<std::size_t>(N) - 1;
     e.t = series.t[i0];
     e.w_before = c.history.before(k);
     e.w_after = c.history.segments[k].w;

@@ -60,7 +60,7 @@ struct EventMetrics {
 };
 
 /// One record per segment of the history. `series` holds the case's samples
-/// (segment after segment, samples.samples each); `transients` (RunResult::
+/// (segment after segment, sampling.count(k) each); `transients` (RunResult::
 /// transients) one Transient per segment from the solver's solution, or none:
 /// then the extrema and the decay are read off the samples (as the parabola
 /// through consecutive samples), and depend on where they fall.

@@ -40,7 +40,15 @@ double Case::a0() const {
 }
 
 std::size_t Case::total_samples() const {
-  return history.size() * static_cast<std::size_t>(sampling.samples);
+  return first_sample(history.size());
+}
+
+std::size_t Case::first_sample(std::size_t k) const {
+  if (sampling.at.empty()) return k * static_cast<std::size_t>(sampling.samples);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < k && i < sampling.at.size(); ++i)
+    n += sampling.at[i].size();
+  return n;
 }
 
 namespace {
@@ -68,6 +76,27 @@ void check_history(const History& h) {
                                         ": the slip W T = " + format_number(h.segments[k].w) +
                                         " x " + format_number(h.segments[k].T) +
                                         " overflows; shorten the segment or rescale the units");
+}
+
+/// Explicit instants (Sampling::at), where given: one list per segment, each
+/// from 0 to the segment's duration, strictly increasing. Only a lab record
+/// (--history-file) gives them.
+void check_explicit_sampling(const Sampling& s, const History& h) {
+  if (s.at.empty()) return;
+  if (s.at.size() != h.size())
+    throw InvalidInput("history-file", "gives output instants for " + std::to_string(s.at.size()) +
+                                           " segments of a history of " + std::to_string(h.size()));
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    const std::vector<double>& a = s.at[k];
+    bool ok = a.size() >= 2 && a.front() == 0.0 && a.back() == h.segments[k].T;
+    for (std::size_t j = 1; ok && j < a.size(); ++j)
+      ok = a[j] > a[j - 1];
+    if (!ok)
+      throw InvalidInput("history-file", "segment " + std::to_string(k + 1) +
+                                             ": the output instants must rise strictly from 0 to "
+                                             "the segment's duration " +
+                                             format_number(h.segments[k].T));
+  }
 }
 
 // The range of the contact radius (any length the contact forces are formed
@@ -232,6 +261,7 @@ void validate(const Case& c) {
   check_profile_limits(c.indenter);
   validate(c.rheology);
   check_history(c.history);
+  check_explicit_sampling(c.sampling, c.history);
   if (uses_element_row(c)) check_element_row(c);
   Case storage;
   check_scales(kelvin_bound(c, storage));
@@ -248,6 +278,7 @@ CheckedCase CheckedCase::with_durations(const std::vector<Segment>& segments) &&
     own[k].T = segments[k].T;
   }
   check_history(c_.history);
+  check_explicit_sampling(c_.sampling, c_.history);
   return CheckedCase(std::move(c_), Trusted{});
 }
 

@@ -77,6 +77,17 @@ struct Sampling {
   long samples = 201;
   Spacing spacing = Spacing::Linear;
   double decades = 4.0; ///< log spacing: the first offset after 0 is T 10^-decades
+  /// Explicit instants (a lab record's times, app/lab_record.hpp): per
+  /// segment, the times since its start, from 0 to its duration T strictly
+  /// increasing (validate() checks). Empty: `samples` instants per segment,
+  /// spaced as above.
+  std::vector<std::vector<double>> at;
+  /// Number of output instants of segment k.
+  long count(std::size_t k) const { return at.empty() ? samples : static_cast<long>(at[k].size()); }
+  /// Time since the start of segment k (duration T) of its sample j.
+  double offset(std::size_t k, long j, double T) const {
+    return at.empty() ? offset(j, T) : at[k][static_cast<std::size_t>(j)];
+  }
   /// Time since the segment's start of sample j. (Inline: it is asked at
   /// every sample.)
   double offset(long j, double T) const {
@@ -112,8 +123,10 @@ struct Case {
   /// The length the error metric measures edges by: a1 at fixed depth, a0
   /// under load.
   double edge_scale() const { return loading.by_force() ? a0() : a1(); }
-  /// Output samples of the whole history: samples per segment times segments.
+  /// Output samples of the whole history: the sum of sampling.count(k).
   std::size_t total_samples() const;
+  /// Index of the first sample of segment k in the series.
+  std::size_t first_sample(std::size_t k) const;
 };
 
 /// Throws InvalidInput naming the first offending parameter (as the CLI

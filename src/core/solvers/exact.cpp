@@ -387,13 +387,12 @@ RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& c
   res.series.resize(c.total_samples());
   res.series.pre = ex.pre();
   State err; // largest absolute error bound per quantity
-  const auto N = c.sampling.samples;
   const double a1 = c.a1();
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const double T = c.history.segments[k].T, t0 = c.history.start(k);
-    for (long j = 0; j < N; ++j, ++i) {
-      const double off = c.sampling.offset(j, T);
+    for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
+      const double off = c.sampling.offset(k, j, T);
       control.charge(1.0, "exact");
       const State st = ex.at(k, off);
       res.series.set(i, t0 + off, static_cast<int>(k), st);

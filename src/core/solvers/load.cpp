@@ -167,8 +167,8 @@ SingleRun run_elastic(const Case& c) {
   out.series.pre = hertz(c);
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k)
-    for (long j = 0; j < c.sampling.samples; ++j, ++i)
-      out.series.set(i, c.history.start(k) + c.sampling.offset(j, c.history.segments[k].T),
+    for (long j = 0; j < c.sampling.count(k); ++j, ++i)
+      out.series.set(i, c.history.start(k) + c.sampling.offset(k, j, c.history.segments[k].T),
                      static_cast<int>(k), hertz(c));
   out.checks.max_a1_over_a0 = 1.0;
   return out;
@@ -223,8 +223,8 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
     row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
     TransientTracker tracker(stationary_under_load(c, seg.w).mu, row.measure().mu);
     stepper.restart(&tracker);
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
+    for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
+      const double off = c.sampling.offset(k, j, seg.T);
       stepper.advance_to(std::max(row.t(), off));
       row.check_one_interval();
       out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)

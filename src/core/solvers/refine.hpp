@@ -40,8 +40,8 @@ Series sample_history(const Case& c, const RunControl& control, Change change, A
     const double t0 = c.history.start(k);
     change(seg.w);
     double prev = 0.0;
-    for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-      const double off = c.sampling.offset(j, seg.T);
+    for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
+      const double off = c.sampling.offset(k, j, seg.T);
       advance(off - prev, seg.w);
       prev = off;
       s.set(i, t0 + off, static_cast<int>(k), measure());

@@ -61,8 +61,8 @@ void sample_steps(const Case& c, std::size_t k, long n, double dt, Step step, Me
       if (done + 1 == next) probe(done + 1);
     }
   };
-  for (long j = 0; j < c.sampling.samples; ++j, ++i) {
-    const double off = c.sampling.offset(j, seg.T);
+  for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
+    const double off = c.sampling.offset(k, j, seg.T);
     advance(std::min(n, static_cast<long>(std::llround(off / dt))));
     series.set(i, t0 + off, static_cast<int>(k), measure(done));
     control.report(i + 1, series.size());

@@ -106,7 +106,7 @@ def _number_text(option, value):
 
 
 # the options that name a file (they take a str or an os.PathLike)
-_PATHS = {"prony-file"}
+_PATHS = {"prony-file", "history-file"}
 
 _PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
           "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}

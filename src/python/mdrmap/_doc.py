@@ -27,6 +27,12 @@ OTHER = {
     "history": "segments one after another from t = 0: [(w1, T1), (w2, T2), ...] "
                '(or "W1:T1,W2:T2,..."), velocity wk >= 0 (0: a hold) for the '
                "duration Tk > 0; give v1 or history",
+    "history-file": "a lab record (a str or a path): CSV with a header naming the "
+                    "columns t and v (the load-point velocity), other columns ignored; "
+                    "v0 is the first row's v, t = 0 the first row's time, a segment "
+                    "starts at each change of v and the samples are at the rows' "
+                    "times (each segment's end too, the instant of the next one's "
+                    "start); not with v, v1, t_end, history or the sampling",
     "spacing": '"linear" (the default) or "log" (log_decades): where the samples '
                "of a segment lie",
     "rtol": "target accuracy: bound on the case error, in (0, 0.1]; default 1e-4",
