@@ -990,6 +990,11 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        {},
        "profile"},
       // relaxation spectra and the temperature shift (issue 19)
+      {"prony without --G", {{"G", kDrop}, {"prony", "1:1"}}, {}, "G"},
+      {"prony-file without --G",
+       {{"G", kDrop}, {"prony-file", prony_file("good.csv", "G,tau\n1,2\n3,40\n")}},
+       {},
+       "G"},
       {"prony G = 0", {{"prony", "0:1"}}, {}, "prony"},
       {"prony G < 0", {{"prony", "1:1,-2:10"}}, {}, "prony"},
       {"prony tau = 0", {{"prony", "1:0"}}, {}, "prony"},
@@ -1045,7 +1050,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
   ASSERT_GE(cases.size(), 20U);
 
   const std::vector<std::pair<std::string, std::string>> base{
-      {"d", "0.1"}, {"R", "10"}, {"tau", "1"}, {"v", "2"}, {"v1", "0.5"}};
+      {"d", "0.1"}, {"R", "10"}, {"tau", "1"}, {"G", "1"}, {"v", "2"}, {"v1", "0.5"}};
 
   auto listing = [&] {
     std::set<std::string> names;
@@ -1099,7 +1104,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
 using mdrmap::app::OptionTexts;
 
 OptionTexts spectrum_texts(OptionTexts extra) {
-  OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"v", "1"}, {"v1", "2"}};
+  OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"G", "1"}, {"v", "1"}, {"v1", "2"}};
   for (auto& [k, v] : extra)
     t[k] = v;
   return t;
@@ -1140,9 +1145,9 @@ TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
   for (const char* loading : {"--d", "--F0"}) {
     SCOPED_TRACE(loading);
     const std::vector<std::string> base = {
-        "simulate", loading,  "0.1", "--R", "10",        "--tau",         "0",
-        "--prony",  "9:1",    "--v", "0.1", "--history", "1:2,0:5,0.1:2", "--samples",
-        "5",        "--rtol", "1e-3"};
+        "simulate",      loading,     "0.1",     "--R",    "10",  "--tau", "0",
+        "--G",           "1",         "--prony", "9:1",    "--v", "0.1",   "--history",
+        "1:2,0:5,0.1:2", "--samples", "5",       "--rtol", "1e-3"};
     const Outcome r = run_mdrmap(base);
     ASSERT_EQ(r.code, 0) << r.err;
     const Parsed p = parse_output(r.out);
@@ -1952,7 +1957,7 @@ TEST(cli, StudyTakesFNAsTheOldSpellingOfF0) {
 TEST(cli, StudyTakesSpectrumTermsAndTheTemperature) {
   TempDir dir;
   const fs::path ini = dir.path() / "kelvin.ini";
-  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n"
+  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nG = 1\nv = 1\nv1_over_v = 0.1\n"
                   "[run]\nsamples = 5\n");
   const fs::path map = dir.path() / "map.h5";
   const std::vector<std::string> base = {"study",      "--quiet",  "--config",
@@ -2115,7 +2120,7 @@ TEST(cli, StationaryConeAtFixedDepthIsTheClosedForm) {
 TEST(cli, StationaryPowerLawUnderLoadWithASpectrumIsTheCores) {
   const StationaryTable t =
       run_stationary({"--profile", "power", "--n", "1.5", "--A", "2", "--F0", "0.05", "--tau",
-                      "0.5", "--prony", "2:0.1,5:10", "--v-list", "0.01,1,100"});
+                      "0.5", "--G", "1", "--prony", "2:0.1,5:10", "--v-list", "0.01,1,100"});
   ASSERT_EQ(t.rows.size(), 3U);
   EXPECT_TRUE(starts_with(t.comments[1], "# case profile=power F0=0.05000000000000000"))
       << t.comments[1];
@@ -2396,8 +2401,8 @@ TEST(cli, SpectrumStepHasADirectEffectAndNoMinusZero) {
   for (const char* v1 : {"0.1", "10"}) {
     SCOPED_TRACE(v1);
     const Outcome r =
-        run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "0", "--prony", "9:1,3:10",
-                    "--v", "1", "--v1", v1, "--samples", "5", "--rtol", "1e-3"});
+        run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "0", "--G", "1", "--prony",
+                    "9:1,3:10", "--v", "1", "--v1", v1, "--samples", "5", "--rtol", "1e-3"});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out.find("=-0 "), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("=-0\n"), std::string::npos) << r.out;
@@ -2412,7 +2417,8 @@ TEST(cli, SpectrumStepHasADirectEffectAndNoMinusZero) {
 // A 33rd spectrum term as an option (--G33, --tau33) is refused in one line
 // naming the 32-term limit, not as an unknown option (issue 32).
 TEST(cli, SpectrumTermPastTheLastNamesThe32TermLimit) {
-  const std::vector<std::string> base{"--d", "0.1", "--R", "10", "--tau", "0", "--prony", "1:1"};
+  const std::vector<std::string> base{"--d", "0.1", "--R", "10",      "--tau",
+                                      "0",   "--G", "1",   "--prony", "1:1"};
   for (const std::string cmd : {"simulate", "stationary"})
     for (const std::string opt : {"--G33", "--tau33", "--G100"}) {
       SCOPED_TRACE(cmd + " " + opt);

@@ -1257,9 +1257,9 @@ TEST(StudySpectrum, GridOverATermAndTheTemperature) {
 
 TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
   TempDir dir;
-  dir.write("spec.csv", "tau1,G1,aT,d,R,tau,v,w1,T1_over_tau,G2,tau2\n"
-                        "0.1,2,1e-3,1e-2,1,0,1,0,10,1,5\n"
-                        "0.2,3,10,1e-2,1,1,1,1,2,1,5\n");
+  dir.write("spec.csv", "tau1,G1,aT,d,R,tau,G,v,w1,T1_over_tau,G2,tau2\n"
+                        "0.1,2,1e-3,1e-2,1,0,1,1,0,10,1,5\n"
+                        "0.2,3,10,1e-2,1,1,1,1,1,2,1,5\n");
   const StudyConfig c =
       parse_config("[cases]\nfile = spec.csv\n[run]\nsamples = 3\n", dir.path(), "l.ini");
   EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
@@ -1350,16 +1350,29 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
   for (const Bad& b : bad) {
     SCOPED_TRACE(b.grid + b.run);
     const auto [option, message] = error_of([&] {
-      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\n" + b.grid +
+      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nG = 1\nv = 1\n" + b.grid +
             "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\n" + b.run);
     });
     EXPECT_EQ(option, b.option) << message;
     EXPECT_NE(message.find(b.said), std::string::npos) << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
+  // a spectrum has no default long-term modulus G (issue 33): refused, naming G
+  for (const std::string& grid :
+       {std::string("G1 = 1\ntau1 = 1\n"), std::string("G1 = 1, 2\ntau1 = 1\n")}) {
+    const auto [option, message] = error_of([&] {
+      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\n" + grid +
+            "[history]\nw1_over_v = 0.5\nT1 = 1\n");
+    });
+    EXPECT_EQ(option, "grid.G") << message;
+    EXPECT_NE(message.find("needs the long-term (rubbery) modulus G > 0"), std::string::npos)
+        << message;
+    EXPECT_TRUE(one_line(message)) << message;
+  }
   // under load a spectrum takes auto or spectrum; mdr (the Kelvin load solver) is refused
-  const std::string load_spectrum = "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n"
-                                    "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
+  const std::string load_spectrum =
+      "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1\ntau1 = 1\nv = 1\n"
+      "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
   for (const char* ok : {"auto", "spectrum"})
     EXPECT_TRUE(parse(load_spectrum + ok + "\n").by_force()) << ok;
   const auto [option, message] = error_of([&] { parse(load_spectrum + "mdr\n"); });
@@ -1371,7 +1384,7 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
   for (int k = 1; k <= 32; ++k)
     terms += "G" + std::to_string(k) + " = 1\ntau" + std::to_string(k) + " = " + std::to_string(k) +
              "\n";
-  const StudyConfig c = depth_study("tau = 0\n" + terms +
+  const StudyConfig c = depth_study("tau = 0\nG = 1\n" + terms +
                                     "v = 1\n[history]\nw1 = 1\n"
                                     "T1_over_tau = 1\n");
   EXPECT_EQ(cases_of(c).at(0).rheology.branches.size(), 32u);

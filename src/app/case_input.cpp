@@ -272,6 +272,11 @@ void read_spectrum(const Texts& o, Case& c) {
                                      "as --prony G1:TAU1,... or as a file");
   if (o.has("prony")) c.rheology.branches = parse_prony(o["prony"]);
   if (o.has("prony-file")) c.rheology.branches = read_prony_file(o["prony-file"]);
+  if (!c.rheology.branches.empty() && !o.has("G"))
+    throw InvalidInput("G", "must be given with a spectrum (--" +
+                                std::string(o.has("prony") ? "prony" : "prony-file") +
+                                "): the long-term (rubbery) modulus G > 0, in the unit of the "
+                                "terms' moduli; it has no default beside a spectrum");
 }
 
 /// --T TEMP with --wlf C1:C2:TREF: the shift aT at T (instead of --aT).

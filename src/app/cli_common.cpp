@@ -219,7 +219,8 @@ std::string rheology_help() {
                         ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) +
                         "), " + t.allowed() + "; at most " + n +
                         " terms, absolute values in the units of --G and --tau. With a spectrum "
-                        "--G is the long-term (rubbery) modulus and --tau the parallel dashpot's "
+                        "--G (required) is the long-term (rubbery) modulus and --tau the parallel "
+                        "dashpot's "
                         "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
          help_entry("--prony-file FILE",
                     "the same terms from a CSV file: a header line G,tau, then one term G,tau per "

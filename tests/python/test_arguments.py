@@ -10,7 +10,7 @@ import pytest
 import mdrmap
 from mdrmap import _core
 
-CASE = dict(d=0.1, R=10, tau=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+CASE = dict(d=0.1, R=10, tau=1, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
 SPECTRUM = dict(CASE, v=1, v1=2)
 
 
@@ -18,7 +18,7 @@ def test_stationary_over_a_list_is_the_cli_v_list(exe):
     vs = [0.01, 0.3, 1.0, 7.0]
     out = mdrmap.stationary(**CASE, v=vs)
     p = subprocess.run([exe, "stationary", "--d", "0.1", "--R", "10", "--tau", "1",
-                        "--prony", "1:0.1,2:10", "--v-list", "0.01,0.3,1,7"],
+                        "--G", "1", "--prony", "1:0.1,2:10", "--v-list", "0.01,0.3,1,7"],
                        capture_output=True, text=True, timeout=60, check=True)
     rows = [line.split(",") for line in p.stdout.splitlines() if not line.startswith("#")]
     header, rows = rows[0], rows[1:]

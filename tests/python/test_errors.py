@@ -11,7 +11,7 @@ import mdrmap
 from conftest import run_cli
 
 DROP = None  # the row removes the option
-BASE = {"d": "0.1", "R": "10", "tau": "1", "v": "2", "v1": "0.5"}
+BASE = {"d": "0.1", "R": "10", "tau": "1", "G": "1", "v": "2", "v1": "0.5"}
 CLI_PREFIX = "mdrmap simulate: error: "
 
 # (label, {option: text or DROP}, extra CLI tokens, option named)
@@ -109,6 +109,8 @@ ROWS = [
      {"profile": "cone", "R": DROP, "beta": "10", "solver": "exact"}, [], "profile"),
     ("a power law on the mdr solver",
      {"profile": "power", "R": DROP, "n": "3", "A": "1", "solver": "mdr"}, [], "profile"),
+    ("prony without --G", {"G": DROP, "prony": "1:1"}, [], "G"),
+    ("prony-file without --G", {"G": DROP, "prony-file": "{dir}/good.csv"}, [], "G"),
     ("prony G = 0", {"prony": "0:1"}, [], "prony"),
     ("prony G < 0", {"prony": "1:1,-2:10"}, [], "prony"),
     ("prony tau = 0", {"prony": "1:0"}, [], "prony"),
@@ -332,7 +334,7 @@ def test_booleans_bytes_and_paths_are_not_numbers(tmp_path):
         assert said in e.value.message, (change, e.value.message)
     spectrum = tmp_path / "spectrum.csv"
     spectrum.write_text("G,tau\n1,0.5\n")
-    kw = dict(d=0.1, R=10, tau=0, v=1)
+    kw = dict(d=0.1, R=10, tau=0, G=1, v=1)
     assert mdrmap.stationary(**kw, prony_file=spectrum) == \
         mdrmap.stationary(**kw, prony_file=str(spectrum))
 

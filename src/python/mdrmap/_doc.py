@@ -10,7 +10,7 @@ OTHER = {
                '"power" (n, A)',
     "prony": "a relaxation spectrum, the Maxwell branches beside G: [(G1, tau1), "
              '(G2, tau2), ...] (or "G1:TAU1,G2:TAU2,..."), at most 32 terms; with a '
-             "spectrum G is the rubbery modulus and tau the parallel dashpot's time "
+             "spectrum G (required) is the rubbery modulus and tau the parallel dashpot's time "
              "(0: none)",
     "prony-file": "the spectrum from a CSV file (a str or a path): a header line "
                   "G,tau, then one term G,tau per line; not with prony",
