@@ -1106,7 +1106,10 @@ using mdrmap::app::OptionTexts;
 OptionTexts spectrum_texts(OptionTexts extra) {
   OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"G", "1"}, {"v", "1"}, {"v1", "2"}};
   for (auto& [k, v] : extra)
-    t[k] = v;
+    if (v == kDrop)
+      t.erase(k);
+    else
+      t[k] = v;
   return t;
 }
 
@@ -1186,7 +1189,82 @@ TEST(cli, SpectrumFileEqualsTheOption) {
     FAIL() << "a zero time was taken";
   } catch (const mdrmap::InvalidInput& e) {
     EXPECT_EQ(e.option(), "prony-file");
-    EXPECT_TRUE(starts_with(e.what(), f.string() + ":5: term 2: tau2 must be")) << e.what();
+    EXPECT_TRUE(starts_with(e.what(), f.string() + ":5: column 2 (tau): tau2 must be")) << e.what();
+  }
+}
+
+// Issue 33: a spectrum file's columns by name, in any order: G, E (G = E /
+// (4 (1 - nu^2)), --nu 0.5 by default) or g normalised by '# G0 = ...' (then
+// G = G0 (1 - sum g), and --G is not given).
+TEST(cli, SpectrumFileColumnsByName) {
+  TempDir dir;
+  const auto file = [&](const char* name, const std::string& text) {
+    const fs::path p = dir.path() / name;
+    write_file(p, text);
+    return p.string();
+  };
+  const auto read = [](OptionTexts t) { return mdrmap::app::read_case_input(spectrum_texts(t)).c; };
+  const auto same_terms = [](const mdrmap::Case& a, const std::vector<mdrmap::Branch>& b) {
+    ASSERT_EQ(a.rheology.branches.size(), b.size());
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      EXPECT_DOUBLE_EQ(a.rheology.branches[k].G, b[k].G) << k;
+      EXPECT_EQ(a.rheology.branches[k].tau, b[k].tau) << k;
+    }
+  };
+  same_terms(read({{"prony-file", file("tauG.csv", "tau,G\n0.5,1\n20,3\n")}}), {{1, 0.5}, {3, 20}});
+  same_terms(read({{"prony-file", file("E.csv", "# DMA\nE , tau\n3,0.5\n9,20\n")}}),
+             {{1, 0.5}, {3, 20}});
+  same_terms(read({{"prony-file", file("E.csv", "E,tau\n3,0.5\n")}, {"nu", "0"}}), {{0.75, 0.5}});
+  const mdrmap::Case g =
+      read({{"G", kDrop}, {"prony-file", file("g.csv", "# G0 = 5\ntau,g\n0.5,0.2\n20,0.6\n")}});
+  same_terms(g, {{1, 0.5}, {3, 20}});
+  EXPECT_DOUBLE_EQ(g.rheology.G, 1.0);
+  const mdrmap::Case g_E =
+      read({{"G", kDrop}, {"prony-file", file("gE.csv", "# E0 = 15\ng,tau\n0.2,0.5\n")}});
+  same_terms(g_E, {{1, 0.5}});
+  EXPECT_DOUBLE_EQ(g_E.rheology.G, 4.0);
+  struct Bad {
+    OptionTexts texts;
+    std::string option, said;
+  };
+  const std::vector<Bad> bad = {
+      {{{"prony-file", file("x.csv", "G,tau,x\n1,2\n")}}, "prony-file", "x.csv:1: header column 3"},
+      {{{"prony-file", file("GE.csv", "G,E\n1,2\n")}}, "prony-file", "a second modulus column"},
+      {{{"prony-file", file("notau.csv", "E\n1\n")}}, "prony-file", "has no tau column"},
+      {{{"prony-file", file("badE.csv", "tau,E\n1,2\n1,-3\n")}},
+       "prony-file",
+       "badE.csv:3: column 2 (E): E2 must be a finite number > 0, got -3"},
+      {{{"prony-file", file("row.csv", "G,tau\n1,2,3\n")}}, "prony-file", "row.csv:2: term 1"},
+      {{{"G", kDrop}, {"prony-file", file("noG0.csv", "g,tau\n0.5,1\n")}},
+       "prony-file",
+       "needs a line '# G0 = VALUE'"},
+      {{{"G", kDrop}, {"prony-file", file("sum.csv", "# G0 = 1\ng,tau\n0.5,1\n0.5,2\n")}},
+       "prony-file",
+       "sum to 1"},
+      {{{"G", kDrop}, {"prony-file", file("g1.csv", "# G0 = 1\ng,tau\n1.5,1\n")}},
+       "prony-file",
+       "g1.csv:3: column 1 (g): g1 must be a finite number > 0 and < 1"},
+      {{{"prony-file", file("g2.csv", "# G0 = 1\ng,tau\n0.5,1\n")}}, "G", "drop --G"},
+      {{{"prony-file", file("G0.csv", "# G0 = 1\nG,tau\n0.5,1\n")}},
+       "prony-file",
+       "G0.csv:1: G0 applies to normalised moduli"},
+      {{{"prony-file", file("G0bad.csv", "# G0 = -1\ng,tau\n0.5,1\n")}},
+       "prony-file",
+       "G0bad.csv:1: G0 must be a finite number > 0"},
+      {{{"prony-file", file("E3.csv", "E,tau\n3,1\n")}, {"nu", "0.6"}}, "nu", "<= 0.5"},
+      {{{"prony-file", file("G3.csv", "G,tau\n3,1\n")}, {"nu", "0.3"}}, "nu", "Young's moduli"},
+      {{{"prony", "1:1"}, {"nu", "0.3"}}, "nu", "applies to a spectrum file"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.said);
+    try {
+      read(b.texts);
+      ADD_FAILURE() << "taken";
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), b.option) << e.what();
+      EXPECT_NE(std::string(e.what()).find(b.said), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
   }
 }
 

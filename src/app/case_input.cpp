@@ -10,6 +10,7 @@
 #include <iterator>
 #include <optional>
 
+#include "app/prony_file.hpp"
 #include "app/prony_input.hpp"
 #include "core/model/scales.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 /// Options that are not case parameters of the table (core/model/params.hpp): the
 /// indenter's profile, the history's two forms, the sampling's spacing and how to run.
 constexpr const char* kIndenterOptions[] = {"profile"};
-constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
+constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "nu", "T", "wlf"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
@@ -265,14 +266,46 @@ void read_history(const Texts& o, Case& c) {
 
 // --- Rheology ------------------------------------------------------------------
 
+/// --nu, Poisson's ratio of the Young's moduli of a spectrum file: -1 < nu <= 0.5.
+double read_nu(const Texts& o) {
+  if (!o.has("nu")) return 0.5;
+  const double nu = parse_double("nu", o["nu"]);
+  if (!(nu > -1.0 && nu <= 0.5))
+    throw InvalidInput("nu", "must be a finite number > -1 and <= 0.5 (Poisson's ratio; 0.5: "
+                             "incompressible), got " +
+                                 shown(o["nu"]));
+  return nu;
+}
+
+/// The terms of --prony-file and, for normalised moduli (column g), the
+/// long-term modulus G = G0 (1 - sum g) instead of --G (then true).
+bool read_spectrum_file(const Texts& o, Case& c) {
+  const double nu = read_nu(o);
+  SpectrumFile f = read_prony_file(o["prony-file"], nu);
+  if (o.has("nu") && !f.uses_nu)
+    throw InvalidInput("nu", "applies to Young's moduli (a column E or '# E0 = ...') of "
+                             "--prony-file only; the file gives shear moduli");
+  c.rheology.branches = std::move(f.branches);
+  if (!f.G) return false;
+  if (o.has("G"))
+    throw InvalidInput("G", "cannot be combined with a spectrum file of normalised moduli g: "
+                            "it gives G = G0 (1 - sum g) = " +
+                                format_number(*f.G) + "; drop --G");
+  c.rheology.G = *f.G;
+  return true;
+}
+
 /// The Maxwell branches of --prony or --prony-file (at most one of them).
 void read_spectrum(const Texts& o, Case& c) {
   if (o.has("prony") && o.has("prony-file"))
     throw InvalidInput("prony-file", "cannot be combined with --prony: give the spectrum once, "
                                      "as --prony G1:TAU1,... or as a file");
+  if (o.has("nu") && !o.has("prony-file"))
+    throw InvalidInput("nu", "applies to a spectrum file's Young's moduli (--prony-file with a "
+                             "column E) only");
   if (o.has("prony")) c.rheology.branches = parse_prony(o["prony"]);
-  if (o.has("prony-file")) c.rheology.branches = read_prony_file(o["prony-file"]);
-  if (!c.rheology.branches.empty() && !o.has("G"))
+  const bool file_G = o.has("prony-file") && read_spectrum_file(o, c);
+  if (!c.rheology.branches.empty() && !o.has("G") && !file_G)
     throw InvalidInput("G", "must be given with a spectrum (--" +
                                 std::string(o.has("prony") ? "prony" : "prony-file") +
                                 "): the long-term (rubbery) modulus G > 0, in the unit of the "

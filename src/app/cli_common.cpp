@@ -223,13 +223,18 @@ std::string rheology_help() {
                         "dashpot's "
                         "time (0: none); G(t) = G + sum Gk exp(-t / (aT tauk))") +
          help_entry("--prony-file FILE",
-                    "the same terms from a CSV file: a header line G,tau, then one term G,tau per "
-                    "line (at most " +
+                    "the same terms from a CSV file whose header names its columns, in any "
+                    "order: tau and one of G (shear moduli), E (Young's moduli, G = E / (4 (1 - "
+                    "nu^2))) or g (moduli normalised by the instantaneous modulus, given by a "
+                    "line '# G0 = VALUE' or '# E0 = VALUE'; then G = G0 (1 - sum g) and --G is "
+                    "not given). At most " +
                         n +
-                        "); blank lines and lines starting with # are skipped, a UTF-8 BOM is "
-                        "read. A regular file of at most 1 MiB, lines of at most 4096 "
-                        "characters (a FIFO or a device is refused). Give --prony or "
+                        " terms; blank lines and other lines starting with # are skipped, a "
+                        "UTF-8 BOM is read. A regular file of at most 1 MiB, lines of at most "
+                        "4096 characters (a FIFO or a device is refused). Give --prony or "
                         "--prony-file, not both") +
+         help_entry("--nu NU", "Poisson's ratio of a spectrum file's Young's moduli (column E or "
+                               "E0), -1 < NU <= 0.5. Default: 0.5 (G = E / 3)") +
          help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
                                 "equation (instead of --aT), a finite number > TREF - C2") +
          help_entry("--wlf C1:C2:TREF",

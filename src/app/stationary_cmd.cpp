@@ -40,8 +40,8 @@ constexpr const char* kColumns = "v,d,a1,a2,FN,Fx,mu";
 /// the spacing and how to run (rtol, solver) are simulate's only.
 bool stationary_case_option(const std::string& name) {
   if (const ParamSpec* p = find_parameter(name)) return p->part != Part::Sampling;
-  return name == "profile" || name == "prony" || name == "prony-file" || name == "T" ||
-         name == "wlf";
+  return name == "profile" || name == "prony" || name == "prony-file" || name == "nu" ||
+         name == "T" || name == "wlf";
 }
 
 /// The case options, in the order of simulate's help (old spellings last).

@@ -84,3 +84,19 @@ def test_help_documents_every_parameter():
     for p in _core.parameter_table():  # the table's own words
         doc = mdrmap.simulate.__doc__.replace("\n", " ")
         assert " ".join(p["meaning"].split()[:4]) in " ".join(doc.split())
+
+
+def test_prony_file_columns_by_name(tmp_path):
+    """Issue 33: E with nu, or g normalised by '# G0 = ...' (then G = G0 (1 - sum g))."""
+    young = tmp_path / "E.csv"
+    young.write_text("tau,E\n0.1,3\n10,6\n")
+    norm = tmp_path / "g.csv"
+    norm.write_text("# G0 = 4\ng,tau\n0.25,0.1\n0.5,10\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    a = mdrmap.stationary(**kw, G=1, prony_file=young)
+    b = mdrmap.stationary(**kw, prony_file=norm)
+    c = mdrmap.stationary(**kw, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+    assert a == c and b == c
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, G=1, prony_file=young, nu=0.7)
+    assert e.value.option == "nu"

@@ -12,8 +12,12 @@ OTHER = {
              '(G2, tau2), ...] (or "G1:TAU1,G2:TAU2,..."), at most 32 terms; with a '
              "spectrum G (required) is the rubbery modulus and tau the parallel dashpot's time "
              "(0: none)",
-    "prony-file": "the spectrum from a CSV file (a str or a path): a header line "
-                  "G,tau, then one term G,tau per line; not with prony",
+    "prony-file": "the spectrum from a CSV file (a str or a path): a header naming "
+                  "the columns, tau and one of G (shear moduli), E (Young's moduli) or g "
+                  "(normalised by a line '# G0 = VALUE', then G = G0 (1 - sum g)), then "
+                  "one term per line; not with prony",
+    "nu": "Poisson's ratio of a spectrum file's Young's moduli (column E): "
+          "G = E / (4 (1 - nu^2)), -1 < nu <= 0.5, default 0.5",
     "T": "the temperature: with wlf, gives the shift factor aT by the WLF equation "
          "(instead of aT); a finite number > TREF - C2. T= is accepted as its old "
          "spelling",
