@@ -1039,6 +1039,20 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       {"wlf C2 < 0", {{"T", "20"}, {"wlf", "17.44:-51.6:0"}}, {}, "wlf"},
       {"wlf TREF not a number", {{"T", "20"}, {"wlf", "17.44:51.6:room"}}, {}, "wlf"},
       {"wlf TREF = inf", {{"T", "20"}, {"wlf", "17.44:51.6:inf"}}, {}, "wlf"},
+      {"T in F", {{"T", "20F"}, {"wlf", "17.44:51.6:0"}}, {}, "T"},
+      {"T below absolute zero", {{"T", "-300C"}, {"wlf", "17.44:51.6:0C"}}, {}, "T"},
+      {"T below 0K", {{"T", "-1K"}, {"wlf", "17.44:51.6:0C"}}, {}, "T"},
+      {"wlf TREF below 0K", {{"T", "20C"}, {"wlf", "17.44:51.6:-5K"}}, {}, "wlf"},
+      {"T more than 12 decades from TREF", {{"T", "25C"}, {"wlf", "17.44:51.6:-100C"}}, {}, "T"},
+      {"T 25 against TREF 298.15K", {{"T", "25"}, {"wlf", "8.86:101.6:298.15K"}}, {}, "T"},
+      {"allow-large-shift without T",
+       {{"aT", "2"}, {"allow-large-shift", "true"}},
+       {},
+       "allow-large-shift"},
+      {"allow-large-shift not a flag",
+       {{"T", "20"}, {"wlf", "17.44:51.6:0"}, {"allow-large-shift", "maybe"}},
+       {},
+       "allow-large-shift"},
       // a spectrum the parser takes, on a solver that cannot: one line naming prony
       {"prony on the exact solver", {{"prony", "1:1,2:10"}, {"solver", "exact"}}, {}, "prony"},
       {"prony-file on the Kelvin solvers",
@@ -1327,6 +1341,58 @@ TEST(cli, TemperatureGivesTheWlfShift) {
   EXPECT_EQ(ref.c.rheology.aT, 1.0);
   // the default window is six shifted times
   EXPECT_NEAR(in.c.history.segments.at(0).T, 6.0 * aT, 1e-15 * aT);
+}
+
+// Issue 33: temperatures with units. C and K are converted into TREF's unit
+// (C2 is a difference); a bare number is in the other's unit (today's
+// meaning); a shift of more than 12 decades is refused naming --T unless
+// --allow-large-shift; the case line prints T and TREF with their unit.
+TEST(cli, TemperaturesHaveUnits) {
+  const auto aT_of = [](const std::string& T, const std::string& wlf) {
+    return mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}))
+        .c.rheology.aT;
+  };
+  const double expected = std::pow(10.0, -8.86 * 10.0 / (101.6 + 10.0));
+  for (const auto& [T, wlf] :
+       std::vector<std::pair<std::string, std::string>>{{"35", "8.86:101.6:25"},
+                                                        {"35C", "8.86:101.6:25C"},
+                                                        {"35", "8.86:101.6:25C"},
+                                                        {"35C", "8.86:101.6:25"},
+                                                        {"308.15K", "8.86:101.6:25C"},
+                                                        {"35C", "8.86:101.6:298.15K"},
+                                                        {"308.15K", "8.86:101.6:298.15K"}}) {
+    SCOPED_TRACE(T + " " + wlf);
+    EXPECT_NEAR(aT_of(T, wlf), expected, 1e-12 * expected);
+  }
+  const auto in = mdrmap::app::read_case_input(
+      spectrum_texts({{"tau", "1"}, {"T", "35C"}, {"wlf", "8.86:101.6:298.15K"}}));
+  const std::string line = mdrmap::app::case_line(in.c, in.temperature);
+  EXPECT_TRUE(std::regex_match(line, case_line_regex(false))) << line;
+  EXPECT_NE(line.find(" G=1 aT="), std::string::npos) << line;
+  EXPECT_NE(line.find(" T=308.14999999999998K wlf=8.8599999999999994:101.59999999999999:"
+                      "298.14999999999998K "),
+            std::string::npos)
+      << line;
+  // 25C against TREF -100 (C2 = 51.6, C1 = 17.44): log10 aT = -12.3, refused unless allowed
+  const OptionTexts large{{"tau", "1"}, {"T", "25C"}, {"wlf", "17.44:51.6:-100"}};
+  try {
+    mdrmap::app::read_case_input(spectrum_texts(large));
+    ADD_FAILURE() << "a shift of 12.3 decades was taken";
+  } catch (const mdrmap::InvalidInput& e) {
+    EXPECT_EQ(e.option(), "T");
+    EXPECT_NE(std::string(e.what()).find("more than 12 decades from 1"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("--allow-large-shift"), std::string::npos) << e.what();
+  }
+  OptionTexts allowed = large;
+  allowed["allow-large-shift"] = "true";
+  EXPECT_NEAR(std::log10(mdrmap::app::read_case_input(spectrum_texts(allowed)).c.rheology.aT),
+              -17.44 * 125.0 / (51.6 + 125.0), 1e-12);
+  // the flag on the command line
+  const Outcome r = run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "1", "--v", "1",
+                                "--v1", "2", "--samples", "3", "--T", "25C", "--wlf",
+                                "17.44:51.6:-100C", "--allow-large-shift"});
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {

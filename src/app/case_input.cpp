@@ -20,7 +20,8 @@ namespace {
 /// Options that are not case parameters of the table (core/model/params.hpp): the
 /// indenter's profile, the history's two forms, the sampling's spacing and how to run.
 constexpr const char* kIndenterOptions[] = {"profile"};
-constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "nu", "T", "wlf"};
+constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "nu",
+                                            "T",     "wlf",        "allow-large-shift"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
@@ -323,12 +324,17 @@ std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c) {
                                     "shift factor aT at the temperature T"
                                   : "applies with --T TEMP only: give the temperature whose shift "
                                     "factor aT it gives (or drop --wlf)");
+  if (o.has("allow-large-shift") && !o.has("T"))
+    throw InvalidInput("allow-large-shift", "applies with --T TEMP only (a shift --aT is taken "
+                                            "as given)");
   if (!o.has("T")) return std::nullopt;
-  TemperatureInput t;
-  t.T = parse_double("T", o["T"]);
-  t.wlf = parse_wlf("wlf", o["wlf"]);
-  c.rheology.aT = wlf_shift(t.wlf, t.T, "T");
-  return t;
+  const Temperature T = parse_temperature("T", o["T"]);
+  const UnitWlf w = parse_unit_wlf("wlf", o["wlf"]);
+  const bool allow =
+      o.has("allow-large-shift") && parse_flag("allow-large-shift", o["allow-large-shift"]);
+  c.rheology.aT = checked_shift(w, T, "T", allow);
+  const Temperature in_tref = in_wlf_unit(T, w);
+  return TemperatureInput{in_tref.value, w.wlf, in_tref.unit};
 }
 
 /// The spectrum and the shift, checked as a whole (validate(Rheology)): a
@@ -341,7 +347,8 @@ std::optional<TemperatureInput> read_rheology(const Texts& o, Case& c) {
   } catch (const InvalidInput& e) {
     if (!t || e.option() != "aT") throw;
     throw InvalidInput("T", "gives aT = " + format_number(c.rheology.aT) + " (WLF " +
-                                format_wlf(t->wlf) + "), and aT " + e.what());
+                                format_wlf(t->wlf) + unit_suffix(t->unit) + "), and aT " +
+                                e.what());
   }
   return t;
 }

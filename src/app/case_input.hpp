@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/temperature_input.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/model/wlf.hpp"
@@ -27,8 +28,9 @@ using OptionTexts = std::map<std::string, std::string>;
 
 /// A temperature and the WLF constants that made the case's aT (--T, --wlf).
 struct TemperatureInput {
-  double T = 0.0;
+  double T = 0.0; ///< in the unit of wlf.Tref (converted from --T's)
   Wlf wlf;
+  TempUnit unit = TempUnit::None; ///< of T and Tref, where either was given one
 };
 
 /// A checked case and how to run it.

@@ -117,7 +117,10 @@ po::variables_map option_texts(const std::vector<std::string>& args, const std::
                                const std::vector<std::string>& names, const std::string& example) {
   po::options_description desc;
   for (const auto& name : names)
-    desc.add_options()(name.c_str(), po::value<std::string>());
+    if (name == "allow-large-shift") // a flag
+      desc.add_options()(name.c_str(), po::value<std::string>()->implicit_value("true"));
+    else
+      desc.add_options()(name.c_str(), po::value<std::string>());
   desc.add_options()("help", "");
 
   const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
@@ -236,10 +239,16 @@ std::string rheology_help() {
          help_entry("--nu NU", "Poisson's ratio of a spectrum file's Young's moduli (column E or "
                                "E0), -1 < NU <= 0.5. Default: 0.5 (G = E / 3)") +
          help_entry("--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF "
-                                "equation (instead of --aT), a finite number > TREF - C2") +
+                                "equation (instead of --aT), a finite number > TREF - C2 with "
+                                "an optional unit, 25C or 298.15K (converted to TREF's unit; a "
+                                "bare number is in the other's unit)") +
          help_entry("--wlf C1:C2:TREF",
                     "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, "
-                    "C2 > 0 (in the unit of T), TREF the reference temperature (aT = 1)");
+                    "C2 > 0 (a temperature difference), TREF the reference temperature (aT = "
+                    "1) with an optional unit, e.g. 8.86:101.6:25C") +
+         help_entry("--allow-large-shift",
+                    "take a shift of --T more than 12 decades from 1 (|log10 aT| > 12), which "
+                    "is refused otherwise: most often a C/K mix-up");
 }
 
 } // namespace mdrmap::app

@@ -100,3 +100,17 @@ def test_prony_file_columns_by_name(tmp_path):
     with pytest.raises(mdrmap.InvalidInput) as e:
         mdrmap.stationary(**kw, G=1, prony_file=young, nu=0.7)
     assert e.value.option == "nu"
+
+
+def test_temperatures_have_units():
+    """Issue 33: temperature= and wlf's TREF take C or K; a mix is converted;
+    a shift beyond 12 decades is refused unless allow_large_shift=True."""
+    kw = dict(d=0.1, R=10, tau=1, v=1)
+    a = mdrmap.stationary(**kw, temperature=35, wlf=(8.86, 101.6, 25))
+    b = mdrmap.stationary(**kw, temperature="35C", wlf=(8.86, 101.6, "298.15K"))
+    c = mdrmap.stationary(**kw, temperature="308.15K", wlf="8.86:101.6:25C")
+    assert a["mu"] == pytest.approx(b["mu"], rel=1e-12) and b["mu"] == pytest.approx(c["mu"], rel=1e-12)
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"))
+    assert e.value.keyword == "temperature" and "12 decades" in e.value.message
+    mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"), allow_large_shift=True)

@@ -55,7 +55,7 @@ _ALIASES = _core.parameter_aliases()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
 # the case's parameters without history and sampling, and its spectrum and temperature
 _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
-    [o for o in ("profile", "prony", "prony-file", "nu", "T", "wlf") if o in _OPTIONS]
+    [o for o in ("profile", "prony", "prony-file", "nu", "T", "wlf", "allow-large-shift") if o in _OPTIONS]
 
 
 def _keywords(options):
