@@ -1255,6 +1255,23 @@ TEST(StudySpectrum, GridOverATermAndTheTemperature) {
       << canonical(c);
 }
 
+// Issue 33: [run] wlf takes TREF's unit, the temperature column is in it and
+// the canonical config records it; allow_large_shift takes a large shift.
+TEST(StudySpectrum, WlfTakesTheUnitOfItsReference) {
+  const auto grid = [](const std::string& T) {
+    return "[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\ntemperature = " + T +
+           "\n[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nwlf = ";
+  };
+  const StudyConfig c = parse(grid("308.15") + "17.44:51.6:298.15K\n");
+  EXPECT_NEAR(std::log10(cases_of(c).at(0).rheology.aT), -17.44 * 10.0 / 61.6, 1e-12);
+  EXPECT_NE(canonical(c).find("wlf = 17.440000000000001:51.600000000000001:298.14999999999998K\n"),
+            std::string::npos)
+      << canonical(c);
+  const StudyConfig large = parse(grid("25") + "17.44:51.6:-100C\nallow_large_shift = true\n");
+  EXPECT_NE(canonical(large).find("allow_large_shift = true\n"), std::string::npos);
+  EXPECT_NEAR(std::log10(cases_of(large).at(0).rheology.aT), -17.44 * 125.0 / 176.6, 1e-12);
+}
+
 TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
   TempDir dir;
   dir.write("spec.csv", "tau1,G1,aT,d,R,tau,G,v,w1,T1_over_tau,G2,tau2\n"
@@ -1342,6 +1359,13 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
       {"temperature = 20\n", "wlf = 8.86:101.6\n", "run.wlf", "wlf must be C1:C2:TREF"},
       {"temperature = 20\n", "wlf = 0:101.6:20\n", "run.wlf", "wlf C1 must be > 0"},
       {"temperature = 20\n", "wlf = 8.86:-1:20\n", "run.wlf", "wlf C2 must be > 0"},
+      // issue 33: TREF's unit; a shift beyond 12 decades is refused unless allowed
+      {"temperature = 25\n", "wlf = 17.44:51.6:-100C\n", "grid.temperature",
+       "more than 12 decades from 1"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:20F\n", "run.wlf", "TREF is not a number"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:-5K\n", "run.wlf", "absolute zero"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:20\nallow_large_shift = maybe\n",
+       "run.allow_large_shift", "allow_large_shift must be true or false"},
       {"G1 = 1\ntau1 = 1\n", "solver = exact\n", "run.solver",
        "solver exact solves the Kelvin foundation only, and the study has a relaxation spectrum "
        "(G1, tau1)"},

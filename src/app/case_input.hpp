@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "app/temperature_input.hpp"
+#include "core/model/temperature.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/model/wlf.hpp"

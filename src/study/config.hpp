@@ -28,7 +28,9 @@
 //   rtol = 1e-4
 //   solver = auto           ; auto | exact | mdr | baseline
 //   timeseries = false      ; store the full time series of every case
-//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column
+//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column; TREF may
+//                           ;   take a unit (25C, 298.15K), the column's values are in it
+//   allow_large_shift = false ; true: take a temperature's |log10 aT| > 12
 //   profile = parabola      ; parabola (column R) | cone (column beta) | power (n, A)
 //
 // Every key of [grid] and [history] is a column of the study; in a grid each
@@ -54,6 +56,7 @@
 
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 
 namespace mdrmap::study {
@@ -114,6 +117,8 @@ struct RunSettings {
   std::string solver = "auto";
   bool timeseries = false;
   std::optional<Wlf> wlf;              ///< the WLF constants of a temperature column
+  TempUnit wlf_unit = TempUnit::None;  ///< TREF's (and the temperature column's) unit
+  bool allow_large_shift = false;      ///< take |log10 aT| > 12 of a temperature
   Profile profile = Profile::Parabola; ///< the indenter of every case; its parameters are columns
 };
 

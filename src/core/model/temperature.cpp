@@ -1,16 +1,19 @@
-#include "app/temperature_input.hpp"
+#include "core/model/temperature.hpp"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 
-#include "app/case_input.hpp"
-
-namespace mdrmap::app {
+namespace mdrmap {
 namespace {
 
 constexpr double kZeroCelsius = 273.15; ///< 0 C in K
+
+/// The text quoted, cut to 60 characters.
+std::string shown(const std::string& text) {
+  return "'" + (text.size() > 60 ? text.substr(0, 60) + "...'" : text + "'");
+}
 
 /// The unit letter ending `text` (C or K after a digit or a point), removed.
 TempUnit take_unit(std::string& text) {
@@ -72,7 +75,7 @@ Temperature in_wlf_unit(const Temperature& T, const UnitWlf& w) {
 }
 
 double checked_shift(const UnitWlf& w, const Temperature& T, const std::string& option,
-                     bool allow_large) {
+                     bool allow_large, const std::string& allow) {
   const Temperature t = in_wlf_unit(T, w);
   const double aT = wlf_shift(w.wlf, t.value, option);
   const double decades = std::log10(aT);
@@ -81,7 +84,8 @@ double checked_shift(const UnitWlf& w, const Temperature& T, const std::string& 
                                  " gives log10 aT = " + format_number(decades) + " (WLF " +
                                  format_wlf(w.wlf) + unit_suffix(w.unit) +
                                  "), more than 12 decades from 1: check the units of T and TREF "
-                                 "(C or K), or allow it with --allow-large-shift");
+                                 "(C or K), or allow it with " +
+                                 allow);
 }
 
 bool parse_flag(const std::string& option, const std::string& text) {
@@ -90,4 +94,4 @@ bool parse_flag(const std::string& option, const std::string& text) {
   throw InvalidInput(option, "must be true or false (a flag), got " + shown(text));
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap

@@ -10,7 +10,7 @@
 
 #include "core/model/wlf.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap {
 
 inline constexpr double kMaxShiftDecades = 12.0; ///< |log10 aT| beyond: refused unless allowed
 
@@ -38,12 +38,13 @@ UnitWlf parse_unit_wlf(const std::string& option, const std::string& text);
 Temperature in_wlf_unit(const Temperature& T, const UnitWlf& w);
 
 /// aT at T (in TREF's unit) by wlf_shift, refused naming `option` when
-/// |log10 aT| > kMaxShiftDecades and not `allow_large`.
+/// |log10 aT| > kMaxShiftDecades and not `allow_large`; `allow` says how to
+/// allow it (--allow-large-shift, [run] allow_large_shift = true).
 double checked_shift(const UnitWlf& w, const Temperature& T, const std::string& option,
-                     bool allow_large);
+                     bool allow_large, const std::string& allow = "--allow-large-shift");
 
 /// "true" (or "True", "1", "": the flag given) or "false" ("False", "0").
 /// Throws InvalidInput(option).
 bool parse_flag(const std::string& option, const std::string& text);
 
-} // namespace mdrmap::app
+} // namespace mdrmap
