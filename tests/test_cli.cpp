@@ -1343,6 +1343,88 @@ TEST(cli, TemperatureGivesTheWlfShift) {
   EXPECT_NEAR(in.c.history.segments.at(0).T, 6.0 * aT, 1e-15 * aT);
 }
 
+// Issue 33: --material reads an Abaqus card: *ELASTIC E, nu (LONG TERM by
+// default or INSTANTANEOUS), *VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i
+// normalised by G0, *TRS, DEFINITION=WLF Tref, C1, C2; anything else is refused.
+TEST(cli, MaterialCardGivesTheSpectrum) {
+  TempDir dir;
+  const auto file = [&](const char* name, const std::string& text) {
+    const fs::path p = dir.path() / name;
+    write_file(p, text);
+    return p.string();
+  };
+  const std::string body = ", 0.5\n*VISCOELASTIC, TIME=PRONY\n0.2, 0.1, 0.5\n0.6, 0., 20.\n"
+                           "*TRS, DEFINITION=WLF\n25., 8.86, 101.6\n";
+  const auto read = [](OptionTexts t) {
+    t["G"] = kDrop;
+    return mdrmap::app::read_case_input(spectrum_texts(t));
+  };
+  const auto inst = read({{"material", file("i.inp", "** card\n*Material, name=R\n*Elastic, "
+                                                     "moduli=INSTANTANEOUS\n15." +
+                                                         body)},
+                          {"T", "35"}});
+  ASSERT_EQ(inst.c.rheology.branches.size(), 2U);
+  EXPECT_DOUBLE_EQ(inst.c.rheology.G, 1.0); // G0 = 15 / 3, G = G0 (1 - 0.8)
+  EXPECT_DOUBLE_EQ(inst.c.rheology.branches[0].G, 1.0);
+  EXPECT_DOUBLE_EQ(inst.c.rheology.branches[1].G, 3.0);
+  EXPECT_EQ(inst.c.rheology.branches[1].tau, 20.0);
+  ASSERT_TRUE(inst.temperature);
+  EXPECT_EQ(inst.temperature->wlf.Tref, 25.0); // Tref, C1, C2: not mdrmap's order
+  EXPECT_EQ(inst.temperature->wlf.C1, 8.86);
+  EXPECT_NEAR(inst.c.rheology.aT, std::pow(10.0, -8.86 * 10.0 / 111.6), 1e-15);
+  ASSERT_EQ(inst.notes.size(), 1U); // k_1 = 0.1
+  EXPECT_NE(inst.notes[0].find("bulk Prony terms k_i are ignored"), std::string::npos);
+  const auto lt = read({{"material", file("l.inp", "*ELASTIC\n15." + body)}});
+  EXPECT_DOUBLE_EQ(lt.c.rheology.G, 5.0); // the long-term modulus is E's
+  EXPECT_DOUBLE_EQ(lt.c.rheology.branches[1].G, 15.0);
+  struct Bad {
+    OptionTexts texts;
+    std::string option, said;
+  };
+  const std::string card = file("c.inp", "*ELASTIC\n15." + body);
+  const std::vector<Bad> bad = {
+      {{{"material", file("h.inp", "*ELASTIC\n3, 0.5\n*HYPERELASTIC\n1, 2\n")}},
+       "material",
+       "h.inp:3: *HYPERELASTIC: not a keyword"},
+      {{{"material", file("f.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, FREQUENCY=TABULAR\n")}},
+       "material",
+       "f.inp:3: *VISCOELASTIC: the option FREQUENCY=TABULAR is not supported"},
+      {{{"material", file("t.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, TIME=PRONY\n0.5,0,-2\n")}},
+       "material",
+       "t.inp:4: tau1 must be"},
+      {{{"material", file("s.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, TIME=PRONY\n0.5,0,1\n"
+                                   "0.5,0,2\n")}},
+       "material",
+       "sum to 1"},
+      {{{"material", file("n.inp", "*ELASTIC\n3\n")}}, "material", "n.inp:2: *ELASTIC E, nu"},
+      {{{"material", file("e.inp", "*VISCOELASTIC, TIME=PRONY\n0.5,0,1\n")}},
+       "material",
+       "no *ELASTIC"},
+      {{{"material", card}, {"G", "2"}}, "G", "cannot be combined with --material"},
+      {{{"material", card}, {"prony", "1:1"}}, "prony", "cannot be combined with --material"},
+      {{{"material", card}, {"T", "30"}, {"wlf", "1:1:1"}}, "wlf", "*TRS"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.said);
+    try {
+      OptionTexts t = spectrum_texts(b.texts);
+      if (!b.texts.count("G")) t.erase("G");
+      mdrmap::app::read_case_input(t);
+      ADD_FAILURE() << "taken";
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), b.option) << e.what();
+      EXPECT_NE(std::string(e.what()).find(b.said), std::string::npos) << e.what();
+    }
+  }
+  // the CLI: the note on stderr, G in the case line
+  const Outcome r = run_mdrmap(
+      {"stationary", "--d", "0.1", "--R", "10", "--tau", "0", "--v", "1", "--material", card});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("mdrmap stationary: note: "), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("# case d=0.10000000000000001 R=10 tau=0 G=5 prony="), std::string::npos)
+      << r.out;
+}
+
 // Issue 33: temperatures with units. C and K are converted into TREF's unit
 // (C2 is a difference); a bare number is in the other's unit (today's
 // meaning); a shift of more than 12 decades is refused naming --T unless

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <optional>
 
+#include "app/material_input.hpp"
 #include "app/prony_file.hpp"
 #include "app/prony_input.hpp"
 #include "core/model/scales.hpp"
@@ -20,8 +21,8 @@ namespace {
 /// Options that are not case parameters of the table (core/model/params.hpp): the
 /// indenter's profile, the history's two forms, the sampling's spacing and how to run.
 constexpr const char* kIndenterOptions[] = {"profile"};
-constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "nu",
-                                            "T",     "wlf",        "allow-large-shift"};
+constexpr const char* kRheologyOptions[] = {"material", "prony", "prony-file",       "nu",
+                                            "T",        "wlf",   "allow-large-shift"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
@@ -313,23 +314,48 @@ void read_spectrum(const Texts& o, Case& c) {
                                 "terms' moduli; it has no default beside a spectrum");
 }
 
-/// --T TEMP with --wlf C1:C2:TREF: the shift aT at T (instead of --aT).
-std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c) {
+/// --material FILE: the long-term modulus, the spectrum and the WLF
+/// constants of an Abaqus card; the options it sets are refused beside it.
+std::optional<MaterialCard> read_card(const Texts& o, Case& c) {
+  if (!o.has("material")) return std::nullopt;
+  for (const char* other : {"G", "prony", "prony-file", "nu"})
+    if (o.has(other))
+      throw InvalidInput(other, std::string("cannot be combined with --material: the card gives ") +
+                                    (std::string(other) == "G"
+                                         ? "the long-term modulus G = G0 (1 - sum g_i)"
+                                         : "the spectrum (*VISCOELASTIC) and E, nu (*ELASTIC)"));
+  MaterialCard m = read_material(o["material"]);
+  c.rheology.G = m.G;
+  c.rheology.branches = m.branches;
+  return m;
+}
+
+/// Which of --T, --wlf (or the card's *TRS) and --allow-large-shift go together.
+void check_temperature_options(const Texts& o, bool card_wlf) {
   if (o.has("T") && o.has("aT"))
     throw InvalidInput("T", "cannot be combined with --aT: give the shift factor --aT or the "
                             "temperature --T with its --wlf constants, not both");
-  if (o.has("T") != o.has("wlf"))
-    throw InvalidInput(o.has("T") ? "T" : "wlf",
-                       o.has("T") ? "needs --wlf C1:C2:TREF, the WLF constants that give the "
-                                    "shift factor aT at the temperature T"
-                                  : "applies with --T TEMP only: give the temperature whose shift "
-                                    "factor aT it gives (or drop --wlf)");
+  if (o.has("wlf") && card_wlf)
+    throw InvalidInput("wlf", "cannot be combined with the WLF constants of --material (its *TRS, "
+                              "DEFINITION=WLF)");
+  if (o.has("T") && !o.has("wlf") && !card_wlf)
+    throw InvalidInput("T", "needs --wlf C1:C2:TREF, the WLF constants that give the shift "
+                            "factor aT at the temperature T");
+  if (o.has("wlf") && !o.has("T"))
+    throw InvalidInput("wlf", "applies with --T TEMP only: give the temperature whose shift "
+                              "factor aT it gives (or drop --wlf)");
   if (o.has("allow-large-shift") && !o.has("T"))
     throw InvalidInput("allow-large-shift", "applies with --T TEMP only (a shift --aT is taken "
                                             "as given)");
+}
+
+/// --T TEMP with --wlf C1:C2:TREF (or the card's): the shift aT at T (instead of --aT).
+std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c,
+                                                 const std::optional<UnitWlf>& card_wlf) {
+  check_temperature_options(o, card_wlf.has_value());
   if (!o.has("T")) return std::nullopt;
   const Temperature T = parse_temperature("T", o["T"]);
-  const UnitWlf w = parse_unit_wlf("wlf", o["wlf"]);
+  const UnitWlf w = card_wlf ? *card_wlf : parse_unit_wlf("wlf", o["wlf"]);
   const bool allow =
       o.has("allow-large-shift") && parse_flag("allow-large-shift", o["allow-large-shift"]);
   c.rheology.aT = checked_shift(w, T, "T", allow);
@@ -339,9 +365,15 @@ std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c) {
 
 /// The spectrum and the shift, checked as a whole (validate(Rheology)): a
 /// shift that takes a time out of range names --T where the temperature gave it.
-std::optional<TemperatureInput> read_rheology(const Texts& o, Case& c) {
-  read_spectrum(o, c);
-  auto t = read_temperature(o, c);
+void read_rheology(const Texts& o, CaseInput& in) {
+  Case& c = in.c;
+  const auto card = read_card(o, c);
+  if (card)
+    in.notes = card->notes;
+  else
+    read_spectrum(o, c);
+  const auto t = read_temperature(o, c, card ? card->wlf : std::nullopt);
+  in.temperature = t;
   try {
     validate(c.rheology);
   } catch (const InvalidInput& e) {
@@ -350,7 +382,6 @@ std::optional<TemperatureInput> read_rheology(const Texts& o, Case& c) {
                                 format_wlf(t->wlf) + unit_suffix(t->unit) + "), and aT " +
                                 e.what());
   }
-  return t;
 }
 
 Spacing parse_spacing(const std::string& text) {
@@ -409,7 +440,7 @@ CaseInput read_canonical(const Texts& o) {
   in.c.indenter.profile = profile;
   read_case_parameters(o, in.c);
   require_one_of_each_group(o);
-  in.temperature = read_rheology(o, in.c);
+  read_rheology(o, in);
   if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o["spacing"]);
   if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "core/model/temperature.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 #include "core/solvers/dispatch.hpp"
 
@@ -39,6 +39,7 @@ struct CaseInput {
   SolverKind solver = SolverKind::Auto;
   double rtol = kDefaultRtol;
   std::optional<TemperatureInput> temperature; ///< given: c.rheology.aT is its WLF shift
+  std::vector<std::string> notes; ///< what an input gave that does not enter (a card's k_i)
 };
 
 /// Every option read_case_input knows, in the order of simulate's help: the

@@ -212,10 +212,22 @@ std::string parameter_entry(const ParamSpec& p) {
   return help_entry(std::string("--") + p.name + " " + p.symbol, parameter_help_text(p));
 }
 
+void print_notes(const std::string& command, const std::vector<std::string>& notes) {
+  for (const std::string& n : notes)
+    std::fprintf(stderr, "mdrmap %s: note: %s\n", command.c_str(), n.c_str());
+}
+
 std::string rheology_help() {
   const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
   const std::string n = std::to_string(kMaxBranches);
-  return help_entry("--prony G1:TAU1,G2:TAU2,...",
+  return help_entry("--material FILE",
+                    "the material from an Abaqus card: *ELASTIC E, nu (MODULI=LONG TERM, the "
+                    "default, or INSTANTANEOUS; G = E / (4 (1 - nu^2))), *VISCOELASTIC, "
+                    "TIME=PRONY rows g_i, k_i, tau_i normalised by the instantaneous modulus G0 "
+                    "(G_i = g_i G0, G = G0 (1 - sum g_i); nonzero bulk terms k_i are noted and "
+                    "ignored) and *TRS, DEFINITION=WLF Tref, C1, C2 (the WLF constants of --T). "
+                    "Instead of --G, --prony, --prony-file and --wlf") +
+         help_entry("--prony G1:TAU1,G2:TAU2,...",
                     "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "
                     "spring of modulus Gk (" +
                         std::string(dim_name(g.dim)) + "), " + g.allowed() +

@@ -81,6 +81,10 @@ std::string parameter_entry(const ParamSpec& p);
 /// --prony-file, --T, --wlf, with the ranges of the table's branch specs.
 std::string rheology_help();
 
+/// Writes each note (what an input gave that does not enter, e.g. a material
+/// card's bulk terms) to stderr as "mdrmap COMMAND: note: ...".
+void print_notes(const std::string& command, const std::vector<std::string>& notes);
+
 /// The frame of a subcommand's main: with --help (asks_for_help) prints
 /// help(); else parses `args` (parse: Args or throws, report_parse_error) and
 /// runs the result (run: the exit code or throws, report_run_error with

@@ -114,3 +114,17 @@ def test_temperatures_have_units():
         mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"))
     assert e.value.keyword == "temperature" and "12 decades" in e.value.message
     mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"), allow_large_shift=True)
+
+
+def test_material_card_is_the_spectrum(tmp_path):
+    """Issue 33: an Abaqus card (instantaneous E, g_i normalised by G0) is its spectrum."""
+    card = tmp_path / "rubber.inp"
+    card.write_text("*MATERIAL, NAME=R\n*ELASTIC, MODULI=INSTANTANEOUS\n12., 0.5\n"
+                    "*VISCOELASTIC, TIME=PRONY\n0.25, 0., 0.1\n0.5, 0., 10.\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    a = mdrmap.stationary(**kw, material=card)
+    b = mdrmap.stationary(**kw, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+    assert a == b
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, material=card, G=1)
+    assert e.value.option == "G"

@@ -16,6 +16,9 @@ OTHER = {
                   "the columns, tau and one of G (shear moduli), E (Young's moduli) or g "
                   "(normalised by a line '# G0 = VALUE', then G = G0 (1 - sum g)), then "
                   "one term per line; not with prony",
+    "material": "the material from an Abaqus card (a str or a path): *ELASTIC E, nu, "
+                "*VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i and *TRS, DEFINITION=WLF "
+                "Tref, C1, C2; instead of G, prony, prony_file and wlf",
     "nu": "Poisson's ratio of a spectrum file's Young's moduli (column E): "
           "G = E / (4 (1 - nu^2)), -1 < nu <= 0.5, default 0.5",
     "T": "the temperature: with wlf, gives the shift factor aT by the WLF equation "
