@@ -1425,6 +1425,33 @@ TEST(cli, MaterialCardGivesTheSpectrum) {
       << r.out;
 }
 
+// Issue 33: --material reads pyvisco's Prony CSV too (header, a row of units,
+// alpha_i normalised by E_0, E_0 = 3 G0): the spectrum of the same material.
+TEST(cli, MaterialReadsPyviscoCsv) {
+  TempDir dir;
+  const fs::path f = dir.path() / "prony.csv";
+  write_file(f, "Prony terms,tau_i,alpha_i,E_0,E_i\r\n-,s,-,MPa,MPa\r\n1,0.1,0.25,12,3\r\n"
+                "2,10,0.5,12,6\r\n3,1000,0,12,0\r\n");
+  OptionTexts t = spectrum_texts({{"material", f.string()}});
+  t.erase("G");
+  const mdrmap::Case c = mdrmap::app::read_case_input(t).c;
+  ASSERT_EQ(c.rheology.branches.size(), 2U); // the term alpha = 0 dropped
+  EXPECT_DOUBLE_EQ(c.rheology.G, 1.0);       // G0 = 12 / 3 = 4, G = 4 (1 - 0.75)
+  EXPECT_DOUBLE_EQ(c.rheology.branches[0].G, 1.0);
+  EXPECT_DOUBLE_EQ(c.rheology.branches[1].G, 2.0);
+  EXPECT_EQ(c.rheology.branches[1].tau, 10.0);
+  write_file(f, "tau_i,alpha_i,G_0\ns,-,Pa\n0.1,0.6,10\n1,x,10\n");
+  try {
+    mdrmap::app::read_case_input(t);
+    ADD_FAILURE() << "taken";
+  } catch (const mdrmap::InvalidInput& e) {
+    EXPECT_EQ(e.option(), "material");
+    EXPECT_NE(std::string(e.what()).find(f.string() + ":4: column alpha_i must be a finite number"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Issue 33: temperatures with units. C and K are converted into TREF's unit
 // (C2 is a difference); a bare number is in the other's unit (today's
 // meaning); a shift of more than 12 decades is refused naming --T unless

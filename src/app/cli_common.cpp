@@ -226,6 +226,7 @@ std::string rheology_help() {
                     "TIME=PRONY rows g_i, k_i, tau_i normalised by the instantaneous modulus G0 "
                     "(G_i = g_i G0, G = G0 (1 - sum g_i); nonzero bulk terms k_i are noted and "
                     "ignored) and *TRS, DEFINITION=WLF Tref, C1, C2 (the WLF constants of --T). "
+                    "Or pyvisco's Prony CSV (tau_i, alpha_i normalised by E_0 = 3 G0 or G_0). "
                     "Instead of --G, --prony, --prony-file and --wlf") +
          help_entry("--prony G1:TAU1,G2:TAU2,...",
                     "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a "

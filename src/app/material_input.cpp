@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "app/case_input.hpp"
+#include "app/pyvisco_input.hpp"
 #include "app/small_file.hpp"
 #include "app/text.hpp"
 #include "core/model/case.hpp"
@@ -146,8 +147,8 @@ void data_line(Block& b, const std::string& at, const std::string& line) {
     throw InvalidInput(kOption, at + "a data line outside *ELASTIC, *VISCOELASTIC or *TRS");
 }
 
-Block read_block(const std::string& path) {
-  std::istringstream in(read_small_file(kOption, path, "a material card is a few lines"));
+Block read_block(const std::string& path, const std::string& text) {
+  std::istringstream in(text);
   Block b;
   std::string line;
   for (std::size_t n = 1; std::getline(in, line); ++n) {
@@ -169,7 +170,9 @@ Block read_block(const std::string& path) {
 } // namespace
 
 MaterialCard read_material(const std::string& path) {
-  const Block b = read_block(path);
+  const std::string text = read_small_file(kOption, path, "a material card is a few lines");
+  if (is_pyvisco_csv(text)) return read_pyvisco(path, text);
+  const Block b = read_block(path, text);
   double sum_g = 0.0;
   for (double g : b.g)
     sum_g += g;
