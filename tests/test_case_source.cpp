@@ -267,7 +267,7 @@ TEST(CaseSource, CaseListWithHistoryColumnsByRange) {
 // terms and aT, by index as expanded (issue 19).
 TEST(CaseSource, SpectrumAndTemperatureColumnsAsExpansion) {
   const StudyConfig g =
-      parse_config("[grid]\nd = 1e-3\nR = 1\ntau = 0\nG1 = 1, 2\ntau1 = logspace:0.01:1:3\n"
+      parse_config("[grid]\nd = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1, 2\ntau1 = logspace:0.01:1:3\n"
                    "temperature = 20, 30\nv = 1\n[history]\nw1_over_v = 0\nT1_over_tau = 10\n"
                    "[run]\nwlf = 8.86:101.6:20\n",
                    "", "s.ini");
@@ -277,10 +277,10 @@ TEST(CaseSource, SpectrumAndTemperatureColumnsAsExpansion) {
   EXPECT_EQ(s.canonical(), canonical(g));
   EXPECT_EQ(case_for(g, s.row(0)).rheology.branches.at(0).tau, 0.01);
   EXPECT_LT(case_for(g, s.row(1)).rheology.aT, 1.0); // temperature fastest: 30 > TREF
-  std::string text = "G1,tau1,aT,d,R,tau,v,w1,T1\n";
+  std::string text = "G1,tau1,aT,d,R,tau,G,v,w1,T1\n";
   const std::size_t n = CaseListIndex::kStride + 3;
   for (std::size_t i = 0; i < n; ++i)
-    text += "2," + std::to_string(1 + i) + ",0.5,1e-3,1,0,1,0,3\n";
+    text += "2," + std::to_string(1 + i) + ",0.5,1e-3,1,0,1,1,0,3\n";
   const std::string p = file_with("spec.csv", text);
   const StudyConfig c =
       parse_config("[cases]\nfile = spec.csv\n", fs::path(p).parent_path().string(), "l.ini");

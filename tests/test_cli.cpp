@@ -990,6 +990,11 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        {},
        "profile"},
       // relaxation spectra and the temperature shift (issue 19)
+      {"prony without --G", {{"G", kDrop}, {"prony", "1:1"}}, {}, "G"},
+      {"prony-file without --G",
+       {{"G", kDrop}, {"prony-file", prony_file("good.csv", "G,tau\n1,2\n3,40\n")}},
+       {},
+       "G"},
       {"prony G = 0", {{"prony", "0:1"}}, {}, "prony"},
       {"prony G < 0", {{"prony", "1:1,-2:10"}}, {}, "prony"},
       {"prony tau = 0", {{"prony", "1:0"}}, {}, "prony"},
@@ -1034,6 +1039,20 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       {"wlf C2 < 0", {{"T", "20"}, {"wlf", "17.44:-51.6:0"}}, {}, "wlf"},
       {"wlf TREF not a number", {{"T", "20"}, {"wlf", "17.44:51.6:room"}}, {}, "wlf"},
       {"wlf TREF = inf", {{"T", "20"}, {"wlf", "17.44:51.6:inf"}}, {}, "wlf"},
+      {"T in F", {{"T", "20F"}, {"wlf", "17.44:51.6:0"}}, {}, "T"},
+      {"T below absolute zero", {{"T", "-300C"}, {"wlf", "17.44:51.6:0C"}}, {}, "T"},
+      {"T below 0K", {{"T", "-1K"}, {"wlf", "17.44:51.6:0C"}}, {}, "T"},
+      {"wlf TREF below 0K", {{"T", "20C"}, {"wlf", "17.44:51.6:-5K"}}, {}, "wlf"},
+      {"T more than 12 decades from TREF", {{"T", "25C"}, {"wlf", "17.44:51.6:-100C"}}, {}, "T"},
+      {"T 25 against TREF 298.15K", {{"T", "25"}, {"wlf", "8.86:101.6:298.15K"}}, {}, "T"},
+      {"allow-large-shift without T",
+       {{"aT", "2"}, {"allow-large-shift", "true"}},
+       {},
+       "allow-large-shift"},
+      {"allow-large-shift not a flag",
+       {{"T", "20"}, {"wlf", "17.44:51.6:0"}, {"allow-large-shift", "maybe"}},
+       {},
+       "allow-large-shift"},
       // a spectrum the parser takes, on a solver that cannot: one line naming prony
       {"prony on the exact solver", {{"prony", "1:1,2:10"}, {"solver", "exact"}}, {}, "prony"},
       {"prony-file on the Kelvin solvers",
@@ -1045,7 +1064,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
   ASSERT_GE(cases.size(), 20U);
 
   const std::vector<std::pair<std::string, std::string>> base{
-      {"d", "0.1"}, {"R", "10"}, {"tau", "1"}, {"v", "2"}, {"v1", "0.5"}};
+      {"d", "0.1"}, {"R", "10"}, {"tau", "1"}, {"G", "1"}, {"v", "2"}, {"v1", "0.5"}};
 
   auto listing = [&] {
     std::set<std::string> names;
@@ -1099,9 +1118,12 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
 using mdrmap::app::OptionTexts;
 
 OptionTexts spectrum_texts(OptionTexts extra) {
-  OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"v", "1"}, {"v1", "2"}};
+  OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"G", "1"}, {"v", "1"}, {"v1", "2"}};
   for (auto& [k, v] : extra)
-    t[k] = v;
+    if (v == kDrop)
+      t.erase(k);
+    else
+      t[k] = v;
   return t;
 }
 
@@ -1140,9 +1162,9 @@ TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
   for (const char* loading : {"--d", "--F0"}) {
     SCOPED_TRACE(loading);
     const std::vector<std::string> base = {
-        "simulate", loading,  "0.1", "--R", "10",        "--tau",         "0",
-        "--prony",  "9:1",    "--v", "0.1", "--history", "1:2,0:5,0.1:2", "--samples",
-        "5",        "--rtol", "1e-3"};
+        "simulate",      loading,     "0.1",     "--R",    "10",  "--tau", "0",
+        "--G",           "1",         "--prony", "9:1",    "--v", "0.1",   "--history",
+        "1:2,0:5,0.1:2", "--samples", "5",       "--rtol", "1e-3"};
     const Outcome r = run_mdrmap(base);
     ASSERT_EQ(r.code, 0) << r.err;
     const Parsed p = parse_output(r.out);
@@ -1181,7 +1203,82 @@ TEST(cli, SpectrumFileEqualsTheOption) {
     FAIL() << "a zero time was taken";
   } catch (const mdrmap::InvalidInput& e) {
     EXPECT_EQ(e.option(), "prony-file");
-    EXPECT_TRUE(starts_with(e.what(), f.string() + ":5: term 2: tau2 must be")) << e.what();
+    EXPECT_TRUE(starts_with(e.what(), f.string() + ":5: column 2 (tau): tau2 must be")) << e.what();
+  }
+}
+
+// Issue 33: a spectrum file's columns by name, in any order: G, E (G = E /
+// (4 (1 - nu^2)), --nu 0.5 by default) or g normalised by '# G0 = ...' (then
+// G = G0 (1 - sum g), and --G is not given).
+TEST(cli, SpectrumFileColumnsByName) {
+  TempDir dir;
+  const auto file = [&](const char* name, const std::string& text) {
+    const fs::path p = dir.path() / name;
+    write_file(p, text);
+    return p.string();
+  };
+  const auto read = [](OptionTexts t) { return mdrmap::app::read_case_input(spectrum_texts(t)).c; };
+  const auto same_terms = [](const mdrmap::Case& a, const std::vector<mdrmap::Branch>& b) {
+    ASSERT_EQ(a.rheology.branches.size(), b.size());
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      EXPECT_DOUBLE_EQ(a.rheology.branches[k].G, b[k].G) << k;
+      EXPECT_EQ(a.rheology.branches[k].tau, b[k].tau) << k;
+    }
+  };
+  same_terms(read({{"prony-file", file("tauG.csv", "tau,G\n0.5,1\n20,3\n")}}), {{1, 0.5}, {3, 20}});
+  same_terms(read({{"prony-file", file("E.csv", "# DMA\nE , tau\n3,0.5\n9,20\n")}}),
+             {{1, 0.5}, {3, 20}});
+  same_terms(read({{"prony-file", file("E.csv", "E,tau\n3,0.5\n")}, {"nu", "0"}}), {{0.75, 0.5}});
+  const mdrmap::Case g =
+      read({{"G", kDrop}, {"prony-file", file("g.csv", "# G0 = 5\ntau,g\n0.5,0.2\n20,0.6\n")}});
+  same_terms(g, {{1, 0.5}, {3, 20}});
+  EXPECT_DOUBLE_EQ(g.rheology.G, 1.0);
+  const mdrmap::Case g_E =
+      read({{"G", kDrop}, {"prony-file", file("gE.csv", "# E0 = 15\ng,tau\n0.2,0.5\n")}});
+  same_terms(g_E, {{1, 0.5}});
+  EXPECT_DOUBLE_EQ(g_E.rheology.G, 4.0);
+  struct Bad {
+    OptionTexts texts;
+    std::string option, said;
+  };
+  const std::vector<Bad> bad = {
+      {{{"prony-file", file("x.csv", "G,tau,x\n1,2\n")}}, "prony-file", "x.csv:1: header column 3"},
+      {{{"prony-file", file("GE.csv", "G,E\n1,2\n")}}, "prony-file", "a second modulus column"},
+      {{{"prony-file", file("notau.csv", "E\n1\n")}}, "prony-file", "has no tau column"},
+      {{{"prony-file", file("badE.csv", "tau,E\n1,2\n1,-3\n")}},
+       "prony-file",
+       "badE.csv:3: column 2 (E): E2 must be a finite number > 0, got -3"},
+      {{{"prony-file", file("row.csv", "G,tau\n1,2,3\n")}}, "prony-file", "row.csv:2: term 1"},
+      {{{"G", kDrop}, {"prony-file", file("noG0.csv", "g,tau\n0.5,1\n")}},
+       "prony-file",
+       "needs a line '# G0 = VALUE'"},
+      {{{"G", kDrop}, {"prony-file", file("sum.csv", "# G0 = 1\ng,tau\n0.5,1\n0.5,2\n")}},
+       "prony-file",
+       "sum to 1"},
+      {{{"G", kDrop}, {"prony-file", file("g1.csv", "# G0 = 1\ng,tau\n1.5,1\n")}},
+       "prony-file",
+       "g1.csv:3: column 1 (g): g1 must be a finite number > 0 and < 1"},
+      {{{"prony-file", file("g2.csv", "# G0 = 1\ng,tau\n0.5,1\n")}}, "G", "drop --G"},
+      {{{"prony-file", file("G0.csv", "# G0 = 1\nG,tau\n0.5,1\n")}},
+       "prony-file",
+       "G0.csv:1: G0 applies to normalised moduli"},
+      {{{"prony-file", file("G0bad.csv", "# G0 = -1\ng,tau\n0.5,1\n")}},
+       "prony-file",
+       "G0bad.csv:1: G0 must be a finite number > 0"},
+      {{{"prony-file", file("E3.csv", "E,tau\n3,1\n")}, {"nu", "0.6"}}, "nu", "<= 0.5"},
+      {{{"prony-file", file("G3.csv", "G,tau\n3,1\n")}, {"nu", "0.3"}}, "nu", "Young's moduli"},
+      {{{"prony", "1:1"}, {"nu", "0.3"}}, "nu", "applies to a spectrum file"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.said);
+    try {
+      read(b.texts);
+      ADD_FAILURE() << "taken";
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), b.option) << e.what();
+      EXPECT_NE(std::string(e.what()).find(b.said), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -1244,6 +1341,167 @@ TEST(cli, TemperatureGivesTheWlfShift) {
   EXPECT_EQ(ref.c.rheology.aT, 1.0);
   // the default window is six shifted times
   EXPECT_NEAR(in.c.history.segments.at(0).T, 6.0 * aT, 1e-15 * aT);
+}
+
+// Issue 33: --material reads an Abaqus card: *ELASTIC E, nu (LONG TERM by
+// default or INSTANTANEOUS), *VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i
+// normalised by G0, *TRS, DEFINITION=WLF Tref, C1, C2; anything else is refused.
+TEST(cli, MaterialCardGivesTheSpectrum) {
+  TempDir dir;
+  const auto file = [&](const char* name, const std::string& text) {
+    const fs::path p = dir.path() / name;
+    write_file(p, text);
+    return p.string();
+  };
+  const std::string body = ", 0.5\n*VISCOELASTIC, TIME=PRONY\n0.2, 0.1, 0.5\n0.6, 0., 20.\n"
+                           "*TRS, DEFINITION=WLF\n25., 8.86, 101.6\n";
+  const auto read = [](OptionTexts t) {
+    t["G"] = kDrop;
+    return mdrmap::app::read_case_input(spectrum_texts(t));
+  };
+  const auto inst = read({{"material", file("i.inp", "** card\n*Material, name=R\n*Elastic, "
+                                                     "moduli=INSTANTANEOUS\n15." +
+                                                         body)},
+                          {"T", "35"}});
+  ASSERT_EQ(inst.c.rheology.branches.size(), 2U);
+  EXPECT_DOUBLE_EQ(inst.c.rheology.G, 1.0); // G0 = 15 / 3, G = G0 (1 - 0.8)
+  EXPECT_DOUBLE_EQ(inst.c.rheology.branches[0].G, 1.0);
+  EXPECT_DOUBLE_EQ(inst.c.rheology.branches[1].G, 3.0);
+  EXPECT_EQ(inst.c.rheology.branches[1].tau, 20.0);
+  ASSERT_TRUE(inst.temperature);
+  EXPECT_EQ(inst.temperature->wlf.Tref, 25.0); // Tref, C1, C2: not mdrmap's order
+  EXPECT_EQ(inst.temperature->wlf.C1, 8.86);
+  EXPECT_NEAR(inst.c.rheology.aT, std::pow(10.0, -8.86 * 10.0 / 111.6), 1e-15);
+  ASSERT_EQ(inst.notes.size(), 1U); // k_1 = 0.1
+  EXPECT_NE(inst.notes[0].find("bulk Prony terms k_i are ignored"), std::string::npos);
+  const auto lt = read({{"material", file("l.inp", "*ELASTIC\n15." + body)}});
+  EXPECT_DOUBLE_EQ(lt.c.rheology.G, 5.0); // the long-term modulus is E's
+  EXPECT_DOUBLE_EQ(lt.c.rheology.branches[1].G, 15.0);
+  struct Bad {
+    OptionTexts texts;
+    std::string option, said;
+  };
+  const std::string card = file("c.inp", "*ELASTIC\n15." + body);
+  const std::vector<Bad> bad = {
+      {{{"material", file("h.inp", "*ELASTIC\n3, 0.5\n*HYPERELASTIC\n1, 2\n")}},
+       "material",
+       "h.inp:3: *HYPERELASTIC: not a keyword"},
+      {{{"material", file("f.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, FREQUENCY=TABULAR\n")}},
+       "material",
+       "f.inp:3: *VISCOELASTIC: the option FREQUENCY=TABULAR is not supported"},
+      {{{"material", file("t.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, TIME=PRONY\n0.5,0,-2\n")}},
+       "material",
+       "t.inp:4: tau1 must be"},
+      {{{"material", file("s.inp", "*ELASTIC\n3, 0.5\n*VISCOELASTIC, TIME=PRONY\n0.5,0,1\n"
+                                   "0.5,0,2\n")}},
+       "material",
+       "sum to 1"},
+      {{{"material", file("n.inp", "*ELASTIC\n3\n")}}, "material", "n.inp:2: *ELASTIC E, nu"},
+      {{{"material", file("e.inp", "*VISCOELASTIC, TIME=PRONY\n0.5,0,1\n")}},
+       "material",
+       "no *ELASTIC"},
+      {{{"material", card}, {"G", "2"}}, "G", "cannot be combined with --material"},
+      {{{"material", card}, {"prony", "1:1"}}, "prony", "cannot be combined with --material"},
+      {{{"material", card}, {"T", "30"}, {"wlf", "1:1:1"}}, "wlf", "*TRS"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.said);
+    try {
+      OptionTexts t = spectrum_texts(b.texts);
+      if (!b.texts.count("G")) t.erase("G");
+      mdrmap::app::read_case_input(t);
+      ADD_FAILURE() << "taken";
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), b.option) << e.what();
+      EXPECT_NE(std::string(e.what()).find(b.said), std::string::npos) << e.what();
+    }
+  }
+  // the CLI: the note on stderr, G in the case line
+  const Outcome r = run_mdrmap(
+      {"stationary", "--d", "0.1", "--R", "10", "--tau", "0", "--v", "1", "--material", card});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("mdrmap stationary: note: "), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("# case d=0.10000000000000001 R=10 tau=0 G=5 prony="), std::string::npos)
+      << r.out;
+}
+
+// Issue 33: --material reads pyvisco's Prony CSV too (header, a row of units,
+// alpha_i normalised by E_0, E_0 = 3 G0): the spectrum of the same material.
+TEST(cli, MaterialReadsPyviscoCsv) {
+  TempDir dir;
+  const fs::path f = dir.path() / "prony.csv";
+  write_file(f, "Prony terms,tau_i,alpha_i,E_0,E_i\r\n-,s,-,MPa,MPa\r\n1,0.1,0.25,12,3\r\n"
+                "2,10,0.5,12,6\r\n3,1000,0,12,0\r\n");
+  OptionTexts t = spectrum_texts({{"material", f.string()}});
+  t.erase("G");
+  const mdrmap::Case c = mdrmap::app::read_case_input(t).c;
+  ASSERT_EQ(c.rheology.branches.size(), 2U); // the term alpha = 0 dropped
+  EXPECT_DOUBLE_EQ(c.rheology.G, 1.0);       // G0 = 12 / 3 = 4, G = 4 (1 - 0.75)
+  EXPECT_DOUBLE_EQ(c.rheology.branches[0].G, 1.0);
+  EXPECT_DOUBLE_EQ(c.rheology.branches[1].G, 2.0);
+  EXPECT_EQ(c.rheology.branches[1].tau, 10.0);
+  write_file(f, "tau_i,alpha_i,G_0\ns,-,Pa\n0.1,0.6,10\n1,x,10\n");
+  try {
+    mdrmap::app::read_case_input(t);
+    ADD_FAILURE() << "taken";
+  } catch (const mdrmap::InvalidInput& e) {
+    EXPECT_EQ(e.option(), "material");
+    EXPECT_NE(std::string(e.what()).find(f.string() + ":4: column alpha_i must be a finite number"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Issue 33: temperatures with units. C and K are converted into TREF's unit
+// (C2 is a difference); a bare number is in the other's unit (today's
+// meaning); a shift of more than 12 decades is refused naming --T unless
+// --allow-large-shift; the case line prints T and TREF with their unit.
+TEST(cli, TemperaturesHaveUnits) {
+  const auto aT_of = [](const std::string& T, const std::string& wlf) {
+    return mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}))
+        .c.rheology.aT;
+  };
+  const double expected = std::pow(10.0, -8.86 * 10.0 / (101.6 + 10.0));
+  for (const auto& [T, wlf] :
+       std::vector<std::pair<std::string, std::string>>{{"35", "8.86:101.6:25"},
+                                                        {"35C", "8.86:101.6:25C"},
+                                                        {"35", "8.86:101.6:25C"},
+                                                        {"35C", "8.86:101.6:25"},
+                                                        {"308.15K", "8.86:101.6:25C"},
+                                                        {"35C", "8.86:101.6:298.15K"},
+                                                        {"308.15K", "8.86:101.6:298.15K"}}) {
+    SCOPED_TRACE(T + " " + wlf);
+    EXPECT_NEAR(aT_of(T, wlf), expected, 1e-12 * expected);
+  }
+  const auto in = mdrmap::app::read_case_input(
+      spectrum_texts({{"tau", "1"}, {"T", "35C"}, {"wlf", "8.86:101.6:298.15K"}}));
+  const std::string line = mdrmap::app::case_line(in.c, in.temperature);
+  EXPECT_TRUE(std::regex_match(line, case_line_regex(false))) << line;
+  EXPECT_NE(line.find(" G=1 aT="), std::string::npos) << line;
+  EXPECT_NE(line.find(" T=308.14999999999998K wlf=8.8599999999999994:101.59999999999999:"
+                      "298.14999999999998K "),
+            std::string::npos)
+      << line;
+  // 25C against TREF -100 (C2 = 51.6, C1 = 17.44): log10 aT = -12.3, refused unless allowed
+  const OptionTexts large{{"tau", "1"}, {"T", "25C"}, {"wlf", "17.44:51.6:-100"}};
+  try {
+    mdrmap::app::read_case_input(spectrum_texts(large));
+    ADD_FAILURE() << "a shift of 12.3 decades was taken";
+  } catch (const mdrmap::InvalidInput& e) {
+    EXPECT_EQ(e.option(), "T");
+    EXPECT_NE(std::string(e.what()).find("more than 12 decades from 1"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("--allow-large-shift"), std::string::npos) << e.what();
+  }
+  OptionTexts allowed = large;
+  allowed["allow-large-shift"] = "true";
+  EXPECT_NEAR(std::log10(mdrmap::app::read_case_input(spectrum_texts(allowed)).c.rheology.aT),
+              -17.44 * 125.0 / (51.6 + 125.0), 1e-12);
+  // the flag on the command line
+  const Outcome r = run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "1", "--v", "1",
+                                "--v1", "2", "--samples", "3", "--T", "25C", "--wlf",
+                                "17.44:51.6:-100C", "--allow-large-shift"});
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {
@@ -1952,7 +2210,7 @@ TEST(cli, StudyTakesFNAsTheOldSpellingOfF0) {
 TEST(cli, StudyTakesSpectrumTermsAndTheTemperature) {
   TempDir dir;
   const fs::path ini = dir.path() / "kelvin.ini";
-  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1\nv1_over_v = 0.1\n"
+  write_file(ini, "[grid]\nd = 1e-3\nR = 1\ntau = 1\nG = 1\nv = 1\nv1_over_v = 0.1\n"
                   "[run]\nsamples = 5\n");
   const fs::path map = dir.path() / "map.h5";
   const std::vector<std::string> base = {"study",      "--quiet",  "--config",
@@ -2115,7 +2373,7 @@ TEST(cli, StationaryConeAtFixedDepthIsTheClosedForm) {
 TEST(cli, StationaryPowerLawUnderLoadWithASpectrumIsTheCores) {
   const StationaryTable t =
       run_stationary({"--profile", "power", "--n", "1.5", "--A", "2", "--F0", "0.05", "--tau",
-                      "0.5", "--prony", "2:0.1,5:10", "--v-list", "0.01,1,100"});
+                      "0.5", "--G", "1", "--prony", "2:0.1,5:10", "--v-list", "0.01,1,100"});
   ASSERT_EQ(t.rows.size(), 3U);
   EXPECT_TRUE(starts_with(t.comments[1], "# case profile=power F0=0.05000000000000000"))
       << t.comments[1];
@@ -2397,8 +2655,8 @@ TEST(cli, SpectrumStepHasADirectEffectAndNoMinusZero) {
   for (const char* v1 : {"0.1", "10"}) {
     SCOPED_TRACE(v1);
     const Outcome r =
-        run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "0", "--prony", "9:1,3:10",
-                    "--v", "1", "--v1", v1, "--samples", "5", "--rtol", "1e-3"});
+        run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "0", "--G", "1", "--prony",
+                    "9:1,3:10", "--v", "1", "--v1", v1, "--samples", "5", "--rtol", "1e-3"});
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out.find("=-0 "), std::string::npos) << r.out;
     EXPECT_EQ(r.out.find("=-0\n"), std::string::npos) << r.out;
@@ -2413,7 +2671,8 @@ TEST(cli, SpectrumStepHasADirectEffectAndNoMinusZero) {
 // A 33rd spectrum term as an option (--G33, --tau33) is refused in one line
 // naming the 32-term limit, not as an unknown option (issue 32).
 TEST(cli, SpectrumTermPastTheLastNamesThe32TermLimit) {
-  const std::vector<std::string> base{"--d", "0.1", "--R", "10", "--tau", "0", "--prony", "1:1"};
+  const std::vector<std::string> base{"--d", "0.1", "--R", "10",      "--tau",
+                                      "0",   "--G", "1",   "--prony", "1:1"};
   for (const std::string cmd : {"simulate", "stationary"})
     for (const std::string opt : {"--G33", "--tau33", "--G100"}) {
       SCOPED_TRACE(cmd + " " + opt);

@@ -1255,11 +1255,28 @@ TEST(StudySpectrum, GridOverATermAndTheTemperature) {
       << canonical(c);
 }
 
+// Issue 33: [run] wlf takes TREF's unit, the temperature column is in it and
+// the canonical config records it; allow_large_shift takes a large shift.
+TEST(StudySpectrum, WlfTakesTheUnitOfItsReference) {
+  const auto grid = [](const std::string& T) {
+    return "[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\ntemperature = " + T +
+           "\n[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nwlf = ";
+  };
+  const StudyConfig c = parse(grid("308.15") + "17.44:51.6:298.15K\n");
+  EXPECT_NEAR(std::log10(cases_of(c).at(0).rheology.aT), -17.44 * 10.0 / 61.6, 1e-12);
+  EXPECT_NE(canonical(c).find("wlf = 17.440000000000001:51.600000000000001:298.14999999999998K\n"),
+            std::string::npos)
+      << canonical(c);
+  const StudyConfig large = parse(grid("25") + "17.44:51.6:-100C\nallow_large_shift = true\n");
+  EXPECT_NE(canonical(large).find("allow_large_shift = true\n"), std::string::npos);
+  EXPECT_NEAR(std::log10(cases_of(large).at(0).rheology.aT), -17.44 * 125.0 / 176.6, 1e-12);
+}
+
 TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
   TempDir dir;
-  dir.write("spec.csv", "tau1,G1,aT,d,R,tau,v,w1,T1_over_tau,G2,tau2\n"
-                        "0.1,2,1e-3,1e-2,1,0,1,0,10,1,5\n"
-                        "0.2,3,10,1e-2,1,1,1,1,2,1,5\n");
+  dir.write("spec.csv", "tau1,G1,aT,d,R,tau,G,v,w1,T1_over_tau,G2,tau2\n"
+                        "0.1,2,1e-3,1e-2,1,0,1,1,0,10,1,5\n"
+                        "0.2,3,10,1e-2,1,1,1,1,1,2,1,5\n");
   const StudyConfig c =
       parse_config("[cases]\nfile = spec.csv\n[run]\nsamples = 3\n", dir.path(), "l.ini");
   EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
@@ -1342,6 +1359,13 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
       {"temperature = 20\n", "wlf = 8.86:101.6\n", "run.wlf", "wlf must be C1:C2:TREF"},
       {"temperature = 20\n", "wlf = 0:101.6:20\n", "run.wlf", "wlf C1 must be > 0"},
       {"temperature = 20\n", "wlf = 8.86:-1:20\n", "run.wlf", "wlf C2 must be > 0"},
+      // issue 33: TREF's unit; a shift beyond 12 decades is refused unless allowed
+      {"temperature = 25\n", "wlf = 17.44:51.6:-100C\n", "grid.temperature",
+       "more than 12 decades from 1"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:20F\n", "run.wlf", "TREF is not a number"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:-5K\n", "run.wlf", "absolute zero"},
+      {"temperature = 20\n", "wlf = 8.86:101.6:20\nallow_large_shift = maybe\n",
+       "run.allow_large_shift", "allow_large_shift must be true or false"},
       {"G1 = 1\ntau1 = 1\n", "solver = exact\n", "run.solver",
        "solver exact solves the Kelvin foundation only, and the study has a relaxation spectrum "
        "(G1, tau1)"},
@@ -1350,16 +1374,29 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
   for (const Bad& b : bad) {
     SCOPED_TRACE(b.grid + b.run);
     const auto [option, message] = error_of([&] {
-      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\n" + b.grid +
+      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nG = 1\nv = 1\n" + b.grid +
             "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\n" + b.run);
     });
     EXPECT_EQ(option, b.option) << message;
     EXPECT_NE(message.find(b.said), std::string::npos) << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
+  // a spectrum has no default long-term modulus G (issue 33): refused, naming G
+  for (const std::string& grid :
+       {std::string("G1 = 1\ntau1 = 1\n"), std::string("G1 = 1, 2\ntau1 = 1\n")}) {
+    const auto [option, message] = error_of([&] {
+      parse("[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\n" + grid +
+            "[history]\nw1_over_v = 0.5\nT1 = 1\n");
+    });
+    EXPECT_EQ(option, "grid.G") << message;
+    EXPECT_NE(message.find("needs the long-term (rubbery) modulus G > 0"), std::string::npos)
+        << message;
+    EXPECT_TRUE(one_line(message)) << message;
+  }
   // under load a spectrum takes auto or spectrum; mdr (the Kelvin load solver) is refused
-  const std::string load_spectrum = "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG1 = 1\ntau1 = 1\nv = 1\n"
-                                    "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
+  const std::string load_spectrum =
+      "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1\ntau1 = 1\nv = 1\n"
+      "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
   for (const char* ok : {"auto", "spectrum"})
     EXPECT_TRUE(parse(load_spectrum + ok + "\n").by_force()) << ok;
   const auto [option, message] = error_of([&] { parse(load_spectrum + "mdr\n"); });
@@ -1371,7 +1408,7 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
   for (int k = 1; k <= 32; ++k)
     terms += "G" + std::to_string(k) + " = 1\ntau" + std::to_string(k) + " = " + std::to_string(k) +
              "\n";
-  const StudyConfig c = depth_study("tau = 0\n" + terms +
+  const StudyConfig c = depth_study("tau = 0\nG = 1\n" + terms +
                                     "v = 1\n[history]\nw1 = 1\n"
                                     "T1_over_tau = 1\n");
   EXPECT_EQ(cases_of(c).at(0).rheology.branches.size(), 32u);

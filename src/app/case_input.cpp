@@ -10,6 +10,8 @@
 #include <iterator>
 #include <optional>
 
+#include "app/material_input.hpp"
+#include "app/prony_file.hpp"
 #include "app/prony_input.hpp"
 #include "core/model/scales.hpp"
 
@@ -19,7 +21,8 @@ namespace {
 /// Options that are not case parameters of the table (core/model/params.hpp): the
 /// indenter's profile, the history's two forms, the sampling's spacing and how to run.
 constexpr const char* kIndenterOptions[] = {"profile"};
-constexpr const char* kRheologyOptions[] = {"prony", "prony-file", "T", "wlf"};
+constexpr const char* kRheologyOptions[] = {"material", "prony", "prony-file",       "nu",
+                                            "T",        "wlf",   "allow-large-shift"};
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history", "history-file"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
@@ -293,47 +296,120 @@ void read_history(const Texts& o, CaseInput& in) {
 
 // --- Rheology ------------------------------------------------------------------
 
+/// --nu, Poisson's ratio of the Young's moduli of a spectrum file: -1 < nu <= 0.5.
+double read_nu(const Texts& o) {
+  if (!o.has("nu")) return 0.5;
+  const double nu = parse_double("nu", o["nu"]);
+  if (!(nu > -1.0 && nu <= 0.5))
+    throw InvalidInput("nu", "must be a finite number > -1 and <= 0.5 (Poisson's ratio; 0.5: "
+                             "incompressible), got " +
+                                 shown(o["nu"]));
+  return nu;
+}
+
+/// The terms of --prony-file and, for normalised moduli (column g), the
+/// long-term modulus G = G0 (1 - sum g) instead of --G (then true).
+bool read_spectrum_file(const Texts& o, Case& c) {
+  const double nu = read_nu(o);
+  SpectrumFile f = read_prony_file(o["prony-file"], nu);
+  if (o.has("nu") && !f.uses_nu)
+    throw InvalidInput("nu", "applies to Young's moduli (a column E or '# E0 = ...') of "
+                             "--prony-file only; the file gives shear moduli");
+  c.rheology.branches = std::move(f.branches);
+  if (!f.G) return false;
+  if (o.has("G"))
+    throw InvalidInput("G", "cannot be combined with a spectrum file of normalised moduli g: "
+                            "it gives G = G0 (1 - sum g) = " +
+                                format_number(*f.G) + "; drop --G");
+  c.rheology.G = *f.G;
+  return true;
+}
+
 /// The Maxwell branches of --prony or --prony-file (at most one of them).
 void read_spectrum(const Texts& o, Case& c) {
   if (o.has("prony") && o.has("prony-file"))
     throw InvalidInput("prony-file", "cannot be combined with --prony: give the spectrum once, "
                                      "as --prony G1:TAU1,... or as a file");
+  if (o.has("nu") && !o.has("prony-file"))
+    throw InvalidInput("nu", "applies to a spectrum file's Young's moduli (--prony-file with a "
+                             "column E) only");
   if (o.has("prony")) c.rheology.branches = parse_prony(o["prony"]);
-  if (o.has("prony-file")) c.rheology.branches = read_prony_file(o["prony-file"]);
+  const bool file_G = o.has("prony-file") && read_spectrum_file(o, c);
+  if (!c.rheology.branches.empty() && !o.has("G") && !file_G)
+    throw InvalidInput("G", "must be given with a spectrum (--" +
+                                std::string(o.has("prony") ? "prony" : "prony-file") +
+                                "): the long-term (rubbery) modulus G > 0, in the unit of the "
+                                "terms' moduli; it has no default beside a spectrum");
 }
 
-/// --T TEMP with --wlf C1:C2:TREF: the shift aT at T (instead of --aT).
-std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c) {
+/// --material FILE: the long-term modulus, the spectrum and the WLF
+/// constants of an Abaqus card; the options it sets are refused beside it.
+std::optional<MaterialCard> read_card(const Texts& o, Case& c) {
+  if (!o.has("material")) return std::nullopt;
+  for (const char* other : {"G", "prony", "prony-file", "nu"})
+    if (o.has(other))
+      throw InvalidInput(other, std::string("cannot be combined with --material: the card gives ") +
+                                    (std::string(other) == "G"
+                                         ? "the long-term modulus G = G0 (1 - sum g_i)"
+                                         : "the spectrum (*VISCOELASTIC) and E, nu (*ELASTIC)"));
+  MaterialCard m = read_material(o["material"]);
+  c.rheology.G = m.G;
+  c.rheology.branches = m.branches;
+  return m;
+}
+
+/// Which of --T, --wlf (or the card's *TRS) and --allow-large-shift go together.
+void check_temperature_options(const Texts& o, bool card_wlf) {
   if (o.has("T") && o.has("aT"))
     throw InvalidInput("T", "cannot be combined with --aT: give the shift factor --aT or the "
                             "temperature --T with its --wlf constants, not both");
-  if (o.has("T") != o.has("wlf"))
-    throw InvalidInput(o.has("T") ? "T" : "wlf",
-                       o.has("T") ? "needs --wlf C1:C2:TREF, the WLF constants that give the "
-                                    "shift factor aT at the temperature T"
-                                  : "applies with --T TEMP only: give the temperature whose shift "
-                                    "factor aT it gives (or drop --wlf)");
+  if (o.has("wlf") && card_wlf)
+    throw InvalidInput("wlf", "cannot be combined with the WLF constants of --material (its *TRS, "
+                              "DEFINITION=WLF)");
+  if (o.has("T") && !o.has("wlf") && !card_wlf)
+    throw InvalidInput("T", "needs --wlf C1:C2:TREF, the WLF constants that give the shift "
+                            "factor aT at the temperature T");
+  if (o.has("wlf") && !o.has("T"))
+    throw InvalidInput("wlf", "applies with --T TEMP only: give the temperature whose shift "
+                              "factor aT it gives (or drop --wlf)");
+  if (o.has("allow-large-shift") && !o.has("T"))
+    throw InvalidInput("allow-large-shift", "applies with --T TEMP only (a shift --aT is taken "
+                                            "as given)");
+}
+
+/// --T TEMP with --wlf C1:C2:TREF (or the card's): the shift aT at T (instead of --aT).
+std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c,
+                                                 const std::optional<UnitWlf>& card_wlf) {
+  check_temperature_options(o, card_wlf.has_value());
   if (!o.has("T")) return std::nullopt;
-  TemperatureInput t;
-  t.T = parse_double("T", o["T"]);
-  t.wlf = parse_wlf("wlf", o["wlf"]);
-  c.rheology.aT = wlf_shift(t.wlf, t.T, "T");
-  return t;
+  const Temperature T = parse_temperature("T", o["T"]);
+  const UnitWlf w = card_wlf ? *card_wlf : parse_unit_wlf("wlf", o["wlf"]);
+  const bool allow =
+      o.has("allow-large-shift") && parse_flag("allow-large-shift", o["allow-large-shift"]);
+  c.rheology.aT = checked_shift(w, T, "T", allow);
+  const Temperature in_tref = in_wlf_unit(T, w);
+  return TemperatureInput{in_tref.value, w.wlf, in_tref.unit};
 }
 
 /// The spectrum and the shift, checked as a whole (validate(Rheology)): a
 /// shift that takes a time out of range names --T where the temperature gave it.
-std::optional<TemperatureInput> read_rheology(const Texts& o, Case& c) {
-  read_spectrum(o, c);
-  auto t = read_temperature(o, c);
+void read_rheology(const Texts& o, CaseInput& in) {
+  Case& c = in.c;
+  const auto card = read_card(o, c);
+  if (card)
+    in.notes = card->notes;
+  else
+    read_spectrum(o, c);
+  const auto t = read_temperature(o, c, card ? card->wlf : std::nullopt);
+  in.temperature = t;
   try {
     validate(c.rheology);
   } catch (const InvalidInput& e) {
     if (!t || e.option() != "aT") throw;
     throw InvalidInput("T", "gives aT = " + format_number(c.rheology.aT) + " (WLF " +
-                                format_wlf(t->wlf) + "), and aT " + e.what());
+                                format_wlf(t->wlf) + unit_suffix(t->unit) + "), and aT " +
+                                e.what());
   }
-  return t;
 }
 
 Spacing parse_spacing(const std::string& text) {
@@ -393,7 +469,7 @@ CaseInput read_canonical(const Texts& o) {
   in.c.indenter.profile = profile;
   read_case_parameters(o, in.c);
   require_one_of_each_group(o);
-  in.temperature = read_rheology(o, in.c);
+  read_rheology(o, in);
   if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o["spacing"]);
   if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "

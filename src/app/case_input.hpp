@@ -16,6 +16,7 @@
 #include "app/lab_record.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 #include "core/solvers/dispatch.hpp"
 
@@ -28,8 +29,9 @@ using OptionTexts = std::map<std::string, std::string>;
 
 /// A temperature and the WLF constants that made the case's aT (--T, --wlf).
 struct TemperatureInput {
-  double T = 0.0;
+  double T = 0.0; ///< in the unit of wlf.Tref (converted from --T's)
   Wlf wlf;
+  TempUnit unit = TempUnit::None; ///< of T and Tref, where either was given one
 };
 
 /// A checked case and how to run it.
@@ -39,6 +41,7 @@ struct CaseInput {
   double rtol = kDefaultRtol;
   std::optional<TemperatureInput> temperature; ///< given: c.rheology.aT is its WLF shift
   std::optional<LabRecord> record;             ///< --history-file: the record that made the history
+  std::vector<std::string> notes; ///< what an input gave that does not enter (a card's k_i)
 };
 
 /// Every option read_case_input knows, in the order of simulate's help: the

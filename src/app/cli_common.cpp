@@ -117,7 +117,10 @@ po::variables_map option_texts(const std::vector<std::string>& args, const std::
                                const std::vector<std::string>& names, const std::string& example) {
   po::options_description desc;
   for (const auto& name : names)
-    desc.add_options()(name.c_str(), po::value<std::string>());
+    if (name == "allow-large-shift") // a flag
+      desc.add_options()(name.c_str(), po::value<std::string>()->implicit_value("true"));
+    else
+      desc.add_options()(name.c_str(), po::value<std::string>());
   desc.add_options()("help", "");
 
   const int style = po::command_line_style::unix_style & ~po::command_line_style::allow_guessing;
@@ -181,6 +184,11 @@ bool asks_for_help_all(const std::vector<std::string>& args) {
 int print_help(const std::string& text) {
   std::fputs(text.c_str(), stdout);
   return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
+}
+
+void print_notes(const std::string& command, const std::vector<std::string>& notes) {
+  for (const std::string& n : notes)
+    std::fprintf(stderr, "mdrmap %s: note: %s\n", command.c_str(), n.c_str());
 }
 
 } // namespace mdrmap::app

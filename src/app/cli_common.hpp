@@ -73,6 +73,10 @@ int print_help(const std::string& text);
 /// Whether `args` ask for every option: --help-all before any "--".
 bool asks_for_help_all(const std::vector<std::string>& args);
 
+/// Writes each note (what an input gave that does not enter, e.g. a material
+/// card's bulk terms) to stderr as "mdrmap COMMAND: note: ...".
+void print_notes(const std::string& command, const std::vector<std::string>& notes);
+
 /// The frame of a subcommand's main: with --help-all (asks_for_help_all)
 /// prints help_all(), with --help (asks_for_help) help(); else parses `args` (parse: Args or
 /// throws, report_parse_error) and runs the result (run: the exit code or throws, report_run_error

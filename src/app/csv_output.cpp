@@ -85,7 +85,8 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
   s += parameters(c, false);
   if (!c.rheology.branches.empty()) s += " prony=" + format_prony(c.rheology.branches);
   if (temperature)
-    s += " T=" + format_double(temperature->T) + " wlf=" + format_wlf(temperature->wlf);
+    s += " T=" + format_double(temperature->T) + unit_suffix(temperature->unit) +
+         " wlf=" + format_wlf(temperature->wlf) + unit_suffix(temperature->unit);
   s += " history=" + format_history(c.history);
   if (c.sampling.at.empty())
     s += " spacing=" + std::string(spacing_name(c.sampling.spacing)) + parameters(c, true);

@@ -48,6 +48,7 @@ SimulateArgs parse_args(const std::vector<std::string>& args) {
 
 int run(const SimulateArgs& a) {
   OutputFile out(a.output); // opened before the solver runs: a bad path fails fast
+  print_notes(kCommand, a.in.notes);
   const Simulation sim = simulate(a.in);
   write_simulate_csv(out.get(), sim.record, sim.series, a.in.temperature,
                      a.in.record ? &*a.in.record : nullptr);

@@ -41,8 +41,8 @@ constexpr const char* kColumns = "v,d,a1,a2,FN,Fx,mu";
 /// the spacing and how to run (rtol, solver) are simulate's only.
 bool stationary_case_option(const std::string& name) {
   if (const ParamSpec* p = find_parameter(name)) return p->part != Part::Sampling;
-  return name == "profile" || name == "prony" || name == "prony-file" || name == "T" ||
-         name == "wlf";
+  return name == "profile" || name == "material" || name == "prony" || name == "prony-file" ||
+         name == "nu" || name == "T" || name == "allow-large-shift" || name == "wlf";
 }
 
 /// The case options, in the order of simulate's help (old spellings last).
@@ -94,7 +94,9 @@ std::string stationary_case_line(const Case& c, const std::optional<TemperatureI
     s += std::string(" ") + p.name + "=" + format_double(p.get(c));
   }
   if (!c.rheology.branches.empty()) s += " prony=" + format_prony(c.rheology.branches);
-  if (t) s += " T=" + format_double(t->T) + " wlf=" + format_wlf(t->wlf);
+  if (t)
+    s += " T=" + format_double(t->T) + unit_suffix(t->unit) + " wlf=" + format_wlf(t->wlf) +
+         unit_suffix(t->unit);
   if (c.loading.by_force()) s += " a0=" + format_double(c.a0());
   return s;
 }
@@ -113,6 +115,7 @@ void write_csv(std::FILE* out, const StationaryInput& a, const std::vector<State
 
 int run(const StationaryArgs& a) {
   OutputFile out(a.output); // opened first: a bad path fails before any work
+  print_notes(kCommand, a.input.in.notes);
   write_csv(out.get(), a.input, stationary_states(a.input));
   out.commit();
   return kExitOk;

@@ -313,6 +313,10 @@ void check_spectrum(const std::vector<const Axis*>& at, const std::string& where
   std::size_t N = 0;
   for (std::size_t k = 1; k <= kMaxBranches; ++k)
     if (at[first + 2 * (k - 1)] || at[first + 2 * (k - 1) + 1]) N = k;
+  if (N > 0 && !at[first - 1])
+    throw ConfigError("grid.G", where + "a spectrum (G1, tau1, ...) needs the long-term (rubbery) "
+                                        "modulus G > 0 (key G or a column G); it has no default "
+                                        "beside a spectrum");
   for (std::size_t k = 1; k <= N; ++k)
     for (std::size_t j = 0; j < 2; ++j) {
       if (at[first + 2 * (k - 1) + j]) continue;

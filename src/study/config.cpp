@@ -218,7 +218,9 @@ std::string canonical_run(const RunSettings& r) {
          "\nspacing = " + (r.spacing == Spacing::Log ? "log" : "linear") +
          "\ndecades = " + format_number(r.decades) + "\nrtol = " + format_number(r.rtol) +
          "\nsolver = " + solver + "\ntimeseries = " + (r.timeseries ? "true" : "false") + "\n" +
-         (r.wlf ? "wlf = " + format_wlf(*r.wlf) + "\n" : std::string()) + // where given only
+         (r.wlf ? "wlf = " + format_wlf(*r.wlf) + unit_suffix(r.wlf_unit) + "\n"
+                : std::string()) + // where given only
+         (r.allow_large_shift ? "allow_large_shift = true\n" : std::string()) +
          (r.profile != Profile::Parabola
               ? std::string("profile = ") + profile_name(r.profile) + "\n"
               : std::string()); // the parabola's config as before
@@ -268,10 +270,16 @@ void set_column_value(const StudyConfig& c, Case& out, const Axis& a, double x) 
     if (!c.run.wlf) // complete_columns refuses it: a hand-made config
       throw ConfigError(a.option(), "temperature needs [run] wlf = C1:C2:TREF");
     try {
-      out.rheology.aT = wlf_shift(*c.run.wlf, x, a.option());
+      out.rheology.aT =
+          checked_shift(UnitWlf{*c.run.wlf, c.run.wlf_unit}, Temperature{x, {}}, a.option(),
+                        c.run.allow_large_shift, "[run] allow_large_shift = true");
     } catch (const InvalidInput& e) {
-      throw InvalidInput(a.option(), "temperature " + std::string(e.what()) + " (WLF " +
-                                         format_wlf(*c.run.wlf) + ")");
+      const std::string what = e.what(); // the large shift's message says its WLF
+      throw InvalidInput(a.option(), "temperature " + what +
+                                         (what.find("(WLF ") != std::string::npos
+                                              ? std::string()
+                                              : " (WLF " + format_wlf(*c.run.wlf) +
+                                                    unit_suffix(c.run.wlf_unit) + ")"));
     }
   } else
     a.column.param->set(out, x);

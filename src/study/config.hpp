@@ -8,7 +8,7 @@
 //   R   = 1, 2, 5           ; a number, a comma list,
 //   tau = linspace:0.5:2:4  ; n evenly spaced values from lo to hi (inclusive),
 //   v   = logspace:1e-2:1e2:5 ; n geometrically spaced values (values, not exponents)
-//   G   = 1                 ; optional (default 1)
+//   G   = 1                 ; optional (default 1; required with a spectrum)
 //   G1 = 2                  ; optional: a relaxation spectrum's terms Gk, tauk
 //   tau1 = 0.01             ;   (k = 1..N, N <= 32, both of each term)
 //   aT = 1e-3               ; optional: the shift factor, or instead
@@ -28,14 +28,16 @@
 //   rtol = 1e-4
 //   solver = auto           ; auto | exact | mdr | baseline
 //   timeseries = false      ; store the full time series of every case
-//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column
+//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column; TREF may
+//                           ;   take a unit (25C, 298.15K), the column's values are in it
+//   allow_large_shift = false ; true: take a temperature's |log10 aT| > 12
 //   profile = parabola      ; parabola (column R) | cone (column beta) | power (n, A)
 //
 // Every key of [grid] and [history] is a column of the study; in a grid each
 // column is an axis (case order: C order over the columns in column order, the
 // last fastest). The optional columns aT (or temperature), Gk and tauk are
 // columns, and /cases datasets of the map, only where the study gives them;
-// G always is (default 1). Relative durations (TK_over_tau) are in units of
+// G always is (default 1, none with a spectrum). Relative durations (TK_over_tau) are in units of
 // the case's time scale, scales(c).time: the longest relaxation time shifted
 // by aT, aT max(tau, tauk) (tau for a Kelvin material at aT = 1). The seed's one-step form is still
 // read: [grid] v1 or v1_over_v is the column w1 or w1_over_v, [run] t_end_over_tau the column
@@ -54,6 +56,7 @@
 
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 
 namespace mdrmap::study {
@@ -114,6 +117,8 @@ struct RunSettings {
   std::string solver = "auto";
   bool timeseries = false;
   std::optional<Wlf> wlf;              ///< the WLF constants of a temperature column
+  TempUnit wlf_unit = TempUnit::None;  ///< TREF's (and the temperature column's) unit
+  bool allow_large_shift = false;      ///< take |log10 aT| > 12 of a temperature
   Profile profile = Profile::Parabola; ///< the indenter of every case; its parameters are columns
 };
 

@@ -66,7 +66,7 @@ const IniSchema& study_schema() {
                             history_names(1),
                             {"file"},
                             {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "wlf",
-                             "profile", "t_end_over_tau", "G"}},
+                             "allow_large_shift", "profile", "t_end_over_tau", "G"}},
                            "[grid], [history], [cases] or [run]",
                            "[grid] or [cases], [history] and [run]",
                            [](const std::string& section, const std::string& key) {
@@ -164,8 +164,8 @@ bool run_timeseries(const std::string& option, const std::string& text) {
   const std::string t = lower(text);
   if (t == "true" || t == "yes" || t == "1") return true;
   if (t == "false" || t == "no" || t == "0") return false;
-  throw ConfigError(option, shown(text) + " is not a yes/no value; timeseries must be true "
-                                          "or false (also yes/no, 1/0)");
+  throw ConfigError(option, shown(text) + " is not a yes/no value; " + option.substr(4) +
+                                " must be true or false (also yes/no, 1/0)");
 }
 
 Spacing run_spacing(const std::string& option, const std::string& text) {
@@ -183,9 +183,9 @@ Profile run_profile(const std::string& option, const std::string& text) {
   }
 }
 
-Wlf run_wlf(const std::string& option, const std::string& text) {
+UnitWlf run_wlf(const std::string& option, const std::string& text) {
   try {
-    return parse_wlf(option, text);
+    return parse_unit_wlf(option, text);
   } catch (const InvalidInput& e) {
     throw ConfigError(option, std::string("wlf ") + e.what());
   }
@@ -206,8 +206,12 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
     r.solver = run_solver(option, text);
   else if (key == "timeseries")
     r.timeseries = run_timeseries(option, text);
-  else if (key == "wlf")
-    r.wlf = run_wlf(option, text);
+  else if (key == "wlf") {
+    const UnitWlf w = run_wlf(option, text);
+    r.wlf = w.wlf;
+    r.wlf_unit = w.unit;
+  } else if (key == "allow_large_shift")
+    r.allow_large_shift = run_timeseries(option, text);
   else if (key == "profile")
     r.profile = run_profile(option, text);
   else

@@ -40,9 +40,9 @@ LOAD="--F0 0.2 --R 10"
 CONE="--profile cone --beta 10 --d 0.01"
 CONE_LOAD="--profile cone --beta 10 --F0 0.01"
 POWER="--profile power --n 1.5 --A 0.05 --d 0.01"
-SLS="--tau 0 --prony 1:1"
-TWO="--tau 0 --prony 1:1,10:0.01"
-DASH="--tau 0.1 --prony 1:1,10:0.01"
+SLS="--tau 0 --G 1 --prony 1:1"
+TWO="--tau 0 --G 1 --prony 1:1,10:0.01"
+DASH="--tau 0.1 --G 1 --prony 1:1,10:0.01"
 RUN="--samples 5 --rtol 1e-2"
 
 # label | expected (any, or CODE[:option]) | command and its arguments
@@ -82,8 +82,8 @@ done
 # the reproductions of issue 32
 add "NaN rows at v0 1e155" 2:v "simulate $DEPTH $SLS --v 1e155 --v1 0.1 --samples 3 --rtol 1e-3"
 add "free mode at aT 1e300" 2:aT \
-  "simulate $DEPTH --tau 0 --prony 1:1,1:1e-5 --aT 1e300 --v 1 --v1 0.1 --samples 3 --rtol 1e-3"
-add "tiny branch, no dashpot" 2:prony "simulate $DEPTH --tau 0 --prony 1:1,1e-13:1 --v 1 --v1 0.1 $RUN"
+  "simulate $DEPTH --tau 0 --G 1 --prony 1:1,1:1e-5 --aT 1e300 --v 1 --v1 0.1 --samples 3 --rtol 1e-3"
+add "tiny branch, no dashpot" 2:prony "simulate $DEPTH --tau 0 --G 1 --prony 1:1,1e-13:1 --v 1 --v1 0.1 $RUN"
 add "cone 1e-300 deg" 2:beta "stationary --profile cone --beta 1e-300 --d 0.01 $TWO --v 1"
 add "cone 1e-6 deg v-range" 0 "stationary --profile cone --beta 1e-6 --d 0.01 $TWO --v-range 1e-6:1e6:7"
 add "cone 0.01 deg v 1e-6" 0 "stationary --profile cone --beta 0.01 --d 0.01 $TWO --v 1e-6"

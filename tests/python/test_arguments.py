@@ -10,7 +10,7 @@ import pytest
 import mdrmap
 from mdrmap import _core
 
-CASE = dict(d=0.1, R=10, tau=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+CASE = dict(d=0.1, R=10, tau=1, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
 SPECTRUM = dict(CASE, v=1, v1=2)
 
 
@@ -18,7 +18,7 @@ def test_stationary_over_a_list_is_the_cli_v_list(exe):
     vs = [0.01, 0.3, 1.0, 7.0]
     out = mdrmap.stationary(**CASE, v=vs)
     p = subprocess.run([exe, "stationary", "--d", "0.1", "--R", "10", "--tau", "1",
-                        "--prony", "1:0.1,2:10", "--v-list", "0.01,0.3,1,7"],
+                        "--G", "1", "--prony", "1:0.1,2:10", "--v-list", "0.01,0.3,1,7"],
                        capture_output=True, text=True, timeout=60, check=True)
     rows = [line.split(",") for line in p.stdout.splitlines() if not line.startswith("#")]
     header, rows = rows[0], rows[1:]
@@ -84,3 +84,47 @@ def test_help_documents_every_parameter():
     for p in _core.parameter_table():  # the table's own words
         doc = mdrmap.simulate.__doc__.replace("\n", " ")
         assert " ".join(p["meaning"].split()[:4]) in " ".join(doc.split())
+
+
+def test_prony_file_columns_by_name(tmp_path):
+    """Issue 33: E with nu, or g normalised by '# G0 = ...' (then G = G0 (1 - sum g))."""
+    young = tmp_path / "E.csv"
+    young.write_text("tau,E\n0.1,3\n10,6\n")
+    norm = tmp_path / "g.csv"
+    norm.write_text("# G0 = 4\ng,tau\n0.25,0.1\n0.5,10\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    a = mdrmap.stationary(**kw, G=1, prony_file=young)
+    b = mdrmap.stationary(**kw, prony_file=norm)
+    c = mdrmap.stationary(**kw, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+    assert a == c and b == c
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, G=1, prony_file=young, nu=0.7)
+    assert e.value.option == "nu"
+
+
+def test_temperatures_have_units():
+    """Issue 33: temperature= and wlf's TREF take C or K; a mix is converted;
+    a shift beyond 12 decades is refused unless allow_large_shift=True."""
+    kw = dict(d=0.1, R=10, tau=1, v=1)
+    a = mdrmap.stationary(**kw, temperature=35, wlf=(8.86, 101.6, 25))
+    b = mdrmap.stationary(**kw, temperature="35C", wlf=(8.86, 101.6, "298.15K"))
+    c = mdrmap.stationary(**kw, temperature="308.15K", wlf="8.86:101.6:25C")
+    assert a["mu"] == pytest.approx(b["mu"], rel=1e-12) and b["mu"] == pytest.approx(c["mu"], rel=1e-12)
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"))
+    assert e.value.keyword == "temperature" and "12 decades" in e.value.message
+    mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"), allow_large_shift=True)
+
+
+def test_material_card_is_the_spectrum(tmp_path):
+    """Issue 33: an Abaqus card (instantaneous E, g_i normalised by G0) is its spectrum."""
+    card = tmp_path / "rubber.inp"
+    card.write_text("*MATERIAL, NAME=R\n*ELASTIC, MODULI=INSTANTANEOUS\n12., 0.5\n"
+                    "*VISCOELASTIC, TIME=PRONY\n0.25, 0., 0.1\n0.5, 0., 10.\n")
+    kw = dict(d=0.1, R=10, tau=0, v=1)
+    a = mdrmap.stationary(**kw, material=card)
+    b = mdrmap.stationary(**kw, G=1, prony=[(1.0, 0.1), (2.0, 10.0)])
+    assert a == b
+    with pytest.raises(mdrmap.InvalidInput) as e:
+        mdrmap.stationary(**kw, material=card, G=1)
+    assert e.value.option == "G"

@@ -11,7 +11,7 @@ import mdrmap
 from conftest import run_cli
 
 DROP = None  # the row removes the option
-BASE = {"d": "0.1", "R": "10", "tau": "1", "v": "2", "v1": "0.5"}
+BASE = {"d": "0.1", "R": "10", "tau": "1", "G": "1", "v": "2", "v1": "0.5"}
 CLI_PREFIX = "mdrmap simulate: error: "
 
 # (label, {option: text or DROP}, extra CLI tokens, option named)
@@ -109,6 +109,8 @@ ROWS = [
      {"profile": "cone", "R": DROP, "beta": "10", "solver": "exact"}, [], "profile"),
     ("a power law on the mdr solver",
      {"profile": "power", "R": DROP, "n": "3", "A": "1", "solver": "mdr"}, [], "profile"),
+    ("prony without --G", {"G": DROP, "prony": "1:1"}, [], "G"),
+    ("prony-file without --G", {"G": DROP, "prony-file": "{dir}/good.csv"}, [], "G"),
     ("prony G = 0", {"prony": "0:1"}, [], "prony"),
     ("prony G < 0", {"prony": "1:1,-2:10"}, [], "prony"),
     ("prony tau = 0", {"prony": "1:0"}, [], "prony"),
@@ -152,6 +154,16 @@ ROWS = [
     ("wlf C2 < 0", {"T": "20", "wlf": "17.44:-51.6:0"}, [], "wlf"),
     ("wlf TREF not a number", {"T": "20", "wlf": "17.44:51.6:room"}, [], "wlf"),
     ("wlf TREF = inf", {"T": "20", "wlf": "17.44:51.6:inf"}, [], "wlf"),
+    ("T in F", {"T": "20F", "wlf": "17.44:51.6:0"}, [], "T"),
+    ("T below absolute zero", {"T": "-300C", "wlf": "17.44:51.6:0C"}, [], "T"),
+    ("T below 0K", {"T": "-1K", "wlf": "17.44:51.6:0C"}, [], "T"),
+    ("wlf TREF below 0K", {"T": "20C", "wlf": "17.44:51.6:-5K"}, [], "wlf"),
+    ("T more than 12 decades from TREF", {"T": "25C", "wlf": "17.44:51.6:-100C"}, [], "T"),
+    ("T 25 against TREF 298.15K", {"T": "25", "wlf": "8.86:101.6:298.15K"}, [], "T"),
+    ("allow-large-shift without T", {"aT": "2", "allow-large-shift": "true"}, [],
+     "allow-large-shift"),
+    ("allow-large-shift not a flag",
+     {"T": "20", "wlf": "17.44:51.6:0", "allow-large-shift": "maybe"}, [], "allow-large-shift"),
     ("prony on the exact solver", {"prony": "1:1,2:10", "solver": "exact"}, [], "prony"),
     ("prony-file on the Kelvin solvers", {"prony-file": "{dir}/good.csv", "solver": "exact"}, [],
      "prony"),
@@ -332,7 +344,7 @@ def test_booleans_bytes_and_paths_are_not_numbers(tmp_path):
         assert said in e.value.message, (change, e.value.message)
     spectrum = tmp_path / "spectrum.csv"
     spectrum.write_text("G,tau\n1,0.5\n")
-    kw = dict(d=0.1, R=10, tau=0, v=1)
+    kw = dict(d=0.1, R=10, tau=0, G=1, v=1)
     assert mdrmap.stationary(**kw, prony_file=spectrum) == \
         mdrmap.stationary(**kw, prony_file=str(spectrum))
 

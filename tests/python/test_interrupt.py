@@ -13,7 +13,7 @@ import time
 # ten segments: about 10 s on an idle core, then its work budget ends it).
 CHILD = r"""
 import sys, time, mdrmap
-kw = dict(F0=0.1, R=10, tau=1, v=2, history=[(0.5, 20), (2, 20)] * 5,
+kw = dict(F0=0.1, R=10, tau=1, G=1, v=2, history=[(0.5, 20), (2, 20)] * 5,
           prony=[(1.0, 10.0 ** k) for k in range(-3, 4)], rtol=1e-5)
 def progress(f):
     print("progress", f, flush=True)

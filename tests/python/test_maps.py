@@ -75,7 +75,7 @@ def test_to_grid_spectrum_is_one_material_axis(exe, tmp_path):
     """Issue 32: a 32-term spectrum is 64 grid axes (68 with d, R, tau, G, v,
     ...), past numpy's dimensions; to_grid makes the axes of one value scalar
     coordinates and the spectrum's varied terms one dimension `material`."""
-    lines = ["[grid]", "d = 1e-3", "R = 1", "tau = 0", "G1 = 1, 2", "tau1 = 0.01"]
+    lines = ["[grid]", "d = 1e-3", "R = 1", "tau = 0", "G = 1", "G1 = 1, 2", "tau1 = 0.01"]
     for k in range(2, 33):
         tau = "1, 10" if k == 2 else f"{10.0 ** (k / 4 - 2):g}"
         lines += [f"G{k} = 1", f"tau{k} = {tau}"]

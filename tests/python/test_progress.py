@@ -9,7 +9,7 @@ import pytest
 import mdrmap
 
 # about 2 s on an idle core: a spectrum of seven terms under load
-LONG = dict(F0=0.1, R=10, tau=1, v=2, history=[(0.5, 20), (2, 20)],
+LONG = dict(F0=0.1, R=10, tau=1, G=1, v=2, history=[(0.5, 20), (2, 20)],
             prony=[(1.0, 10.0 ** k) for k in range(-3, 4)], rtol=1e-5)
 
 

@@ -287,7 +287,7 @@ grep -qE "\(d, R, tau, v, v1_over_v, event\) float64" "$W/cli.out" ||
 # a 32-term spectrum (68 axes, two of its terms varied): --grid makes the
 # varied terms one dimension `material` and the axes of one value scalars
 {
-  printf '[grid]\nd = 1e-3\nR = 1\ntau = 0\nG1 = 1, 2\ntau1 = 0.01\n'
+  printf '[grid]\nd = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1, 2\ntau1 = 0.01\n'
   for ((k = 2; k <= 32; k++)); do printf 'G%d = 1\ntau%d = %s\n' "$k" "$k" "$((k == 2 ? 1 : k))"; done
   printf 'v = 0.1, 1\nv1_over_v = 2\n[run]\nsamples = 5\nrtol = 1e-3\n'
 } >"$W/spectrum.ini"

@@ -55,7 +55,8 @@ _ALIASES = _core.parameter_aliases()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
 # the case's parameters without history and sampling, and its spectrum and temperature
 _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
-    [o for o in ("profile", "prony", "prony-file", "T", "wlf") if o in _OPTIONS]
+    [o for o in ("profile", "material", "prony", "prony-file", "nu", "T", "wlf",
+                    "allow-large-shift") if o in _OPTIONS]
 
 
 def _keywords(options):
@@ -106,7 +107,7 @@ def _number_text(option, value):
 
 
 # the options that name a file (they take a str or an os.PathLike)
-_PATHS = {"prony-file", "history-file"}
+_PATHS = {"prony-file", "history-file", "material"}
 
 _PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
           "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}

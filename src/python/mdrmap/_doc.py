@@ -10,16 +10,28 @@ OTHER = {
                '"power" (n, A)',
     "prony": "a relaxation spectrum, the Maxwell branches beside G: [(G1, tau1), "
              '(G2, tau2), ...] (or "G1:TAU1,G2:TAU2,..."), at most 32 terms; with a '
-             "spectrum G is the rubbery modulus and tau the parallel dashpot's time "
+             "spectrum G (required) is the rubbery modulus and tau the parallel dashpot's time "
              "(0: none)",
-    "prony-file": "the spectrum from a CSV file (a str or a path): a header line "
-                  "G,tau, then one term G,tau per line; not with prony",
+    "prony-file": "the spectrum from a CSV file (a str or a path): a header naming "
+                  "the columns, tau and one of G (shear moduli), E (Young's moduli) or g "
+                  "(normalised by a line '# G0 = VALUE', then G = G0 (1 - sum g)), then "
+                  "one term per line; not with prony",
+    "material": "the material from an Abaqus card (a str or a path): *ELASTIC E, nu, "
+                "*VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i and *TRS, DEFINITION=WLF "
+                "Tref, C1, C2; instead of G, prony, prony_file and wlf",
+    "nu": "Poisson's ratio of a spectrum file's Young's moduli (column E): "
+          "G = E / (4 (1 - nu^2)), -1 < nu <= 0.5, default 0.5",
     "T": "the temperature: with wlf, gives the shift factor aT by the WLF equation "
-         "(instead of aT); a finite number > TREF - C2. T= is accepted as its old "
-         "spelling",
+         "(instead of aT); a finite number > TREF - C2, with an optional unit "
+         '("25C", "298.15K"; converted to TREF\'s unit; a bare number is in the '
+         "other's unit). A shift of more than 12 decades is refused unless "
+         "allow_large_shift=True. T= is accepted as its old spelling",
+    "allow-large-shift": "True: take a temperature's WLF shift of more than 12 "
+                         "decades from 1 (refused otherwise: most often a C/K mix-up)",
     "wlf": "the WLF constants of temperature, (C1, C2, TREF) (or "
            '"C1:C2:TREF"): log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, '
-           "C2 > 0, TREF the reference temperature (aT = 1)",
+           "C2 > 0, TREF the reference temperature (aT = 1), with an optional unit "
+           '(8.86, 101.6, "25C")',
     "v1": "one step: the sliding velocity from t = 0 on (length/time), >= 0; "
           "0 stops the indenter",
     "t-end": "with v1: how long the step is followed (time), > 0; default 6 tau "
@@ -81,8 +93,8 @@ def entries(options, table, aliases):
 def keyword_list(items, width=79):
     lines = []
     for kw, text in items:
-        lines += textwrap.wrap(text, width, initial_indent=f"    {kw:<13}",
-                               subsequent_indent=" " * 17)
+        head = f"    {kw:<13}" if len(kw) < 13 else f"    {kw} "  # a long keyword: one space
+        lines += textwrap.wrap(text, width, initial_indent=head, subsequent_indent=" " * 17)
     return "\n".join(lines)
 
 
