@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <deque>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -42,8 +43,29 @@ State stationary_or_none(const Case& c, double w) {
   }
 }
 
+/// The stationary states the watches compare with (stationary_watch.hpp),
+/// each formed once per velocity for every run of a case, and only when a
+/// check first needs it: a cone's or a power law's with a spectrum is a
+/// quadrature (75 ms with 11 terms), which per segment and run made a cone's
+/// velocity steps twice as dear.
+class StationaryStates {
+public:
+  explicit StationaryStates(const Case& c) : c_(c) {}
+  const State& at(double w) {
+    for (const auto& [v, st] : known_)
+      if (v == w) return st;
+    known_.emplace_back(w, stationary_or_none(c_, w));
+    return known_.back().second;
+  }
+
+private:
+  const Case& c_;
+  std::deque<std::pair<double, State>> known_; // (references stay valid)
+};
+
 ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
-                       const SpectrumOptions& o, const RunControl& control) {
+                       const SpectrumOptions& o, const RunControl& control,
+                       StationaryStates& states) {
   double travel = 2.0 * cells + 8.0;
   for (const auto& seg : c.history.segments)
     travel += seg.w * seg.T / (c.a1() / cells);
@@ -58,15 +80,14 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
   // a segment that has reached its stationary state keeps it (stationary_watch.hpp)
   StationaryWatch watch(o.rtol, 2.0 * c.a1(), o.keep_stationary);
-  State ss, now;
+  State now;
   double w_now = 0.0;
   out.series = sample_history(
       c, control,
       [&](double w) {
         row.change_velocity(w);
         w_now = w;
-        ss = stationary_or_none(c, w);
-        watch.start(w, ss.FN > 0.0);
+        watch.start(w, true);
       },
       [&](double dt, double) {
         if (watch.frozen()) return;
@@ -77,9 +98,14 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
       [&] {
         if (watch.frozen()) return now;
         now = row.measure();
-        if (watch.due())
-          watch.check(now.FN / ss.FN - 1.0,
-                      (now.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
+        if (!watch.due()) return now;
+        const State& ss = states.at(w_now);
+        if (!(ss.FN > 0.0)) {
+          watch.stop();
+          return now;
+        }
+        watch.check(now.FN / ss.FN - 1.0,
+                    (now.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
         return now;
       },
       [&](std::size_t) { return probe; }, out.probes);
@@ -184,9 +210,11 @@ LoadGeometry load_geometry(const Case& c) {
 
 class LoadRun {
 public:
-  LoadRun(const Case& c, spectrum::Row& row, double cells, double tol, StationaryWatch watch)
+  LoadRun(const Case& c, spectrum::Row& row, double cells, double tol, StationaryWatch watch,
+          StationaryStates& states)
       : c_(c), row_(row), cells_(cells), eps_(step_rule(c.rheology).factor / cells),
-        first_(step_rule(c.rheology).first), tol_(tol), ftol_(tol), watch_(watch) {}
+        first_(step_rule(c.rheology).first), tol_(tol), ftol_(tol), watch_(watch), states_(states) {
+  }
 
   /// The depth rate just after a change to w (the dashpot's balance at the instant).
   void change(double w) {
@@ -243,15 +271,14 @@ private:
   }
 
   /// The segment's stationary state under F0 (watch_ decides when it holds).
-  void start_watch(double w) {
-    ss_ = stationary_or_none(c_, w);
-    watch_.start(w, ss_.FN > 0.0);
-  }
+  void start_watch(double w) { watch_.start(w, true); }
   void watch(double h) {
     watch_.moved(watch_w_ * h);
-    if (watch_.due())
-      watch_.check(row_.depth_now() / ss_.d - 1.0,
-                   (at_.mu - ss_.mu) / std::max(std::abs(ss_.mu), kNegligibleFriction));
+    if (!watch_.due()) return;
+    const State& ss = states_.at(watch_w_);
+    if (!(ss.FN > 0.0)) return watch_.stop();
+    watch_.check(row_.depth_now() / ss.d - 1.0,
+                 (at_.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
   }
 
   bool step(double h) {
@@ -369,7 +396,7 @@ private:
   double t_[4] = {}, d_[4] = {}, k_ = 0.0;
   double h_err_ = std::numeric_limits<double>::infinity();
   StationaryWatch watch_;
-  State ss_;
+  StationaryStates& states_;
   double watch_w_ = 0.0;
 };
 
@@ -392,7 +419,8 @@ void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rt
 }
 
 ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cells, double phase,
-                            const SpectrumOptions& o, const RunControl& control) {
+                            const SpectrumOptions& o, const RunControl& control,
+                            StationaryStates& states) {
   const LoadGeometry geo = load_geometry(c);
   const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
   if (!(a_win / dx < 4.0 * kMaxCells))
@@ -402,7 +430,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
                     kName);
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
-              StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary));
+              StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);
   run.t_min = geo.t_min;
   double t_seg = 0.0; // since the segment's start
   ResolutionRun out;
@@ -461,9 +489,10 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   r.observed_order = true;
   const RunControl own;
   const RunControl& control = o.control != nullptr ? *o.control : own;
+  StationaryStates states(c);
   return refine(c, r, [&](double n, double ph) {
-    return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control)
-                                : run_once(c, law, n, ph, o, control);
+    return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control, states)
+                                : run_once(c, law, n, ph, o, control, states);
   });
 }
 

@@ -52,6 +52,8 @@ public:
     ++within_;
     frozen_ = within_ >= kChecks && spread <= kSpread * rtol_;
   }
+  /// No stationary state to compare with: not watched any longer.
+  void stop() { watching_ = false; }
   bool frozen() const { return frozen_; }
 
 private:
