@@ -1,14 +1,16 @@
 // The extension module mdrmap._core: the C++ half of the Python package
-// `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes option
-// texts as the command line does (app/case_input.hpp builds and checks the
-// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), without
-// the GIL, looking at Ctrl-C and reporting progress now and then
+// `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes the
+// options' values as Python gives them, numbers as doubles (never as texts;
+// app/option_value.hpp), and builds and checks the case with the command
+// line's checks and messages (app/case_input.hpp) and runs it as `mdrmap simulate` does
+// (app/simulation.hpp), without the GIL, looking at Ctrl-C and reporting progress now and then
 // (python/call.hpp); the time series are handed over as
 // numpy arrays that own the result's vectors (no copy). InvalidInput becomes
 // mdrmap.InvalidInput.
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -63,11 +65,36 @@ void make_invalid_input_class(py::module_& m) {
   invalid_input_class = cls.release();
 }
 
-app::OptionTexts to_texts(const py::dict& options) {
-  app::OptionTexts texts;
-  for (const auto& [key, value] : options)
-    texts.emplace(py::cast<std::string>(key), py::cast<std::string>(value));
-  return texts;
+/// A value the package (mdrmap/__init__.py) hands over: a str (a text: a
+/// name, a path, or a number as the command line writes it), a float (a
+/// number: that double), a bool (a flag), a tuple of floats (wlf, v-list) or
+/// a list of pairs of floats (history, prony). The package has checked the
+/// types against the keyword; anything else here is its error.
+app::OptionValue to_value(const std::string& option, const py::handle& value) {
+  if (py::isinstance<py::str>(value))
+    return app::OptionValue::of_text(py::cast<std::string>(value));
+  if (py::isinstance<py::bool_>(value)) return app::OptionValue::of_flag(py::cast<bool>(value));
+  if (py::isinstance<py::float_>(value))
+    return app::OptionValue::of_number(py::cast<double>(value));
+  if (py::isinstance<py::list>(value)) {
+    std::vector<std::pair<double, double>> pairs;
+    for (const py::handle item : value)
+      pairs.push_back(py::cast<std::pair<double, double>>(item));
+    return app::OptionValue::of_pairs(std::move(pairs));
+  }
+  if (py::isinstance<py::tuple>(value))
+    return app::OptionValue::of_numbers(py::cast<std::vector<double>>(value));
+  throw std::logic_error("mdrmap._core: the value of " + option + " is a " +
+                         py::cast<std::string>(py::str(value.get_type())));
+}
+
+app::OptionValues to_values(const py::dict& options) {
+  app::OptionValues values;
+  for (const auto& [key, value] : options) {
+    const std::string option = py::cast<std::string>(key);
+    values.emplace(option, to_value(option, value));
+  }
+  return values;
 }
 
 /// A numpy array over `v`, kept alive by `owner` (no copy).
@@ -157,11 +184,11 @@ py::dict case_dict(const Case& c) {
 /// Runs one case from its option texts; the result as a dict of numpy arrays
 /// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
 py::dict simulate(const py::dict& options, const py::object& progress) {
-  const app::OptionTexts texts = to_texts(options);
+  const app::OptionValues values = to_values(options);
   auto sim = std::make_unique<app::Simulation>();
   run_call( // (the input reads a spectrum file)
       [&](const RunControl& control) {
-        *sim = app::simulate(app::read_case_input(texts), control);
+        *sim = app::simulate(app::read_case_input(values), control);
       },
       progress);
   py::dict out;
@@ -195,12 +222,12 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
 /// them: `options` its options (the case's, and v or v-list), the result
 /// {"v": velocities, FN, Fx, mu, a2 (d, a1 under load): arrays}.
 py::dict stationary(const py::dict& options, const py::object& progress) {
-  const app::OptionTexts texts = to_texts(options);
+  const app::OptionValues values = to_values(options);
   app::StationaryInput in;
   std::vector<State> states;
   run_call( // a spectrum file, quadratures
       [&](const RunControl& control) {
-        in = app::read_stationary_input(texts);
+        in = app::read_stationary_input(values);
         states = app::stationary_states(in, control);
       },
       progress);
@@ -274,9 +301,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("option_names", &mdrmap::app::case_option_names,
         "The options of a case, as the CLI spells them, in the order of its help.");
   m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
-        "Runs one case from {option: text}; a dict of numpy arrays and records.");
+        "Runs one case from {option: value}; a dict of numpy arrays and records.");
   m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
-        "The stationary states at v or v-list of a case given as {option: text}.");
+        "The stationary states at v or v-list of a case given as {option: value}.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");

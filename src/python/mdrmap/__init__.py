@@ -74,68 +74,136 @@ _SIMULATE_KEYWORDS = _keywords(_OPTIONS)
 _STATIONARY_KEYWORDS = _keywords(_STATIONARY)
 
 
-def _number_text(option, value):
-    """The text the command line would get for a number: the shortest that
-    reads back to the same double (repr), an integer's digits."""
-    kind = type(value)
-    if kind is float and option not in _INTEGER:  # the common cases first
-        return repr(value)
-    if kind is int or kind is str:
-        return str(value)
-    if value is None:
-        keyword = option.replace("-", "_")
-        raise InvalidInput(f"needs a value, e.g. {keyword}=1.5", option)
-    if isinstance(value, bool) or (getattr(getattr(value, "dtype", None), "kind", "") == "b"
-                                   and getattr(value, "ndim", None) == 0):
-        return str(bool(value))  # refused: "must be a number, got True" (numpy's bool_ too)
-    if isinstance(value, (bytes, bytearray, memoryview)):
-        raise InvalidInput(f"must be a number, got {type(value).__name__} {bytes(value)[:60]!r}",
-                           option)
-    if isinstance(value, os.PathLike):
-        if option in _PATHS:
-            return os.fspath(value)
-        raise InvalidInput(f"must be a number, got a path {os.fspath(value)[:60]!r}", option)
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return str(value)  # refused as the command line refuses a word
-    if option in _INTEGER and x.is_integer() and abs(x) < 2.0 ** 63:
-        return str(int(x))
-    return repr(x)
+class InvalidType(InvalidInput, TypeError):
+    """A value of the wrong type for its keyword (a bool, bytes or a path
+    where a number is expected): an InvalidInput (a ValueError) naming the
+    option, and a TypeError."""
 
 
 # the options that name a file (they take a str or an os.PathLike)
 _PATHS = {"prony-file", "history-file", "material"}
-
+# the options whose value is a name (a str)
+_NAMES = {"profile", "spacing", "solver"}
+# the options that are a flag (a bool, or the command line's text)
+_FLAGS = {"allow-large-shift"}
 _PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
           "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}
 
 
-def _pairs_text(option, value):
-    """history [(w1, T1), (w2, T2), ...] as "W1:T1,W2:T2,...", prony [(G1, tau1),
-    ...] as "G1:TAU1,..." (a str as it is)."""
+def _is_bool(value):
+    return isinstance(value, bool) or (getattr(getattr(value, "dtype", None), "kind", "") == "b"
+                                       and getattr(value, "ndim", None) == 0)
+
+
+def _not_a_number(option, value):
+    """The refusal of a value that is not a number where one is expected."""
+    if _is_bool(value):
+        return InvalidType(f"must be a number, got {bool(value)}", option)
+    if isinstance(value, (bytes, bytearray, memoryview)):
+        return InvalidType(f"must be a number, got {type(value).__name__} "
+                           f"{bytes(value)[:60]!r}", option)
+    if isinstance(value, os.PathLike):
+        return InvalidType(f"must be a number, got a path {os.fspath(value)[:60]!r}", option)
+    text = repr(value)
+    text = text if len(text) <= 60 else text[:60] + "..."
+    return InvalidType(f"must be a number, got {type(value).__name__} {text}", option)
+
+
+def _number(option, value):
+    """A number as the float the core takes (exactly: a float as it is, an
+    int rounded once, numpy's scalars as their value); a str as the text the
+    command line takes (the core reads it as the CLI does)."""
+    kind = type(value)
+    if kind is float or kind is str:  # the common cases first
+        return value
+    if value is None:
+        raise InvalidInput(f"needs a value, e.g. {option.replace('-', '_')}=1.5", option)
+    if _is_bool(value) or not isinstance(value, numbers.Real) and \
+            not (getattr(getattr(value, "dtype", None), "kind", "-") in ("f", "i", "u")
+                 and getattr(value, "ndim", None) == 0):
+        raise _not_a_number(option, value)
+    try:
+        return float(value)
+    except OverflowError:
+        raise InvalidInput(f"must be a finite number, got {value} (too large for a double)",
+                           option) from None
+
+
+def _text(option, value):
+    """A name or a path: a str (a path may be an os.PathLike)."""
+    if isinstance(value, str):
+        return value
+    if option in _PATHS and isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if value is None:
+        raise InvalidInput(f"needs a value, e.g. {option.replace('-', '_')}=...", option)
+    what = "a path (a str or a pathlib.Path)" if option in _PATHS else "a str"
+    raise InvalidType(f"must be {what}, got {type(value).__name__} {value!r:.60}", option)
+
+
+def _pairs(option, value):
+    """history [(w1, T1), (w2, T2), ...], prony [(G1, tau1), ...]: a list of
+    pairs of floats (a str as the command line's text)."""
     if isinstance(value, str) or value is None:
-        return _number_text(option, value)
+        return _number(option, value)
     item, pair = _PAIRS[option]
     try:
         items = list(value)
     except TypeError:
-        raise InvalidInput(f"must be a list of {item}s {pair.split(':')[0]}, got {value!r}",
-                           option) from None
-    parts = []
+        raise InvalidType(f"must be a list of {item}s {pair.split(':')[0]}, got {value!r}",
+                          option) from None
+    out = []
     for k, it in enumerate(items, 1):
         try:
             a, b = it
         except (TypeError, ValueError):
-            raise InvalidInput(f"{item} {k} must be a pair {pair}, got {it!r}", option) from None
-        parts.append(f"{_number_text(option, a)}:{_number_text(option, b)}")
-    return ",".join(parts)
+            raise InvalidType(f"{item} {k} must be a pair {pair}, got {it!r}", option) from None
+        out.append((_number(option, a), _number(option, b)))
+    if any(isinstance(x, str) for p in out for x in p):  # texts: as the command line's
+        return ",".join(f"{a}:{b}" for a, b in out)
+    return out
+
+
+def _wlf(value):
+    """wlf=(C1, C2, TREF): a tuple of floats (a str as it is; a TREF with a
+    unit, "298.15K", makes the whole a text)."""
+    if isinstance(value, str) or value is None:
+        return _number("wlf", value)
+    try:
+        items = list(value)
+    except TypeError:
+        items = None
+    if items is None or len(items) != 3:
+        raise InvalidInput(f"must be the three WLF constants (C1, C2, TREF), got {value!r}",
+                           "wlf")
+    x = tuple(_number("wlf", c) for c in items)
+    return ":".join(str(c) for c in x) if any(isinstance(c, str) for c in x) else x
+
+
+def _flag(option, value):
+    if _is_bool(value):
+        return bool(value)
+    if isinstance(value, str):
+        return value
+    raise InvalidType(f"must be True or False (a flag), got {value!r:.60}", option)
+
+
+def _value(option, value):
+    """The value the core takes for an option (mdrmap._core: a float, a str,
+    a bool, a tuple of floats or a list of pairs of floats)."""
+    if option in _PATHS or option in _NAMES:
+        return _text(option, value)
+    if option in _PAIRS:
+        return _pairs(option, value)
+    if option == "wlf":
+        return _wlf(value)
+    if option in _FLAGS:
+        return _flag(option, value)
+    return _number(option, value)  # (T: a str may carry a unit, "25C")
 
 
 def _texts(kwargs, keywords, function, spelled=None):
-    """{option: text} of the keyword arguments; `spelled` gets {option:
+    """{option: value} of the keyword arguments; `spelled` gets {option:
     keyword} where the keyword is not the option's spelling (temperature)."""
     texts = {}
     spelled = {} if spelled is None else spelled
@@ -147,29 +215,21 @@ def _texts(kwargs, keywords, function, spelled=None):
                                f"case-sensitive: {names}), got {key}", key)
         if option in texts:
             raise InvalidInput("may be given only once", option)
-        if option in ("history", "prony"):
-            texts[option] = _pairs_text(option, value)
-        elif option == "wlf":
-            texts[option] = _wlf_text(value)
-        else:
-            texts[option] = _number_text(option, value)
         if key != option and key == _doc.keyword(option):
             spelled[option] = key
+        try:
+            texts[option] = _value(option, value)
+        except InvalidInput as e:
+            raise _as_keyword(e, spelled) from None
     return texts
 
 
-def _wlf_text(value):
-    """wlf=(C1, C2, TREF) as "C1:C2:TREF" (a str as it is)."""
-    if isinstance(value, str) or value is None:
-        return _number_text("wlf", value)
-    try:
-        items = list(value)
-    except TypeError:
-        items = None
-    if items is None or len(items) != 3:
-        raise InvalidInput(f"must be the three WLF constants (C1, C2, TREF), got {value!r}",
-                           "wlf")
-    return ":".join(_number_text("wlf", x) for x in items)
+def _as_keyword(e, spelled):
+    """e naming the keyword its option was given under (temperature for T)."""
+    if e.option in spelled:
+        e.keyword = spelled[e.option]
+        e.args = (f"{e.keyword}: {e.message}",)
+    return e
 
 
 def _call(function, texts, progress, spelled):
@@ -182,9 +242,7 @@ def _call(function, texts, progress, spelled):
     except InvalidInput as e:
         if e.option not in spelled:
             raise
-        e.keyword = spelled[e.option]
-        e.args = (f"{e.keyword}: {e.message}",)
-        raise e from None
+        raise _as_keyword(e, spelled) from None
 
 
 class Result:
@@ -295,7 +353,9 @@ def stationary(*, progress=None, **options):
     spelled = {}
     texts = _texts(options, _STATIONARY_KEYWORDS, "stationary", spelled)
     if many:
-        texts["v-list"] = ",".join(_number_text("v", x) for x in v)
+        texts["v-list"] = tuple(_number("v", x) for x in v)
+        if any(isinstance(x, str) for x in texts["v-list"]):
+            texts["v-list"] = ",".join(str(x) for x in texts["v-list"])
         spelled["v-list"] = "v"
     out = _call(_core.stationary, texts, progress, spelled)
     if many:
