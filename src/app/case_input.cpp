@@ -9,10 +9,14 @@
 #include <cstring>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
 
 #include "app/material_input.hpp"
 #include "app/prony_file.hpp"
 #include "app/prony_input.hpp"
+#include "app/pyvisco_input.hpp"
+#include "app/small_file.hpp"
+#include "core/model/row_limits.hpp"
 #include "core/model/scales.hpp"
 
 namespace mdrmap::app {
@@ -554,6 +558,59 @@ CaseInput read_canonical(const Values& o) {
   return in;
 }
 
+// --- One part alone --------------------------------------------------------------
+
+/// Whether option `name` is one of the part's (read_case_part).
+bool of_part(const std::string& name, Part part) {
+  const std::vector<std::string> extra =
+      part == Part::Indenter
+          ? std::vector<std::string>(std::begin(kIndenterOptions), std::end(kIndenterOptions))
+      : part == Part::Material
+          ? std::vector<std::string>(std::begin(kRheologyOptions), std::end(kRheologyOptions))
+          : std::vector<std::string>{"history", "history-file"};
+  if (std::find(extra.begin(), extra.end(), name) != extra.end()) return true;
+  const ParamSpec* p = find_parameter(name);
+  return p != nullptr && p->part == part && part != Part::History;
+}
+
+/// The history alone: --history (pairs or text) or --history-file.
+void read_part_history(const Values& o, CaseInput& in) {
+  if (o.has("history-file")) {
+    require_record_alone(o);
+    in.record = read_lab_record(o.text("history-file"));
+    apply_lab_record(*in.record, in.c);
+  } else if (o.has("history")) {
+    in.c.history.segments = o["history"].kind == OptionValue::Kind::Pairs
+                                ? history_of_pairs(o["history"].pairs)
+                                : parse_history(o.text("history"));
+  } else
+    throw InvalidInput("history", "is required: one or more segments (W, T), or a lab record "
+                                  "(history-file); got nothing");
+}
+
+CaseInput read_part(const Values& o, const OptionValues& given, Part part) {
+  for (const auto& [name, value] : given)
+    if (!of_part(name, part)) throw InvalidInput(name, "is not an option of this part of a case");
+  CaseInput in;
+  Case& c = in.c;
+  if (part == Part::Indenter) {
+    c.indenter.profile = o.has("profile") ? parse_profile(o.text("profile")) : Profile::Parabola;
+    require_profile_options(o, c.indenter.profile);
+  }
+  const auto in_part = [&](const ParamSpec& p) {
+    return p.part == part && part != Part::History && p.applies_to(c.indenter.profile);
+  };
+  for (const auto& p : case_parameters())
+    if (in_part(p) && p.required && !o.has(p.name))
+      throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
+  for (const auto& p : case_parameters())
+    if (in_part(p)) p.set(c, o.has(p.name) ? parse_parameter(p, o[p.name]) : p.fallback);
+  if (part == Part::Material) read_rheology(o, in);
+  if (part == Part::Indenter) check_profile_limits(c.indenter);
+  if (part == Part::History) read_part_history(o, in);
+  return in;
+}
+
 } // namespace
 
 CaseInput read_case_input(const OptionTexts& texts) {
@@ -570,6 +627,26 @@ CaseInput read_case_input(const OptionValues& values) {
     if (it == spelled.end()) throw;
     throw InvalidInput(it->second, e.what());
   }
+}
+
+CaseInput read_case_part(const OptionValues& values, Part part) {
+  if (part != Part::Indenter && part != Part::Material && part != Part::History)
+    throw std::logic_error("read_case_part: the indenter, the material or the history");
+  return read_part(Values(values, {}), values, part);
+}
+
+std::string material_file_option(const std::string& path) {
+  const std::string text = read_small_file("material", path, "a material file is a few lines");
+  if (is_pyvisco_csv(text)) return "material";
+  std::size_t at = 0;
+  while (at < text.size()) { // the first line that is not blank or an Abaqus comment (**)
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line = trimmed(text.substr(at, end - at));
+    if (!line.empty() && line != "\r" && line.rfind("**", 0) != 0)
+      return line[0] == '*' ? "material" : "prony-file";
+    at = end + 1;
+  }
+  return "prony-file";
 }
 
 std::vector<std::string> case_option_spellings() {

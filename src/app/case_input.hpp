@@ -68,6 +68,21 @@ CaseInput read_case_input(const OptionTexts& texts);
 /// checks, their order and their messages are the texts'.
 CaseInput read_case_input(const OptionValues& values);
 
+/// One part of a case alone, read and checked as read_case_input reads it
+/// (the same messages), without the checks that need the other parts (the
+/// scales, the default window): Part::Indenter (profile and its
+/// parameters), Part::Material (the table's material parameters, the
+/// spectrum, the temperature), Part::History (history, or history-file).
+/// The part is set in the result's case, the other parts are defaults.
+/// Throws InvalidInput; an option of another part is refused.
+CaseInput read_case_part(const OptionValues& values, Part part);
+
+/// The option a material file goes under: "material" for an Abaqus card
+/// (its first line that is not blank or a comment ** is a keyword *...)
+/// or pyvisco's CSV, "prony-file" for a spectrum file (columns by name).
+/// Throws InvalidInput("material") where the file cannot be read.
+std::string material_file_option(const std::string& path);
+
 /// The members of the table's one_of group `group`, in the table's order.
 std::vector<const ParamSpec*> group_members(const std::string& group);
 

@@ -25,6 +25,7 @@
 #include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
+#include "core/model/temperature.hpp"
 #include "mdrmap/version.hpp"
 #include "python/call.hpp"
 
@@ -246,6 +247,50 @@ py::dict stationary(const py::dict& options, const py::object& progress) {
   return out;
 }
 
+/// One part of a case as read_case_part reads it: its options as the case
+/// holds them (the indenter: profile and its parameters; the material: G,
+/// tau, aT, the spectrum's (G, tau) pairs, the temperature and the WLF
+/// constants that gave aT, notes; the history: its (w, T) pairs, and v and
+/// the record's path and rows where a lab record gave it).
+py::dict read_part(const py::dict& options, const std::string& part) {
+  const Part which = part == "indenter"   ? Part::Indenter
+                     : part == "material" ? Part::Material
+                     : part == "history"  ? Part::History
+                                          : throw std::logic_error("read_part: " + part);
+  const app::CaseInput in = app::read_case_part(to_values(options), which);
+  const Case& c = in.c;
+  py::dict d;
+  if (which == Part::Indenter) d["profile"] = profile_name(c.indenter.profile);
+  for (const auto& p : case_parameters())
+    if (p.part == which && which != Part::History && p.applies_to(c.indenter.profile))
+      d[p.name] = p.get(c);
+  if (which == Part::Material) {
+    py::list prony;
+    for (const Branch& b : c.rheology.branches)
+      prony.append(py::make_tuple(b.G, b.tau));
+    d["prony"] = prony;
+    if (in.temperature) {
+      const app::TemperatureInput& t = *in.temperature;
+      d["temperature"] = t.T;
+      d["wlf"] = py::make_tuple(t.wlf.C1, t.wlf.C2, t.wlf.Tref);
+      d["unit"] = unit_suffix(t.unit);
+    }
+    d["notes"] = in.notes;
+  }
+  if (which == Part::History) {
+    py::list history;
+    for (const Segment& seg : c.history.segments)
+      history.append(py::make_tuple(seg.w, seg.T));
+    d["history"] = history;
+    if (in.record) {
+      d["v"] = c.history.v0;
+      d["record"] = in.record->path;
+      d["rows"] = in.record->t.size();
+    }
+  }
+  return d;
+}
+
 /// The old spellings the options take: {alias: the table's name}.
 py::dict alias_table() {
   py::dict d;
@@ -304,6 +349,10 @@ PYBIND11_MODULE(_core, m) {
         "Runs one case from {option: value}; a dict of numpy arrays and records.");
   m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
         "The stationary states at v or v-list of a case given as {option: value}.");
+  m.def("read_part", &read_part, py::arg("options"), py::arg("part"),
+        "One part (indenter, material, history) of a case from {option: value}, checked.");
+  m.def("material_file_option", &mdrmap::app::material_file_option, py::arg("path"),
+        "The option a material file goes under: material (a card) or prony-file.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");

@@ -12,17 +12,21 @@ The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
 lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
 '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
-numbers (or as the text the command line takes); the history as a list of
+or numpy numbers, which reach the solvers as those doubles (or as the text
+the command line takes); a value of the wrong type raises InvalidType (an
+InvalidInput and a TypeError); the history as a list of
 (w, T) pairs (or "W1:T1,W2:T2"), a spectrum as prony=[(G, tau), ...], the
 WLF constants as wlf=(C1, C2, TREF) with temperature= (T= its old spelling).
 FN= is accepted as the old spelling of the prescribed load F0= (not both).
+The parts of a case may be given as objects, checked when made:
+material=mdrmap.Material(G=1, tau=1), indenter=mdrmap.Indenter(R=10),
+history=mdrmap.History([(0.1, 20), (1, 20)]) (mdrmap.parts).
 help(mdrmap.simulate) lists every keyword. The results equal the command
 line's bit for bit; the solver runs without the GIL, so a thread pool over
 cases uses every core; Ctrl-C raises KeyboardInterrupt within a fraction of
 a second, and progress=callable reports how far a call got.
 """
 
-import numbers
 import os
 import sys
 
@@ -41,10 +45,14 @@ except ImportError as _error:  # not built (for this Python), or does not load
                       "`pip install --no-build-isolation --no-index .`") from None
 from ._core import InvalidInput
 from .maps import MapError, open_map, to_grid
-from . import _doc
+from . import _doc, _values
+from ._values import InvalidType
+from .parts import History, Indenter, Material
+from . import parts as _parts
 
 __version__ = _core.__version__
 __all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
+           "Material", "Indenter", "History", "InvalidType",
            "InvalidInput", "MapError"]
 
 # the options as the command line spells them -> the keyword of each
@@ -59,177 +67,8 @@ _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
                     "allow-large-shift") if o in _OPTIONS]
 
 
-def _keywords(options):
-    """keyword -> option: each option under its Python name (and as spelled),
-    and the old spelling of a parameter (FN) as itself (the core reads it as
-    its parameter's and refuses both)."""
-    out = {o.replace("-", "_"): o for o in options}
-    out.update({o: o for o in options})
-    out.update({alias: alias for alias, name in _ALIASES.items() if name in options})
-    out.update({_doc.keyword(o): o for o in options})  # temperature for T
-    return out
-
-
-_SIMULATE_KEYWORDS = _keywords(_OPTIONS)
-_STATIONARY_KEYWORDS = _keywords(_STATIONARY)
-
-
-class InvalidType(InvalidInput, TypeError):
-    """A value of the wrong type for its keyword (a bool, bytes or a path
-    where a number is expected): an InvalidInput (a ValueError) naming the
-    option, and a TypeError."""
-
-
-# the options that name a file (they take a str or an os.PathLike)
-_PATHS = {"prony-file", "history-file", "material"}
-# the options whose value is a name (a str)
-_NAMES = {"profile", "spacing", "solver"}
-# the options that are a flag (a bool, or the command line's text)
-_FLAGS = {"allow-large-shift"}
-_PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
-          "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}
-
-
-def _is_bool(value):
-    return isinstance(value, bool) or (getattr(getattr(value, "dtype", None), "kind", "") == "b"
-                                       and getattr(value, "ndim", None) == 0)
-
-
-def _not_a_number(option, value):
-    """The refusal of a value that is not a number where one is expected."""
-    if _is_bool(value):
-        return InvalidType(f"must be a number, got {bool(value)}", option)
-    if isinstance(value, (bytes, bytearray, memoryview)):
-        return InvalidType(f"must be a number, got {type(value).__name__} "
-                           f"{bytes(value)[:60]!r}", option)
-    if isinstance(value, os.PathLike):
-        return InvalidType(f"must be a number, got a path {os.fspath(value)[:60]!r}", option)
-    text = repr(value)
-    text = text if len(text) <= 60 else text[:60] + "..."
-    return InvalidType(f"must be a number, got {type(value).__name__} {text}", option)
-
-
-def _number(option, value):
-    """A number as the float the core takes (exactly: a float as it is, an
-    int rounded once, numpy's scalars as their value); a str as the text the
-    command line takes (the core reads it as the CLI does)."""
-    kind = type(value)
-    if kind is float or kind is str:  # the common cases first
-        return value
-    if value is None:
-        raise InvalidInput(f"needs a value, e.g. {option.replace('-', '_')}=1.5", option)
-    if _is_bool(value) or not isinstance(value, numbers.Real) and \
-            not (getattr(getattr(value, "dtype", None), "kind", "-") in ("f", "i", "u")
-                 and getattr(value, "ndim", None) == 0):
-        raise _not_a_number(option, value)
-    try:
-        return float(value)
-    except OverflowError:
-        raise InvalidInput(f"must be a finite number, got {value} (too large for a double)",
-                           option) from None
-
-
-def _text(option, value):
-    """A name or a path: a str (a path may be an os.PathLike)."""
-    if isinstance(value, str):
-        return value
-    if option in _PATHS and isinstance(value, os.PathLike):
-        return os.fspath(value)
-    if value is None:
-        raise InvalidInput(f"needs a value, e.g. {option.replace('-', '_')}=...", option)
-    what = "a path (a str or a pathlib.Path)" if option in _PATHS else "a str"
-    raise InvalidType(f"must be {what}, got {type(value).__name__} {value!r:.60}", option)
-
-
-def _pairs(option, value):
-    """history [(w1, T1), (w2, T2), ...], prony [(G1, tau1), ...]: a list of
-    pairs of floats (a str as the command line's text)."""
-    if isinstance(value, str) or value is None:
-        return _number(option, value)
-    item, pair = _PAIRS[option]
-    try:
-        items = list(value)
-    except TypeError:
-        raise InvalidType(f"must be a list of {item}s {pair.split(':')[0]}, got {value!r}",
-                          option) from None
-    out = []
-    for k, it in enumerate(items, 1):
-        try:
-            a, b = it
-        except (TypeError, ValueError):
-            raise InvalidType(f"{item} {k} must be a pair {pair}, got {it!r}", option) from None
-        out.append((_number(option, a), _number(option, b)))
-    if any(isinstance(x, str) for p in out for x in p):  # texts: as the command line's
-        return ",".join(f"{a}:{b}" for a, b in out)
-    return out
-
-
-def _wlf(value):
-    """wlf=(C1, C2, TREF): a tuple of floats (a str as it is; a TREF with a
-    unit, "298.15K", makes the whole a text)."""
-    if isinstance(value, str) or value is None:
-        return _number("wlf", value)
-    try:
-        items = list(value)
-    except TypeError:
-        items = None
-    if items is None or len(items) != 3:
-        raise InvalidInput(f"must be the three WLF constants (C1, C2, TREF), got {value!r}",
-                           "wlf")
-    x = tuple(_number("wlf", c) for c in items)
-    return ":".join(str(c) for c in x) if any(isinstance(c, str) for c in x) else x
-
-
-def _flag(option, value):
-    if _is_bool(value):
-        return bool(value)
-    if isinstance(value, str):
-        return value
-    raise InvalidType(f"must be True or False (a flag), got {value!r:.60}", option)
-
-
-def _value(option, value):
-    """The value the core takes for an option (mdrmap._core: a float, a str,
-    a bool, a tuple of floats or a list of pairs of floats)."""
-    if option in _PATHS or option in _NAMES:
-        return _text(option, value)
-    if option in _PAIRS:
-        return _pairs(option, value)
-    if option == "wlf":
-        return _wlf(value)
-    if option in _FLAGS:
-        return _flag(option, value)
-    return _number(option, value)  # (T: a str may carry a unit, "25C")
-
-
-def _texts(kwargs, keywords, function, spelled=None):
-    """{option: value} of the keyword arguments; `spelled` gets {option:
-    keyword} where the keyword is not the option's spelling (temperature)."""
-    texts = {}
-    spelled = {} if spelled is None else spelled
-    for key, value in kwargs.items():
-        option = keywords.get(key)
-        if option is None:
-            names = ", ".join(k for k in keywords if "-" not in k)
-            raise InvalidInput(f"not a keyword of mdrmap.{function} (keywords are "
-                               f"case-sensitive: {names}), got {key}", key)
-        if option in texts:
-            raise InvalidInput("may be given only once", option)
-        if key != option and key == _doc.keyword(option):
-            spelled[option] = key
-        try:
-            texts[option] = _value(option, value)
-        except InvalidInput as e:
-            raise _as_keyword(e, spelled) from None
-    return texts
-
-
-def _as_keyword(e, spelled):
-    """e naming the keyword its option was given under (temperature for T)."""
-    if e.option in spelled:
-        e.keyword = spelled[e.option]
-        e.args = (f"{e.keyword}: {e.message}",)
-    return e
+_SIMULATE_KEYWORDS = _values.keyword_map(_OPTIONS)
+_STATIONARY_KEYWORDS = _values.keyword_map(_STATIONARY)
 
 
 def _call(function, texts, progress, spelled):
@@ -242,7 +81,7 @@ def _call(function, texts, progress, spelled):
     except InvalidInput as e:
         if e.option not in spelled:
             raise
-        raise _as_keyword(e, spelled) from None
+        raise _values.as_keyword(e, spelled) from None
 
 
 class Result:
@@ -329,8 +168,9 @@ class Result:
 
 
 def simulate(*, progress=None, **options):
+    options = _parts.merged(options, ("material", "indenter", "history"))
     spelled = {}
-    texts = _texts(options, _SIMULATE_KEYWORDS, "simulate", spelled)
+    texts = _values.values(options, _SIMULATE_KEYWORDS, "simulate", spelled)
     return Result(_call(_core.simulate, texts, progress, spelled))
 
 
@@ -338,12 +178,13 @@ simulate.__doc__ = _doc.docstring(
     "Runs one case as `mdrmap simulate` does and returns a Result.\n\n"
     "The keywords are the command line's options with '_' for '-'; numbers as\n"
     "Python or numpy numbers (or the text the command line takes).",
-    _doc.entries(_OPTIONS, _TABLE, _ALIASES) + [("progress", _doc.PROGRESS)],
+    _doc.entries(_OPTIONS, _TABLE, _ALIASES) + _doc.PARTS + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError\n"
     "(the case cannot be computed within its budget or rtol, exit code 1).")
 
 
 def stationary(*, progress=None, **options):
+    options = _parts.merged(options, ("material", "indenter"))
     v = options.get("v")
     many = v is not None and not isinstance(v, (str, bytes)) and \
         (getattr(v, "ndim", None) or 0) > 0 or isinstance(v, (list, tuple, range))
@@ -351,9 +192,9 @@ def stationary(*, progress=None, **options):
         options = dict(options)
         del options["v"]
     spelled = {}
-    texts = _texts(options, _STATIONARY_KEYWORDS, "stationary", spelled)
+    texts = _values.values(options, _STATIONARY_KEYWORDS, "stationary", spelled)
     if many:
-        texts["v-list"] = tuple(_number("v", x) for x in v)
+        texts["v-list"] = tuple(_values.number("v", x) for x in v)
         if any(isinstance(x, str) for x in texts["v-list"]):
             texts["v-list"] = ",".join(str(x) for x in texts["v-list"])
         spelled["v-list"] = "v"
@@ -372,7 +213,7 @@ stationary.__doc__ = _doc.docstring(
     "arrays, one value per velocity, with v itself.",
     [(k, t) if k != "v" else ("v", t + "; or a list or array of velocities")
      for k, t in _doc.entries(_STATIONARY, _TABLE, _ALIASES)] +
-    [("progress", _doc.PROGRESS)],
+    _doc.PARTS + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2).")
 
 
