@@ -8,8 +8,10 @@
 // numpy arrays that own the result's vectors (no copy). InvalidInput becomes
 // mdrmap.InvalidInput.
 #include <algorithm>
+#include <cstddef>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -182,28 +184,11 @@ py::dict case_dict(const Case& c) {
   return d;
 }
 
-/// Runs one case from its option texts; the result as a dict of numpy arrays
-/// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
-py::dict simulate(const py::dict& options, const py::object& progress) {
-  const app::OptionValues values = to_values(options);
-  auto sim = std::make_unique<app::Simulation>();
-  run_call( // (the input reads a spectrum file)
-      [&](const RunControl& control) {
-        *sim = app::simulate(app::read_case_input(values), control);
-      },
-      progress);
-  py::dict out;
-  out["events"] = events(sim->record);
-  const bool load = sim->record.c.loading.by_force();
-  out["pre"] = fields(app::state_fields(sim->series.pre, load));
-  out["info"] = info(sim->record);
-  out["case"] = case_dict(sim->record.c);
-  const Scales sc = scales(sim->record.c);
-  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
-                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
-                           py::arg("time") = sc.time);
+/// The series as numpy arrays (t, segment, FN, Fx, mu, a2; d, a1 under
+/// load) that are views of its vectors: the capsule takes `sim` over.
+void series_views(py::dict& out, std::unique_ptr<app::Simulation> sim) {
   const Series& s = sim->series;
-  // the capsule owns the result: the arrays below are views of its vectors
+  const bool load = sim->record.c.loading.by_force();
   py::capsule owner(sim.get(), [](void* p) { delete static_cast<app::Simulation*>(p); });
   sim.release();
   out["t"] = view(s.t, owner);
@@ -216,6 +201,70 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
     out["d"] = view(s.d, owner);
     out["a1"] = view(s.a1, owner);
   }
+}
+
+/// The elements `rows` of v, as a new array.
+template <class T>
+py::array_t<T> picked(const std::vector<T>& v, const std::vector<std::size_t>& rows) {
+  py::array_t<T> a(static_cast<py::ssize_t>(rows.size()));
+  auto x = a.template mutable_unchecked<1>();
+  for (std::size_t n = 0; n < rows.size(); ++n)
+    x(static_cast<py::ssize_t>(n)) = v[rows[n]];
+  return a;
+}
+
+/// A lab record's run as the CLI's CSV gives it (csv_output.cpp): one row
+/// per record row, the series' columns at the row and the row's load-point
+/// velocity v and slip since t = 0.
+void record_rows(py::dict& out, const app::Simulation& sim, const app::LabRecord& r) {
+  std::vector<std::size_t> rows = app::record_rows(sim.record.c);
+  rows.resize(std::min(rows.size(), r.v.size()));
+  const Series& s = sim.series;
+  out["t"] = picked(s.t, rows);
+  out["segment"] = picked(s.segment, rows);
+  out["FN"] = picked(s.FN, rows);
+  out["Fx"] = picked(s.Fx, rows);
+  out["mu"] = picked(s.mu, rows);
+  out["a2"] = picked(s.a2, rows);
+  if (sim.record.c.loading.by_force()) {
+    out["d"] = picked(s.d, rows);
+    out["a1"] = picked(s.a1, rows);
+  }
+  std::vector<double> v(r.v.begin(), r.v.begin() + static_cast<std::ptrdiff_t>(rows.size()));
+  std::vector<double> slip = app::record_slip(r);
+  slip.resize(rows.size());
+  out["v"] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  out["slip"] = py::array_t<double>(static_cast<py::ssize_t>(slip.size()), slip.data());
+}
+
+/// Runs one case from its options' values; the result as a dict of numpy
+/// arrays and the records. A lab record's run (history-file) has one row
+/// per record row (and its v and slip), as the CLI's CSV.
+py::dict simulate(const py::dict& options, const py::object& progress) {
+  const app::OptionValues values = to_values(options);
+  auto sim = std::make_unique<app::Simulation>();
+  std::optional<app::LabRecord> record;
+  run_call( // (the input reads a spectrum file)
+      [&](const RunControl& control) {
+        const app::CaseInput in = app::read_case_input(values);
+        record = in.record;
+        *sim = app::simulate(in, control);
+      },
+      progress);
+  py::dict out;
+  out["events"] = events(sim->record);
+  const bool load = sim->record.c.loading.by_force();
+  out["pre"] = fields(app::state_fields(sim->series.pre, load));
+  out["info"] = info(sim->record);
+  out["case"] = case_dict(sim->record.c);
+  const Scales sc = scales(sim->record.c);
+  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
+                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
+                           py::arg("time") = sc.time);
+  if (record)
+    record_rows(out, *sim, *record);
+  else
+    series_views(out, std::move(sim));
   return out;
 }
 

@@ -88,9 +88,15 @@ class Result:
     """One case's result (mdrmap.simulate).
 
     t, segment, FN, Fx, mu, a2   numpy arrays, one value per sample (segment
-                                 after segment; t since the first change);
-                                 under load (F0=) also d and a1
-    events   one dict per velocity change k (the CSV's `# event` line): k, t,
+                                 after segment; t since the first change;
+                                 segment k from 0, as the CSV's column: the
+                                 history's k-th pair, a study config's
+                                 segment k + 1); under load (F0=) also d and
+                                 a1; a lab record's run (history_file=) has
+                                 one sample per record row, as the CSV, and
+                                 v (the row's velocity) and slip
+    events   one dict per velocity change k, the change into segment k (the
+             CSV's `# event k=` line, k from 0): k, t,
              w_before, w_after, mu_before, mu_after, mu_max, t_max, slip_max,
              mu_min, t_min, slip_min, mu_peak, t_peak, slip_peak, mu_end,
              mu_ss_before, mu_ss_after, D_c, overshoot, a, a_minus_b, b,
@@ -122,10 +128,17 @@ class Result:
         return "F0" in self.case
 
     @property
+    def record(self):
+        """Whether a lab record (history_file=) gave the history: then one
+        sample per record row, with its v and slip."""
+        return self.case.get("sampling") == "record"
+
+    @property
     def columns(self):
         """The names of the per-sample arrays, in the CSV's order: t, segment,
-        FN, Fx, mu, a2 (and d, a1 under load)."""
-        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else [])
+        FN, Fx, mu, a2 (and d, a1 under load; v, slip of a lab record)."""
+        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else []) + \
+            (["v", "slip"] if self.record else [])
 
     def _attrs(self):
         return {"case": dict(self.case), "pre": dict(self.pre), "scales": dict(self.scales),
