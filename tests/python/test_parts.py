@@ -76,6 +76,8 @@ def test_files(tmp_path):
     p = mdrmap.Material.from_file(spectrum, G=1, nu=0.5)
     assert p.prony == [(1.0, 0.1), (2.0, 10.0)] and p.G == 1.0
     assert p == mdrmap.Material(G=1, prony=SPECTRUM)
+    assert hash(p) == hash(mdrmap.Material(G=1, prony=SPECTRUM))  # equal: equal hashes
+    assert mdrmap.Material(material=card, temperature=35) == m  # the keyword of simulate
     record = tmp_path / "record.csv"
     record.write_text("t,v\n10,1\n11,1\n12,0.5\n14,0.5\n15,0\n17,0\n")
     h = mdrmap.History.from_record(record)
@@ -96,6 +98,7 @@ def test_files(tmp_path):
     (lambda: mdrmap.Material(G=1, tau=1, aT=0), "aT", "must be a finite number > 0"),
     (lambda: mdrmap.Material(G=np.bool_(True), tau=1), "G", "must be a number, got True"),
     (lambda: mdrmap.Material.from_file("/no/such/file.inp"), "material", "/no/such/file.inp"),
+    (lambda: mdrmap.Material(G=1, tau=1, nu=0.3), "nu", "applies to a spectrum file's"),
     (lambda: mdrmap.Indenter("cone"), "beta", "is required"),
     (lambda: mdrmap.Indenter("cone", beta=90), "beta", "must be a finite number > 0 and < 90"),
     (lambda: mdrmap.Indenter(R=10, beta=3), "beta", "applies to --profile cone only"),

@@ -46,7 +46,7 @@ class _Part:
         return type(other) is type(self) and self._read == other._read
 
     def __hash__(self):
-        return hash(repr(self))
+        return hash((type(self).__name__, repr(self._read)))
 
     def __repr__(self):
         args = dict(self._given)
@@ -89,17 +89,14 @@ class Material(_Part):
     _positional = ()
 
     def __init__(self, G=None, tau=None, *, prony=None, aT=None, temperature=None, wlf=None,
-                 allow_large_shift=None, T=None, **file):
+                 allow_large_shift=None, T=None, material=None, prony_file=None, nu=None):
+        file = {k: v for k, v in (("material", material), ("prony_file", prony_file))
+                if v is not None}
         if tau is None and (prony is not None or file):
             tau = 0.0  # a spectrum: no parallel dashpot unless given
-        given = dict(G=G, tau=tau, prony=prony, aT=aT, temperature=temperature, T=T, wlf=wlf,
-                     allow_large_shift=allow_large_shift)
-        given.update(file)  # (from_file: material=, or prony_file= and nu=)
-        origin = None
-        if file:
-            key = "material" if "material" in file else "prony_file"
-            origin = ("from_file", key)
-            given = {key: given.pop(key), **given}
+        given = dict(file, G=G, tau=tau, prony=prony, aT=aT, temperature=temperature, T=T,
+                     wlf=wlf, allow_large_shift=allow_large_shift, nu=nu)
+        origin = ("from_file", next(iter(file))) if len(file) == 1 else None
         super().__init__(given, origin)
 
     @classmethod
@@ -113,11 +110,8 @@ class Material(_Part):
         except TypeError:
             raise _values.InvalidType(f"must be a path (a str or a pathlib.Path), got "
                                       f"{type(path).__name__} {path!r:.60}", "material") from None
-        file = {"material": path} if option == "material" else {"prony_file": path, "nu": nu}
-        if option == "material" and nu is not None:
-            raise InvalidInput("applies to a spectrum file's Young's moduli (column E) only; "
-                               "a card gives its own", "nu")
-        return cls(G, tau, **kwargs, **file)
+        file = {"material": path} if option == "material" else {"prony_file": path}
+        return cls(G, tau, nu=nu, **kwargs, **file)
 
     def __getattr__(self, name):
         read = self.__dict__.get("_read", {})
