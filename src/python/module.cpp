@@ -306,7 +306,10 @@ py::dict read_part(const py::dict& options, const std::string& part) {
                      : part == "material" ? Part::Material
                      : part == "history"  ? Part::History
                                           : throw std::logic_error("read_part: " + part);
-  const app::CaseInput in = app::read_case_part(to_values(options), which);
+  const app::OptionValues values = to_values(options);
+  app::CaseInput in;
+  run_call([&](const RunControl&) { in = app::read_case_part(values, which); }, // (files)
+           py::none());
   const Case& c = in.c;
   py::dict d;
   if (which == Part::Indenter) d["profile"] = profile_name(c.indenter.profile);

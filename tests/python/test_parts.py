@@ -134,3 +134,27 @@ def test_a_part_refuses_as_the_whole_call_does(exe):
     code, out, err = run_cli(exe, ["--d", "0.1", "--R", "10", "--tau", "1", "--v", "1", "--v1",
                                    "2", "--T", "20", "--wlf", "0:51.6:0"])
     assert code == 2 and err == f"mdrmap simulate: error: --wlf: {e.value.message}\n"
+
+
+def test_a_fifo_is_refused_at_once(tmp_path):
+    """A part's file is read without waiting on a FIFO (and without the GIL):
+    refused naming the keyword. In a child process, so that a wait fails the
+    test instead of hanging it."""
+    import os
+    import subprocess
+    import sys
+
+    fifo = tmp_path / "part.fifo"
+    os.mkfifo(fifo)
+    code = ("import sys, mdrmap\n"
+            "for make in (mdrmap.Material.from_file, mdrmap.History.from_record):\n"
+            "    try:\n"
+            "        make(sys.argv[1])\n"
+            "    except mdrmap.InvalidInput as e:\n"
+            "        print(e.keyword, 'must be a regular file' in e.message)\n")
+    try:
+        p = subprocess.run([sys.executable, "-c", code, str(fifo)], capture_output=True,
+                           text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("a part made from a FIFO did not return within 60 s")
+    assert p.stdout == "material True\nhistory_file True\n", (p.stdout, p.stderr)
