@@ -1,7 +1,8 @@
 #pragma once
 // A parameter study: which cases to run and how. Read from an INI file,
 // overridden from the command line, expanded to cases. Pure C++: no MPI, no
-// HDF5, no printing. The syntax is documented in docs/map-schema.md:
+// HDF5, no printing. Every key: docs/reference/config.md
+// (generated from study/config_keys.hpp); the syntax:
 //
 //   [grid]                  ; the case parameters of the core's table
 //   F0  = 1e-3              ; d (depth control) or F0 (load control), one of them
