@@ -96,7 +96,7 @@ std::vector<ConfigKey> run_keys() {
        "the segment's start"},
       {"run", "decades", "D", dim_name(decades.dim), decades.allowed(),
        "default " + format_number(d.decades), decades.meaning},
-      {"run", "rtol", "E", "number", "a number in (0, 0.1]", "default " + format_number(d.rtol),
+      {"run", "rtol", "E", "number", kRtolAllowed, "default " + format_number(d.rtol),
        "target accuracy: bound on each case's error estimate"},
       {"run", "solver", solvers, "", solvers, "default " + d.solver,
        "the solver of every case; auto takes the cheapest that solves the case and meets rtol"},

@@ -137,7 +137,7 @@ double run_decades(const std::string& option, const std::string& text) {
 double run_rtol(const std::string& option, const std::string& text) {
   const Num n = to_number(text);
   if (n.err != NumError::None)
-    throw ConfigError(option, number_problem(text, n.err) + "; rtol must be a number in (0, 0.1]");
+    throw ConfigError(option, number_problem(text, n.err) + "; rtol must be " + kRtolAllowed);
   try {
     validate_rtol(n.x);
   } catch (const InvalidInput& e) {
