@@ -2,6 +2,9 @@
 // and the study's column specs, the [cases] and [run] keys declared here.
 #include "study/config_keys.hpp"
 
+#include <cstring>
+#include <utility>
+
 #include "core/model/params.hpp"
 #include "core/model/profile.hpp"
 #include "core/solvers/dispatch.hpp"
@@ -22,6 +25,19 @@ template <class Kinds, class Name> std::string choices(const Kinds& kinds, Name 
   for (const auto k : kinds)
     s += (s.empty() ? "" : " | ") + std::string(name(k));
   return s;
+}
+
+/// A meaning of the core's table in the config's words: the command line's
+/// "--profile cone" is "profile = cone", its "--prony" spectrum the columns
+/// Gk, tauk.
+std::string config_words(std::string text) {
+  const std::pair<const char*, const char*> words[] = {{"--profile ", "profile = "},
+                                                       {"with --prony", "with a spectrum"},
+                                                       {"of --prony", "of the spectrum"}};
+  for (const auto& [cli, config] : words)
+    for (std::size_t i = text.find(cli); i != std::string::npos; i = text.find(cli, i))
+      text.replace(i, std::strlen(cli), config);
+  return text;
 }
 
 /// Whether a table parameter is required, optional, one of a group or a
@@ -51,14 +67,16 @@ ConfigKey column_key(const char* section, const std::string& key, const std::str
 
 void grid_keys(std::vector<ConfigKey>& out) {
   for (const ParamSpec* p : study_parameters()) {
-    out.push_back({"grid", p->name, kSpec, dim_name(p->dim), p->allowed(), given(*p), p->meaning});
+    out.push_back({"grid", p->name, kSpec, dim_name(p->dim), p->allowed(), given(*p),
+                   config_words(p->meaning)});
     if (const ParamAlias* a = alias_of(p->name))
       out.push_back({"grid", a->alias, kSpec, dim_name(p->dim), p->allowed(),
                      std::string("instead of ") + a->name,
                      std::string("the old spelling of ") + a->name + ", read as " + a->name});
   }
   const std::string last = std::to_string(kMaxBranches);
-  const std::string term = "optional: terms k = 1.." + last + ", each with Gk and tauk";
+  const std::string term =
+      "optional: terms k = 1.." + last + ", each with Gk and tauk; with them G is required";
   out.push_back(column_key("grid", "Gk", "G1", term, " (term k)"));
   out.push_back(column_key("grid", "tauk", "tau1", term, " (term k)"));
   out.push_back(
@@ -95,7 +113,8 @@ std::vector<ConfigKey> run_keys() {
        "where a segment's samples lie: evenly in time, or evenly in the log of the time since "
        "the segment's start"},
       {"run", "decades", "D", dim_name(decades.dim), decades.allowed(),
-       "default " + format_number(d.decades), decades.meaning},
+       "default " + format_number(d.decades),
+       "with spacing = log: the first instant after a segment's start is T 10^-decades"},
       {"run", "rtol", "E", "number", kRtolAllowed, "default " + format_number(d.rtol),
        "target accuracy: bound on each case's error estimate"},
       {"run", "solver", solvers, "", solvers, "default " + d.solver,
@@ -117,7 +136,7 @@ std::vector<ConfigKey> run_keys() {
        "the seed's form: default 6 with [grid] v1 or v1_over_v",
        "the seed's window: history.T1_over_tau under its old name"},
       {"run", "G", "G", dim_name(G.dim), G.allowed(), "the seed's form: instead of [grid] G",
-       std::string(G.meaning) + ": [grid] G under its old place, one number"}};
+       config_words(G.meaning) + ": [grid] G under its old place, one number"}};
 }
 
 } // namespace
