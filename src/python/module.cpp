@@ -362,6 +362,7 @@ py::list parameter_table() {
     d["meaning"] = p.meaning;
     d["required"] = p.required;
     d["one_of"] = p.one_of ? py::object(py::str(p.one_of)) : py::object(py::none());
+    d["profile"] = p.profile ? py::object(py::str(p.profile)) : py::object(py::none());
     d["default"] =
         p.required || p.one_of ? py::object(py::none()) : py::object(py::float_(p.fallback));
     d["sampling"] = p.part == Part::Sampling;

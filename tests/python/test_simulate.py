@@ -200,6 +200,10 @@ def test_parameters_are_the_table_of_the_help(exe):
             assert not p["required"] and p["one_of"] is None
     assert {p["name"]: p["default"] for p in table}["samples"] == 201
     assert {p["name"]: p["required"] for p in table}["tau"]
+    # a profile's own parameters say which (required for it alone); the rest apply to every one
+    profiles = {p["name"]: p["profile"] for p in table}
+    assert profiles["R"] == "parabola" and profiles["beta"] == "cone"
+    assert profiles["n"] == profiles["A"] == "power" and profiles["tau"] is None
 
 
 def test_info_names_the_build():

@@ -9,8 +9,9 @@
     r.events[0]["a_minus_b"], r.pre["mu"], r.info["error_estimate"]
 
 The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
-lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
-'-' (t_end, log_decades), and the same checks and messages: bad input raises
+lists those of the parameter table: the loading d or F0, the indenter's R,
+beta, n, A, the material's tau, G, aT, the velocity v and the sampling),
+with '_' for '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
 or numpy numbers, which reach the solvers as those doubles (or as the text
 the command line takes); a value of the wrong type raises InvalidType (an
@@ -233,8 +234,10 @@ stationary.__doc__ = _doc.docstring(
 def parameters():
     """The parameter table, one dict per parameter in the table's order
     (`mdrmap simulate --help-all` groups them by part): name (option), keyword, symbol, unit, range,
-    meaning, required, one_of (group or None), default (None if required or
-    in a group), sampling (a sampling parameter) and help (the CLI's text)."""
+    meaning, required, one_of (group or None), profile (the indenter profile
+    it belongs to, for which alone it is required, or None: every profile),
+    default (None if required or in a group), sampling (a sampling parameter)
+    and help (the CLI's text)."""
     out = []
     for p in _TABLE:
         q = dict(p)
