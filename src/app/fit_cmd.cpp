@@ -32,7 +32,9 @@ std::vector<std::string> case_names() {
   for (const auto& name : case_option_spellings()) {
     const ParamSpec* p = find_parameter(name);
     if (p && (p->part == Part::History || p->part == Part::Sampling)) continue;
-    if (name == "v1" || name == "t-end" || name == "history" || name == "history-file" || name == "spacing") continue;
+    if (name == "v1" || name == "t-end" || name == "history" || name == "history-file" ||
+        name == "spacing")
+      continue;
     out.push_back(name);
   }
   return out;
@@ -119,7 +121,8 @@ std::string reproduce(const FitProblem& p, const std::vector<double>& x, std::si
   return s;
 }
 
-std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, double wall, int ranks) {
+std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, double wall,
+                 int ranks) {
   std::vector<double> x;
   for (const auto& q : r.parameters)
     x.push_back(q.value);
@@ -129,8 +132,9 @@ std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, do
     const auto& f = p.parameters()[i];
     s += std::string(i ? "," : "") + "\n    " + str(q.name) + ": {\"value\": " + num(q.value) +
          ", \"stderr\": " + num(q.stderr_) + ", \"ci95\": [" + num(q.ci95_lo) + ", " +
-         num(q.ci95_hi) + "], \"start\": " + num(f.start) + ", \"log\": " +
-         (f.log ? "true" : "false") + ", \"at_bound\": " + (q.at_bound ? "true" : "false") + "}";
+         num(q.ci95_hi) + "], \"start\": " + num(f.start) +
+         ", \"log\": " + (f.log ? "true" : "false") +
+         ", \"at_bound\": " + (q.at_bound ? "true" : "false") + "}";
   }
   s += "\n  },\n  \"correlation\": {\"names\": [";
   for (std::size_t i = 0; i < r.parameters.size(); ++i)
@@ -143,15 +147,16 @@ std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, do
     s += "]";
   }
   s += "]},\n  \"rms\": " + num(r.rms) + ",\n  \"sigma\": " + num(r.sigma) +
-       ",\n  \"residuals\": " + std::to_string(r.m) + ",\n  \"weighted_by_sd\": " +
-       (p.options().known_sd ? "true" : "false") + ",\n  \"evaluations\": " +
-       std::to_string(r.evaluations) + ",\n  \"batches\": " + std::to_string(r.batches) +
-       ",\n  \"iterations\": " + std::to_string(r.iterations) + ",\n  \"converged\": " +
-       (r.converged ? "true" : "false") + ",\n  \"termination\": " + str(r.termination) +
-       ",\n  \"rtol\": " + num(p.rtol()) + ",\n  \"step\": " + num(p.options().step) +
-       ",\n  \"t_quantile\": " + num(r.t_quantile) + ",\n  \"wall_seconds\": " + num(wall) +
-       ",\n  \"ranks\": " + std::to_string(ranks) + ",\n  \"command\": " + str(a.command_line) +
-       ",\n  \"best_fit\": [";
+       ",\n  \"residuals\": " + std::to_string(r.m) +
+       ",\n  \"weighted_by_sd\": " + (p.options().known_sd ? "true" : "false") +
+       ",\n  \"evaluations\": " + std::to_string(r.evaluations) +
+       ",\n  \"batches\": " + std::to_string(r.batches) +
+       ",\n  \"iterations\": " + std::to_string(r.iterations) +
+       ",\n  \"converged\": " + (r.converged ? "true" : "false") +
+       ",\n  \"termination\": " + str(r.termination) + ",\n  \"rtol\": " + num(p.rtol()) +
+       ",\n  \"step\": " + num(p.options().step) + ",\n  \"t_quantile\": " + num(r.t_quantile) +
+       ",\n  \"wall_seconds\": " + num(wall) + ",\n  \"ranks\": " + std::to_string(ranks) +
+       ",\n  \"command\": " + str(a.command_line) + ",\n  \"best_fit\": [";
   for (std::size_t k = 0; k < p.scenes().size(); ++k)
     s += std::string(k ? ",\n    " : "\n    ") + str(reproduce(p, x, k));
   return s + "\n  ]\n}\n";
@@ -163,7 +168,8 @@ int drive(const FitProblem& p, const FitArgs& a, fit::Evaluator& ev, int ranks) 
   OutputFile out(a.output); // opened first: a bad path fails before the fit
   const auto start = std::chrono::steady_clock::now();
   const fit::Result r = fit::fit(p.parameters(), ev, p.options());
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!r.undetermined.empty()) {
     std::string names;
     for (const auto& n : r.undetermined)
@@ -273,7 +279,8 @@ evaluations, batches, iterations, converged, termination, rtol, step,
 wall_seconds, ranks, command, best_fit (mdrmap simulate of each record at the
 fitted values).
 
-)" + examples() + R"(
+)" + examples() +
+         R"(
 Exit codes:
   0  success
   1  runtime failure (the model or writing the output failed)

@@ -11,7 +11,8 @@ constexpr double kOk = 1.0, kRefused = 0.0, kError = -1.0;
 
 } // namespace
 
-std::vector<std::vector<double>> MpiEvaluator::spread(const std::vector<std::vector<double>>& points, bool& stopped) {
+std::vector<std::vector<double>>
+MpiEvaluator::spread(const std::vector<std::vector<double>>& points, bool& stopped) {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm_, &rank);
   MPI_Comm_size(comm_, &size);
@@ -29,8 +30,10 @@ std::vector<std::vector<double>> MpiEvaluator::spread(const std::vector<std::vec
   MPI_Bcast(flat.data(), static_cast<int>(flat.size()), MPI_DOUBLE, 0, comm_);
 
   std::vector<double> mine;
-  for (std::size_t k = static_cast<std::size_t>(rank); k < np; k += static_cast<std::size_t>(size)) {
-    const std::vector<double> x(flat.begin() + static_cast<long>(k * n), flat.begin() + static_cast<long>((k + 1) * n));
+  for (std::size_t k = static_cast<std::size_t>(rank); k < np;
+       k += static_cast<std::size_t>(size)) {
+    const std::vector<double> x(flat.begin() + static_cast<long>(k * n),
+                                flat.begin() + static_cast<long>((k + 1) * n));
     std::vector<double> r;
     double flag = kOk;
     try {
@@ -45,7 +48,11 @@ std::vector<std::vector<double>> MpiEvaluator::spread(const std::vector<std::vec
   }
   std::vector<int> counts(static_cast<std::size_t>(size)), displs(static_cast<std::size_t>(size));
   for (int q = 0, at = 0; q < size; ++q) {
-    const std::size_t own = np > static_cast<std::size_t>(q) ? (np - static_cast<std::size_t>(q) + static_cast<std::size_t>(size) - 1) / static_cast<std::size_t>(size) : 0;
+    const std::size_t own =
+        np > static_cast<std::size_t>(q)
+            ? (np - static_cast<std::size_t>(q) + static_cast<std::size_t>(size) - 1) /
+                  static_cast<std::size_t>(size)
+            : 0;
     counts[static_cast<std::size_t>(q)] = static_cast<int>(own * w);
     displs[static_cast<std::size_t>(q)] = at;
     at += counts[static_cast<std::size_t>(q)];
@@ -57,15 +64,20 @@ std::vector<std::vector<double>> MpiEvaluator::spread(const std::vector<std::vec
   std::vector<std::vector<double>> out(np);
   for (int q = 0; q < size; ++q) {
     std::size_t at = static_cast<std::size_t>(displs[static_cast<std::size_t>(q)]);
-    for (std::size_t k = static_cast<std::size_t>(q); k < np; k += static_cast<std::size_t>(size), at += w) {
-      if (all[at] == kError) throw std::runtime_error("a model evaluation failed on rank " + std::to_string(q));
-      if (all[at] == kOk) out[k].assign(all.begin() + static_cast<long>(at + 1), all.begin() + static_cast<long>(at + w));
+    for (std::size_t k = static_cast<std::size_t>(q); k < np;
+         k += static_cast<std::size_t>(size), at += w) {
+      if (all[at] == kError)
+        throw std::runtime_error("a model evaluation failed on rank " + std::to_string(q));
+      if (all[at] == kOk)
+        out[k].assign(all.begin() + static_cast<long>(at + 1),
+                      all.begin() + static_cast<long>(at + w));
     }
   }
   return out;
 }
 
-std::vector<std::vector<double>> MpiEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
+std::vector<std::vector<double>>
+MpiEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
   if (points.empty()) return {};
   bool stopped = false;
   return spread(points, stopped);

@@ -13,7 +13,8 @@ class MpiEvaluator : public fit::Evaluator {
 public:
   MpiEvaluator(const FitProblem& p, MPI_Comm comm) : p_(p), comm_(comm) {}
   /// Rank 0: the residuals of each point, computed across the ranks.
-  std::vector<std::vector<double>> evaluate(const std::vector<std::vector<double>>& points) override;
+  std::vector<std::vector<double>>
+  evaluate(const std::vector<std::vector<double>>& points) override;
   /// Rank 0: releases the other ranks from serve().
   void stop();
   /// Ranks other than 0: evaluates batches until stop().
@@ -21,7 +22,8 @@ public:
 
 private:
   /// Every rank: the batch (rank 0's points; count 0 sets `stopped`).
-  std::vector<std::vector<double>> spread(const std::vector<std::vector<double>>& points, bool& stopped);
+  std::vector<std::vector<double>> spread(const std::vector<std::vector<double>>& points,
+                                          bool& stopped);
 
   const FitProblem& p_;
   MPI_Comm comm_;

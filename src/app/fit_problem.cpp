@@ -46,8 +46,7 @@ std::pair<std::size_t, int> term_of(const std::string& name) {
 }
 
 /// Rethrows an InvalidInput of the record (--history-file) as one of --data.
-template <class F>
-auto as_data(F f) {
+template <class F> auto as_data(F f) {
   try {
     return f();
   } catch (const InvalidInput& e) {
@@ -74,20 +73,30 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
       const auto it = s.record.measured.find(q);
       if (it == s.record.measured.end()) continue;
       if (q == (load_ ? "FN" : "d"))
-        throw InvalidInput("data", at + "column " + q + (load_ ? " is the prescribed load --F0 under load control; fit mu, Fx or d" : " is measured under load (--F0) only; at fixed depth fit mu, Fx or FN"));
+        throw InvalidInput(
+            "data",
+            at + "column " + q +
+                (load_ ? " is the prescribed load --F0 under load control; fit mu, Fx or d"
+                       : " is measured under load (--F0) only; at fixed depth fit mu, Fx or FN"));
       double big = 0.0;
       for (const double y : it->second)
         if (std::isfinite(y)) big = std::fmax(big, std::fabs(y));
       if (!(big > 0.0))
-        throw InvalidInput("data", at + "column " + q + " has no value other than nan or 0; give the measured values or drop the column");
+        throw InvalidInput(
+            "data",
+            at + "column " + q +
+                " has no value other than nan or 0; give the measured values or drop the column");
       s.columns.push_back(q);
       s.scale[q] = big;
     }
     if (s.columns.empty())
-      throw InvalidInput("data", at + "no measured column: the header must name at least one of " + std::string(load_ ? "mu, Fx, d (under --F0)" : "mu, Fx, FN (at fixed depth)"));
+      throw InvalidInput("data", at + "no measured column: the header must name at least one of " +
+                                     std::string(load_ ? "mu, Fx, d (under --F0)"
+                                                       : "mu, Fx, FN (at fixed depth)"));
     s.has_sd = s.record.measured.count("sd") > 0;
     if (s.has_sd && s.columns.size() != 1)
-      throw InvalidInput("data", at + "an sd column weights one measured column; this record has " + std::to_string(s.columns.size()));
+      throw InvalidInput("data", at + "an sd column weights one measured column; this record has " +
+                                     std::to_string(s.columns.size()));
     if (!scenes_.empty() && s.has_sd != scenes_.front().has_sd)
       throw InvalidInput("data", at + "every record or none must have an sd column");
     for (std::size_t i = 0; i < s.record.t.size(); ++i) {
@@ -95,7 +104,9 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
       if (!std::isfinite(y)) continue;
       ++m_;
       if (s.has_sd && !(s.record.measured["sd"][i] > 0.0))
-        throw InvalidInput("data", path + ":" + std::to_string(s.record.line[i]) + ": sd must be a number > 0 where " + s.columns.front() + " is measured");
+        throw InvalidInput("data", path + ":" + std::to_string(s.record.line[i]) +
+                                       ": sd must be a number > 0 where " + s.columns.front() +
+                                       " is measured");
     }
     for (std::size_t c = 1; c < s.columns.size(); ++c)
       for (const double y : s.record.measured[s.columns[c]])
@@ -106,7 +117,9 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
   read_free(spec, start);
   read_bounds(spec);
   if (m_ <= params_.size())
-    throw InvalidInput("data", std::to_string(m_) + " measured values for " + std::to_string(params_.size()) + " free parameters; a fit needs more values than parameters");
+    throw InvalidInput("data", std::to_string(m_) + " measured values for " +
+                                   std::to_string(params_.size()) +
+                                   " free parameters; a fit needs more values than parameters");
 }
 
 void FitProblem::read_free(const FitSpec& spec, const CaseInput& start) {
@@ -124,31 +137,44 @@ void FitProblem::read_free(const FitSpec& spec, const CaseInput& start) {
         if (!texts_.count("T")) throw InvalidInput("free", "T needs a start: give --T (and --wlf)");
         p.start = parse_temperature("T", texts_.at("T")).value;
         p.log = false;
-      } else if (spec_p && (spec_p->part == Part::Indenter || spec_p->part == Part::Material || spec_p->part == Part::Loading)) {
+      } else if (spec_p && (spec_p->part == Part::Indenter || spec_p->part == Part::Material ||
+                            spec_p->part == Part::Loading)) {
         if (!spec_p->applies_to(start.c.indenter.profile))
-          throw InvalidInput("free", name + " is not a parameter of this case's indenter (--profile " + std::string(profile_name(start.c.indenter.profile)) + ")");
+          throw InvalidInput("free", name +
+                                         " is not a parameter of this case's indenter (--profile " +
+                                         std::string(profile_name(start.c.indenter.profile)) + ")");
         if (spec_p->one_of && !texts_.count(name))
-          throw InvalidInput("free", name + " is not this case's loading; free the one given (" + group_usage(group_members(spec_p->one_of), ", ", " or ") + ")");
+          throw InvalidInput("free", name + " is not this case's loading; free the one given (" +
+                                         group_usage(group_members(spec_p->one_of), ", ", " or ") +
+                                         ")");
         if (name == "aT" && texts_.count("T"))
           throw InvalidInput("free", "aT comes from --T and --wlf here; free T instead");
         p.start = spec_p->get(start.c);
         p.log = spec_p->lo >= 0.0;
         if (p.log && !(p.start > 0.0))
-          throw InvalidInput("free", name + " starts at " + format_number(p.start) + "; give it a start > 0 (--" + name + ")");
+          throw InvalidInput("free", name + " starts at " + format_number(p.start) +
+                                         "; give it a start > 0 (--" + name + ")");
       } else if (term > 0) {
         if (!texts_.count("prony"))
-          throw InvalidInput("free", name + ": a spectrum's terms are free only when given with --prony G1:TAU1,...");
+          throw InvalidInput(
+              "free",
+              name + ": a spectrum's terms are free only when given with --prony G1:TAU1,...");
         const auto terms = items(texts_.at("prony"));
         if (term > terms.size())
-          throw InvalidInput("free", name + ": --prony has " + std::to_string(terms.size()) + " term(s)");
+          throw InvalidInput("free",
+                             name + ": --prony has " + std::to_string(terms.size()) + " term(s)");
         const auto parts = items(terms[term - 1], ':');
         p.start = std::strtod(parts.at(static_cast<std::size_t>(field)).c_str(), nullptr);
       } else {
-        throw InvalidInput("free", shown(raw) + " is not a parameter that can be fitted; free ones are the case's R (or beta, n, A), d or F0, G, tau, aT or T, and a --prony spectrum's Gk, tauk");
+        throw InvalidInput(
+            "free", shown(raw) +
+                        " is not a parameter that can be fitted; free ones are the case's R (or "
+                        "beta, n, A), d or F0, G, tau, aT or T, and a --prony spectrum's Gk, tauk");
       }
       params_.push_back(p);
     }
-  if (params_.empty()) throw InvalidInput("free", "is required: the parameters to fit, e.g. --free R,aT");
+  if (params_.empty())
+    throw InvalidInput("free", "is required: the parameters to fit, e.g. --free R,aT");
 }
 
 void FitProblem::read_bounds(const FitSpec& spec) {
@@ -162,15 +188,21 @@ void FitProblem::read_bounds(const FitSpec& spec) {
       if (q.name == name) p = &q;
     if (!p) throw InvalidInput("bounds", name + " is not a free parameter (--free)");
     char* end = nullptr;
-    const std::string lo = trimmed(text.substr(eq + 1, colon - eq - 1)), hi = trimmed(text.substr(colon + 1));
+    const std::string lo = trimmed(text.substr(eq + 1, colon - eq - 1)),
+                      hi = trimmed(text.substr(colon + 1));
     p->lo = std::strtod(lo.c_str(), &end);
     const bool lo_ok = !lo.empty() && *end == '\0';
     p->hi = std::strtod(hi.c_str(), &end);
     const bool hi_ok = !hi.empty() && *end == '\0';
-    if (!lo_ok || !hi_ok || !std::isfinite(p->lo) || !std::isfinite(p->hi) || !(p->lo < p->hi) || (p->log && !(p->lo > 0.0)))
-      throw InvalidInput("bounds", name + ": LO:HI must be finite numbers, LO < HI" + std::string(p->log ? ", LO > 0 (a positive parameter)" : "") + ", got " + shown(text));
+    if (!lo_ok || !hi_ok || !std::isfinite(p->lo) || !std::isfinite(p->hi) || !(p->lo < p->hi) ||
+        (p->log && !(p->lo > 0.0)))
+      throw InvalidInput("bounds",
+                         name + ": LO:HI must be finite numbers, LO < HI" +
+                             std::string(p->log ? ", LO > 0 (a positive parameter)" : "") +
+                             ", got " + shown(text));
     if (!(p->start >= p->lo && p->start <= p->hi))
-      throw InvalidInput("bounds", name + ": the start " + format_number(p->start) + " is outside " + lo + ":" + hi);
+      throw InvalidInput("bounds", name + ": the start " + format_number(p->start) +
+                                       " is outside " + lo + ":" + hi);
   }
 }
 
@@ -207,7 +239,8 @@ OptionTexts FitProblem::texts_at(const std::vector<double>& x, std::size_t k) co
   return t;
 }
 
-std::vector<std::map<std::string, std::vector<double>>> FitProblem::run(const std::vector<double>& x) const {
+std::vector<std::map<std::string, std::vector<double>>>
+FitProblem::run(const std::vector<double>& x) const {
   std::vector<std::map<std::string, std::vector<double>>> out;
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const CaseInput in = read_case_input(texts_at(x, k));
@@ -215,7 +248,10 @@ std::vector<std::map<std::string, std::vector<double>>> FitProblem::run(const st
     const std::vector<std::size_t> rows = record_rows(in.c);
     std::map<std::string, std::vector<double>> v;
     for (const auto& q : scenes_[k].columns) {
-      const std::vector<double>& s = q == "mu" ? res.series.mu : q == "Fx" ? res.series.Fx : q == "FN" ? res.series.FN : res.series.d;
+      const std::vector<double>& s = q == "mu"   ? res.series.mu
+                                     : q == "Fx" ? res.series.Fx
+                                     : q == "FN" ? res.series.FN
+                                                 : res.series.d;
       for (const std::size_t r : rows)
         v[q].push_back(s.at(r));
     }
@@ -224,7 +260,8 @@ std::vector<std::map<std::string, std::vector<double>>> FitProblem::run(const st
   return out;
 }
 
-std::vector<std::map<std::string, std::vector<double>>> FitProblem::model_values(const std::vector<double>& x) const {
+std::vector<std::map<std::string, std::vector<double>>>
+FitProblem::model_values(const std::vector<double>& x) const {
   try {
     return run(x);
   } catch (const InvalidInput&) {
@@ -259,7 +296,8 @@ std::vector<double> FitProblem::residuals(const std::vector<double>& x) const {
   return r;
 }
 
-std::vector<std::vector<double>> SerialEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
+std::vector<std::vector<double>>
+SerialEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
   std::vector<std::vector<double>> out;
   for (const auto& x : points)
     out.push_back(p_.residuals(x));

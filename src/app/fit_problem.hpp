@@ -33,16 +33,16 @@ inline constexpr double kStepPerRtol = 100.0;
 
 /// What a fit is asked, as given.
 struct FitSpec {
-  OptionTexts texts;              ///< case options (as for simulate, no history)
-  std::vector<std::string> data;  ///< record files (--data)
-  std::vector<std::string> free;  ///< free parameter names (--free)
+  OptionTexts texts;               ///< case options (as for simulate, no history)
+  std::vector<std::string> data;   ///< record files (--data)
+  std::vector<std::string> free;   ///< free parameter names (--free)
   std::vector<std::string> bounds; ///< NAME=LO:HI texts (--bounds)
 };
 
 /// One record and what of it is fitted.
 struct FitScene {
   LabRecord record;
-  std::vector<std::string> columns; ///< the measured columns fitted
+  std::vector<std::string> columns;    ///< the measured columns fitted
   std::map<std::string, double> scale; ///< per column without sd: its largest |data|
   bool has_sd = false;
 };
@@ -68,7 +68,8 @@ public:
 
   /// Per record, the model's values of its columns at its rows (NaN where
   /// the model refuses x), as the plot shows them.
-  std::vector<std::map<std::string, std::vector<double>>> model_values(const std::vector<double>& x) const;
+  std::vector<std::map<std::string, std::vector<double>>>
+  model_values(const std::vector<double>& x) const;
 
   /// The option texts of a case at x for record k (simulate's options).
   OptionTexts texts_at(const std::vector<double>& x, std::size_t k) const;
@@ -90,7 +91,8 @@ private:
 class SerialEvaluator : public fit::Evaluator {
 public:
   explicit SerialEvaluator(const FitProblem& p) : p_(p) {}
-  std::vector<std::vector<double>> evaluate(const std::vector<std::vector<double>>& points) override;
+  std::vector<std::vector<double>>
+  evaluate(const std::vector<std::vector<double>>& points) override;
 
 private:
   const FitProblem& p_;

@@ -24,8 +24,8 @@ namespace mdrmap::app {
 /// The rows of a lab record, as read.
 struct LabRecord {
   std::string path;
-  std::vector<double> t; ///< times, strictly increasing
-  std::vector<double> v; ///< load-point velocities, finite and >= 0
+  std::vector<double> t;         ///< times, strictly increasing
+  std::vector<double> v;         ///< load-point velocities, finite and >= 0
   std::vector<std::size_t> line; ///< the file's line of each row (1-based)
   /// The columns asked for as measured (read_lab_record's `measured`) that
   /// the header names: a number per row, NaN where the value is empty or

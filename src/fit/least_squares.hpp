@@ -24,7 +24,8 @@ namespace mdrmap::fit {
 class Evaluator {
 public:
   virtual ~Evaluator() = default;
-  virtual std::vector<std::vector<double>> evaluate(const std::vector<std::vector<double>>& points) = 0;
+  virtual std::vector<std::vector<double>>
+  evaluate(const std::vector<std::vector<double>>& points) = 0;
 };
 
 /// One free parameter: its name, start and bounds (inclusive).
@@ -41,12 +42,13 @@ struct Options {
   /// of a positive parameter). The model's error must be well below it
   /// (the caller picks the model's rtol from it: docs/fitting.md).
   double step = 1e-2;
-  int grid_points = 5;          ///< pre-search points per parameter (1: none)
-  double search_decades = 1.0;  ///< pre-search span either side of the start, unbounded log parameters
-  std::size_t max_grid = 125;   ///< largest pre-search (fewer points per parameter beyond it)
-  int starts = 1;               ///< Levenberg-Marquardt runs from the best pre-search points
-  int max_iterations = 50;      ///< per run
-  bool known_sd = false;        ///< residuals weighted by their standard deviations: sigma = 1
+  int grid_points = 5; ///< pre-search points per parameter (1: none)
+  double search_decades =
+      1.0; ///< pre-search span either side of the start, unbounded log parameters
+  std::size_t max_grid = 125; ///< largest pre-search (fewer points per parameter beyond it)
+  int starts = 1;             ///< Levenberg-Marquardt runs from the best pre-search points
+  int max_iterations = 50;    ///< per run
+  bool known_sd = false;      ///< residuals weighted by their standard deviations: sigma = 1
   /// A direction whose 95% half-width in the transformed coordinates exceeds
   /// this is not determined by the data (a decade for a log parameter).
   double flat_halfwidth = 2.302585092994046;
@@ -63,16 +65,16 @@ struct ParameterResult {
 struct Result {
   std::vector<ParameterResult> parameters;
   std::vector<std::vector<double>> correlation; ///< n x n
-  std::vector<double> singular_values;          ///< of the weighted Jacobian, transformed coordinates
-  std::vector<std::string> undetermined;        ///< parameters in a direction the data do not fix
-  std::vector<double> residuals;                ///< weighted, at the optimum
-  double ssr = 0.0;                             ///< sum of squared weighted residuals
-  double sigma = 0.0;                           ///< residual standard deviation used (1 with known_sd)
-  double rms = 0.0;                             ///< sqrt(ssr / m)
-  std::size_t m = 0;                            ///< residuals
-  std::size_t evaluations = 0;                  ///< parameter vectors evaluated (all batches)
-  std::size_t batches = 0;                      ///< calls of the Evaluator
-  int iterations = 0;                           ///< Levenberg-Marquardt iterations, all starts
+  std::vector<double> singular_values;   ///< of the weighted Jacobian, transformed coordinates
+  std::vector<std::string> undetermined; ///< parameters in a direction the data do not fix
+  std::vector<double> residuals;         ///< weighted, at the optimum
+  double ssr = 0.0;                      ///< sum of squared weighted residuals
+  double sigma = 0.0;                    ///< residual standard deviation used (1 with known_sd)
+  double rms = 0.0;                      ///< sqrt(ssr / m)
+  std::size_t m = 0;                     ///< residuals
+  std::size_t evaluations = 0;           ///< parameter vectors evaluated (all batches)
+  std::size_t batches = 0;               ///< calls of the Evaluator
+  int iterations = 0;                    ///< Levenberg-Marquardt iterations, all starts
   bool converged = false;
   std::string termination; ///< Ceres's summary of the best run
   double t_quantile = 0.0; ///< Student t 0.975 quantile at m - n degrees of freedom

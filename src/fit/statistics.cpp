@@ -28,8 +28,8 @@ void fill_statistics(const Transform& tr, const std::vector<double>& z,
                      const Options& opt, Result& out) {
   const auto n = static_cast<Eigen::Index>(tr.size());
   const auto m = static_cast<Eigen::Index>(r0.size());
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
-      J(jac.data(), m, n);
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> J(
+      jac.data(), m, n);
   out.residuals = r0;
   out.m = r0.size();
   out.ssr = std::inner_product(r0.begin(), r0.end(), r0.begin(), 0.0);
