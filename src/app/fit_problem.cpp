@@ -3,8 +3,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "app/text.hpp"
 #include "core/model/params.hpp"
@@ -301,6 +303,27 @@ SerialEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
   std::vector<std::vector<double>> out;
   for (const auto& x : points)
     out.push_back(p_.residuals(x));
+  return out;
+}
+
+std::vector<std::vector<double>>
+ThreadEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
+  std::vector<std::vector<double>> out(points.size());
+  std::vector<std::exception_ptr> errors(threads_);
+  std::vector<std::thread> pool;
+  for (unsigned w = 0; w < threads_ && w < points.size(); ++w)
+    pool.emplace_back([&, w] {
+      try {
+        for (std::size_t k = w; k < points.size(); k += threads_)
+          out[k] = p_.residuals(points[k]);
+      } catch (...) {
+        errors[w] = std::current_exception();
+      }
+    });
+  for (auto& t : pool)
+    t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   return out;
 }
 

@@ -98,4 +98,17 @@ private:
   const FitProblem& p_;
 };
 
+/// Spreads each batch over `threads` threads (point k to thread k mod
+/// threads); the Python module's evaluator (it runs without the GIL).
+class ThreadEvaluator : public fit::Evaluator {
+public:
+  ThreadEvaluator(const FitProblem& p, unsigned threads) : p_(p), threads_(threads ? threads : 1) {}
+  std::vector<std::vector<double>>
+  evaluate(const std::vector<std::vector<double>>& points) override;
+
+private:
+  const FitProblem& p_;
+  unsigned threads_;
+};
+
 } // namespace mdrmap::app

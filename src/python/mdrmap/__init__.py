@@ -44,7 +44,7 @@ from .maps import MapError, open_map, to_grid
 from . import _doc
 
 __version__ = _core.__version__
-__all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
+__all__ = ["simulate", "stationary", "fit", "parameters", "open_map", "to_grid", "Result",
            "InvalidInput", "MapError"]
 
 # the options as the command line spells them -> the keyword of each
@@ -283,6 +283,29 @@ simulate.__doc__ = _doc.docstring(
     _doc.entries(_OPTIONS, _TABLE, _ALIASES) + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError\n"
     "(the case cannot be computed within its budget or rtol, exit code 1).")
+
+
+def fit(*, data, free, bounds=(), threads=None, **options):
+    """Fits case parameters to lab records as `mdrmap fit` does (docs/fitting.md).
+
+    data: a record file or a list of them; free: "R,aT" or ["R", "aT"];
+    bounds: {"R": (lo, hi)} or ["R=LO:HI", ...]; threads: how many threads
+    share a batch of evaluations (default: os.cpu_count()); the other
+    keywords are the case's, as for simulate, their values the start.
+    Returns a dict: parameters {NAME: {value, stderr, ci95, at_bound}},
+    undetermined (names in a direction the records do not fix; their values
+    carry no interval, nan), correlation {names, matrix}, rms, sigma,
+    residuals, evaluations, batches, iterations, converged, rtol, step.
+    Raises InvalidInput as the CLI's exit code 2."""
+    import os
+    data = [data] if isinstance(data, (str, bytes, os.PathLike)) else list(data)
+    free = [free] if isinstance(free, str) else [",".join(free)]
+    if isinstance(bounds, dict):
+        bounds = [f"{k}={lo!r}:{hi!r}" for k, (lo, hi) in bounds.items()]
+    threads = (os.cpu_count() or 1) if threads is None else int(threads)
+    spelled = {}
+    texts = _texts(options, _SIMULATE_KEYWORDS, "fit", spelled)
+    return _core.fit(texts, [os.fspath(d) for d in data], free, list(bounds), threads)
 
 
 def stationary(*, progress=None, **options):
