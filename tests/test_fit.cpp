@@ -241,6 +241,53 @@ TEST(Fit, SdColumnWeightsRows) {
   EXPECT_NEAR(width[1] / width[0], 2.0, 0.1);
 }
 
+/// y = exp(-x t) at a few t, with a known sd: an analytic, clearly
+/// nonlinear model of one parameter.
+class Decay : public mdrmap::fit::Evaluator {
+public:
+  std::vector<double> t{0.5, 1.0, 2.0, 4.0}, y{0.75, 0.45, 0.3, 0.08};
+  double sd = 0.15;
+  std::vector<double> residuals(double x) const {
+    std::vector<double> r;
+    for (std::size_t k = 0; k < t.size(); ++k)
+      r.push_back((std::exp(-x * t[k]) - y[k]) / sd);
+    return r;
+  }
+  double ssr(double x) const {
+    double s = 0.0;
+    for (const double e : residuals(x))
+      s += e * e;
+    return s;
+  }
+  std::vector<std::vector<double>>
+  evaluate(const std::vector<std::vector<double>>& points) override {
+    std::vector<std::vector<double>> out;
+    for (const auto& p : points)
+      out.push_back(residuals(p[0]));
+    return out;
+  }
+};
+
+TEST(Fit, ProfileBoundsWhereTheModelIsNonlinear) {
+  // The 95% profile bounds are where the cost has risen by t^2 (sd known):
+  // the covariance's bounds of this model miss that by far, the profile's
+  // must meet it, and both sides differ (an asymmetric interval).
+  Decay model;
+  mdrmap::fit::Options opt;
+  opt.known_sd = true;
+  opt.step = 1e-6;
+  const auto r = mdrmap::fit::fit({{"k", 2.0}}, model, opt);
+  const auto& p = r.parameters[0];
+  ASSERT_EQ(p.ci95_method, "profile");
+  const double target = r.ssr + r.t_quantile * r.t_quantile;
+  for (const double b : {p.ci95_lo, p.ci95_hi})
+    EXPECT_NEAR(model.ssr(b), target, 0.05 * (target - r.ssr)) << b;
+  const double cov_miss =
+      std::fabs(model.ssr(p.cov_hi) - target) + std::fabs(model.ssr(p.cov_lo) - target);
+  EXPECT_GT(cov_miss, 0.1 * (target - r.ssr));
+  EXPECT_NE(p.ci95_hi - p.value, p.value - p.ci95_lo);
+}
+
 // --- The command line ------------------------------------------------------------
 
 struct Outcome {

@@ -132,7 +132,8 @@ std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, do
     const auto& f = p.parameters()[i];
     s += std::string(i ? "," : "") + "\n    " + str(q.name) + ": {\"value\": " + num(q.value) +
          ", \"stderr\": " + num(q.stderr_) + ", \"ci95\": [" + num(q.ci95_lo) + ", " +
-         num(q.ci95_hi) + "], \"start\": " + num(f.start) +
+         num(q.ci95_hi) + "], \"ci95_method\": " + str(q.ci95_method) + ", \"ci95_covariance\": [" +
+         num(q.cov_lo) + ", " + num(q.cov_hi) + "], \"start\": " + num(f.start) +
          ", \"log\": " + (f.log ? "true" : "false") +
          ", \"at_bound\": " + (q.at_bound ? "true" : "false") + "}";
   }

@@ -2,85 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <stdexcept>
 
-#include <ceres/ceres.h>
-
+#include "fit/batch_cost.hpp"
 #include "fit/transform.hpp"
 
 namespace mdrmap::fit {
 namespace {
-
-/// The residuals at z and, when asked, the forward-difference Jacobian: the
-/// point and its n shifted copies go to the Evaluator as one batch. A shift
-/// that would cross an upper bound goes the other way. Residuals already
-/// known for a point are not evaluated again.
-class BatchCost final : public ceres::CostFunction {
-public:
-  BatchCost(const Transform& tr, CountingModel& model, std::size_t m, double step)
-      : tr_(tr), model_(model), step_(step) {
-    set_num_residuals(static_cast<int>(m));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(tr.size()));
-  }
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const std::size_t n = tr_.size();
-    const std::vector<double> z(parameters[0], parameters[0] + n);
-    std::vector<std::vector<double>> points{z};
-    std::vector<double> h(n, 0.0);
-    if (jacobians != nullptr && jacobians[0] != nullptr)
-      for (std::size_t j = 0; j < n; ++j) {
-        h[j] = z[j] + step_ > tr_.z_hi(j) ? -step_ : step_;
-        std::vector<double> zj = z;
-        zj[j] += h[j];
-        points.push_back(zj);
-      }
-    const auto r = evaluate(points);
-    for (const auto& ri : r)
-      if (ri.size() != static_cast<std::size_t>(num_residuals())) return false;
-    std::copy(r[0].begin(), r[0].end(), residuals);
-    if (points.size() > 1)
-      for (std::size_t i = 0; i < r[0].size(); ++i)
-        for (std::size_t j = 0; j < n; ++j)
-          jacobians[0][i * n + j] = (r[j + 1][i] - r[0][i]) / h[j];
-    return true;
-  }
-
-  /// Keeps the residuals r of the point z.
-  void remember(const std::vector<double>& z, const std::vector<double>& r) const { cache_[z] = r; }
-
-  /// The residuals of each point (in z), from the cache where known.
-  std::vector<std::vector<double>> evaluate(const std::vector<std::vector<double>>& z) const {
-    std::vector<std::vector<double>> out(z.size()), todo;
-    std::vector<std::size_t> where;
-    for (std::size_t k = 0; k < z.size(); ++k) {
-      const auto it = cache_.find(z[k]);
-      if (it != cache_.end()) {
-        out[k] = it->second;
-      } else {
-        where.push_back(k);
-        todo.push_back(tr_.x_of(z[k]));
-      }
-    }
-    if (!todo.empty()) {
-      const auto r = model_(todo);
-      for (std::size_t k = 0; k < where.size(); ++k) {
-        out[where[k]] = r.at(k);
-        cache_[z[where[k]]] = r.at(k);
-      }
-    }
-    return out;
-  }
-
-private:
-  const Transform& tr_;
-  CountingModel& model_;
-  double step_;
-  mutable std::map<std::vector<double>, std::vector<double>> cache_;
-};
 
 double ssr_of(const std::vector<double>& r) {
   return std::inner_product(r.begin(), r.end(), r.begin(), 0.0);
@@ -131,49 +60,6 @@ std::vector<std::vector<double>> search_grid(const Transform& tr, const std::vec
   return grid;
 }
 
-struct Run {
-  std::vector<double> z;
-  double cost = INFINITY;
-  int iterations = 0;
-  bool converged = false;
-  std::string termination;
-};
-
-Run levenberg_marquardt(const Transform& tr, const BatchCost& cost_template, std::vector<double> z,
-                        const Options& opt) {
-  ceres::Problem::Options po;
-  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
-  auto* cost = const_cast<BatchCost*>(&cost_template);
-  problem.AddResidualBlock(cost, nullptr, z.data());
-  for (std::size_t i = 0; i < tr.size(); ++i) {
-    const int ii = static_cast<int>(i);
-    if (std::isfinite(tr.z_lo(i))) problem.SetParameterLowerBound(z.data(), ii, tr.z_lo(i));
-    if (std::isfinite(tr.z_hi(i))) problem.SetParameterUpperBound(z.data(), ii, tr.z_hi(i));
-  }
-  ceres::Solver::Options so;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = opt.max_iterations;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
-  so.num_threads = 1;
-  // The cost is a simulation's: relative changes below the difference
-  // step's reach are its noise, not progress.
-  so.function_tolerance = 1e-3 * opt.step * opt.step;
-  so.parameter_tolerance = 1e-2 * opt.step;
-  so.gradient_tolerance = 1e-12;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
-  Run r;
-  r.z = z;
-  r.cost = 2.0 * summary.final_cost;
-  r.iterations = static_cast<int>(summary.iterations.size());
-  r.converged = summary.termination_type == ceres::CONVERGENCE;
-  r.termination = summary.message;
-  return r;
-}
-
 void check_input(const std::vector<FreeParameter>& params) {
   if (params.empty()) throw std::invalid_argument("no free parameters");
   for (const auto& p : params) {
@@ -219,7 +105,8 @@ Result fit(const std::vector<FreeParameter>& params, Evaluator& model, const Opt
   Run best;
   int iterations = 0;
   for (int s = 0; s < std::max(1, opt.starts) && s < static_cast<int>(ranked.size()); ++s) {
-    Run run = levenberg_marquardt(tr, cost, grid[ranked[static_cast<std::size_t>(s)].second], opt);
+    Run run =
+        levenberg_marquardt(tr, cost, grid[ranked[static_cast<std::size_t>(s)].second], opt, n);
     iterations += run.iterations;
     if (run.cost < best.cost) best = run;
   }
@@ -232,9 +119,10 @@ Result fit(const std::vector<FreeParameter>& params, Evaluator& model, const Opt
     throw std::runtime_error("the model failed next to the optimum");
   Result out;
   fill_statistics(tr, best.z, r0, jac, opt, out);
+  if (out.undetermined.empty()) profile_intervals(tr, cost, best.z, opt, out);
   out.evaluations = counted.evaluations;
   out.batches = counted.batches;
-  out.iterations = iterations;
+  out.iterations += iterations;
   out.converged = best.converged;
   out.termination = best.termination;
   return out;

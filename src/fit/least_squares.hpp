@@ -52,6 +52,11 @@ struct Options {
   /// A direction whose 95% half-width in the transformed coordinates exceeds
   /// this is not determined by the data (a decade for a log parameter).
   double flat_halfwidth = 2.302585092994046;
+  /// Profile-likelihood bounds where the problem is clearly nonlinear: where
+  /// the cost at a covariance bound (the others re-fitted) misses its
+  /// expected rise t^2 sigma^2 by more than this fraction of it.
+  bool profile = true;
+  double profile_tolerance = 0.1;
 };
 
 struct ParameterResult {
@@ -59,6 +64,8 @@ struct ParameterResult {
   double value = 0.0;
   double stderr_ = 0.0; ///< standard error (delta method for a log parameter)
   double ci95_lo = 0.0, ci95_hi = 0.0;
+  double cov_lo = 0.0, cov_hi = 0.0;      ///< the covariance's 95% interval
+  std::string ci95_method = "covariance"; ///< or "profile" where either bound is the profile's
   bool at_bound = false;
 };
 

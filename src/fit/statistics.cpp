@@ -70,6 +70,8 @@ void fill_statistics(const Transform& tr, const std::vector<double>& z,
     p.stderr_ = sz * dxdz;
     p.ci95_lo = flat[i] ? NAN : tr.to_x(i, z[i] - out.t_quantile * sz);
     p.ci95_hi = flat[i] ? NAN : tr.to_x(i, z[i] + out.t_quantile * sz);
+    p.cov_lo = p.ci95_lo;
+    p.cov_hi = p.ci95_hi;
     out.parameters.push_back(p);
     for (std::size_t j = 0; j < tr.size(); ++j) {
       const auto jj = static_cast<Eigen::Index>(j);

@@ -216,9 +216,12 @@ py::dict fit(const py::dict& options, const std::vector<std::string>& data,
   py::dict params;
   std::vector<std::string> names;
   for (const auto& q : r.parameters) {
-    params[q.name.c_str()] = py::dict(py::arg("value") = q.value, py::arg("stderr") = q.stderr_,
-                                      py::arg("ci95") = py::make_tuple(q.ci95_lo, q.ci95_hi),
-                                      py::arg("at_bound") = q.at_bound);
+    params[q.name.c_str()] =
+        py::dict(py::arg("value") = q.value, py::arg("stderr") = q.stderr_,
+                 py::arg("ci95") = py::make_tuple(q.ci95_lo, q.ci95_hi),
+                 py::arg("ci95_method") = q.ci95_method,
+                 py::arg("ci95_covariance") = py::make_tuple(q.cov_lo, q.cov_hi),
+                 py::arg("at_bound") = q.at_bound);
     names.push_back(q.name);
   }
   py::dict out;
