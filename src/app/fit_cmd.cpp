@@ -121,6 +121,33 @@ std::string reproduce(const FitProblem& p, const std::vector<double>& x, std::si
   return s;
 }
 
+std::string array(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i)
+    s += (i ? ", " : "") + num(v[i]);
+  return s + "]";
+}
+
+/// Per record: its file, t and v, and per fitted column the data and the
+/// model at x (null where not measured), as python -m mdrmap plot_fit draws them.
+std::string records_json(const FitProblem& p, const std::vector<double>& x) {
+  const auto model = p.model_values(x);
+  std::string s;
+  for (std::size_t k = 0; k < p.scenes().size(); ++k) {
+    const FitScene& sc = p.scenes()[k];
+    s += std::string(k ? "," : "") + "\n    {\"file\": " + str(sc.record.path) +
+         ", \"t\": " + array(sc.record.t) + ", \"v\": " + array(sc.record.v) + ", \"columns\": {";
+    for (std::size_t c = 0; c < sc.columns.size(); ++c) {
+      const std::string& q = sc.columns[c];
+      const std::vector<double> none(sc.record.t.size(), NAN);
+      s += std::string(c ? ", " : "") + str(q) + ": {\"data\": " + array(sc.record.measured.at(q)) +
+           ", \"model\": " + array(model.empty() ? none : model[k].at(q)) + "}";
+    }
+    s += "}}";
+  }
+  return s;
+}
+
 std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, double wall,
                  int ranks) {
   std::vector<double> x;
@@ -160,7 +187,7 @@ std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, do
        ",\n  \"command\": " + str(a.command_line) + ",\n  \"best_fit\": [";
   for (std::size_t k = 0; k < p.scenes().size(); ++k)
     s += std::string(k ? ",\n    " : "\n    ") + str(reproduce(p, x, k));
-  return s + "\n  ]\n}\n";
+  return s + "\n  ],\n  \"records\": [" + records_json(p, x) + "\n  ]\n}\n";
 }
 
 /// Rank 0: fits and writes. Throws InvalidInput("free") for a direction
@@ -278,7 +305,8 @@ Output (JSON): parameters.NAME.{value, stderr, ci95, start, log, at_bound};
 correlation.{names, matrix}; rms (of the weighted residuals), sigma, residuals,
 evaluations, batches, iterations, converged, termination, rtol, step,
 wall_seconds, ranks, command, best_fit (mdrmap simulate of each record at the
-fitted values).
+fitted values); records (per record its file, t, v and per fitted column the
+data and the model: python3 -m mdrmap plot_fit FIT.json -o FIT.png draws them).
 
 )" + examples() +
          R"(

@@ -5,6 +5,7 @@ same numbers with 1 thread and 2 (the CLI's library, the CLI's result)."""
 import json
 import os
 import subprocess
+import sys
 
 import mdrmap
 
@@ -45,3 +46,25 @@ def test_fit_refuses_a_free_parameter_the_case_has_not():
         assert e.option == "free" and "beta" in str(e)
     else:
         raise AssertionError("beta on a parabola was accepted")
+
+
+def test_plot_fit_draws_the_records_of_the_json(tmp_path):
+    out = tmp_path / "fit.json"
+    args = [os.environ["MDRMAP_EXE"], "fit", "--free", "R,aT", "--output", str(out)]
+    for d in DATA:
+        args += ["--data", d]
+    for k, v in CASE.items():
+        args += [f"--{k}", str(v)]
+    subprocess.run(args, check=True)
+    records = json.loads(out.read_text())["records"]
+    assert [len(r["columns"]["mu"]["model"]) for r in records] == [len(r["t"]) for r in records]
+    run = [sys.executable, "-m", "mdrmap", "plot_fit"]
+    p = subprocess.run(run + [str(out), "-o", str(tmp_path / "fit.png")], capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "fit.png").stat().st_size > 0
+    (tmp_path / "bad.json").write_text("{}")
+    p = subprocess.run(run + [str(tmp_path / "bad.json"), "-o", str(tmp_path / "b.png")],
+                       capture_output=True, text=True)
+    assert p.returncode == 2 and "no records" in p.stderr and len(p.stderr.splitlines()) == 1
+    assert not (tmp_path / "b.png").exists()
