@@ -57,6 +57,58 @@ template <class F> auto as_data(F f) {
   }
 }
 
+/// The measured columns of a record that a fit uses, their scales and
+/// whether an sd column weights them. Throws InvalidInput("data").
+void read_columns(FitScene& s, bool load, const std::string& path) {
+  const std::string at = path + ": ";
+  for (const std::string q : {"mu", "Fx", "FN", "d"}) {
+    const auto it = s.record.measured.find(q);
+    if (it == s.record.measured.end()) continue;
+    if (q == (load ? "FN" : "d"))
+      throw InvalidInput(
+          "data",
+          at + "column " + q +
+              (load ? " is the prescribed load --F0 under load control; fit mu, Fx or d"
+                    : " is measured under load (--F0) only; at fixed depth fit mu, Fx or FN"));
+    double big = 0.0;
+    for (const double y : it->second)
+      if (std::isfinite(y)) big = std::fmax(big, std::fabs(y));
+    if (!(big > 0.0))
+      throw InvalidInput(
+          "data",
+          at + "column " + q +
+              " has no value other than nan or 0; give the measured values or drop the column");
+    s.columns.push_back(q);
+    s.scale[q] = big;
+  }
+  if (s.columns.empty())
+    throw InvalidInput(
+        "data", at + "no measured column: the header must name at least one of " +
+                    std::string(load ? "mu, Fx, d (under --F0)" : "mu, Fx, FN (at fixed depth)"));
+  s.has_sd = s.record.measured.count("sd") > 0;
+  if (s.has_sd && s.columns.size() != 1)
+    throw InvalidInput("data", at + "an sd column weights one measured column; this record has " +
+                                   std::to_string(s.columns.size()));
+}
+
+/// The number of measured values of a record; checks its sd column.
+std::size_t count_values(FitScene& s, const std::string& path) {
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < s.record.t.size(); ++i) {
+    const double y = s.record.measured[s.columns.front()][i];
+    if (!std::isfinite(y)) continue;
+    ++m;
+    if (s.has_sd && !(s.record.measured["sd"][i] > 0.0))
+      throw InvalidInput("data", path + ":" + std::to_string(s.record.line[i]) +
+                                     ": sd must be a number > 0 where " + s.columns.front() +
+                                     " is measured");
+  }
+  for (std::size_t c = 1; c < s.columns.size(); ++c)
+    for (const double y : s.record.measured[s.columns[c]])
+      m += std::isfinite(y) ? 1u : 0u;
+  return m;
+}
+
 } // namespace
 
 FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
@@ -70,49 +122,10 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
     t["history-file"] = path;
     start = as_data([&] { return read_case_input(t); });
     load_ = start.c.loading.by_force();
-    const std::string at = path + ": ";
-    for (const std::string q : {"mu", "Fx", "FN", "d"}) {
-      const auto it = s.record.measured.find(q);
-      if (it == s.record.measured.end()) continue;
-      if (q == (load_ ? "FN" : "d"))
-        throw InvalidInput(
-            "data",
-            at + "column " + q +
-                (load_ ? " is the prescribed load --F0 under load control; fit mu, Fx or d"
-                       : " is measured under load (--F0) only; at fixed depth fit mu, Fx or FN"));
-      double big = 0.0;
-      for (const double y : it->second)
-        if (std::isfinite(y)) big = std::fmax(big, std::fabs(y));
-      if (!(big > 0.0))
-        throw InvalidInput(
-            "data",
-            at + "column " + q +
-                " has no value other than nan or 0; give the measured values or drop the column");
-      s.columns.push_back(q);
-      s.scale[q] = big;
-    }
-    if (s.columns.empty())
-      throw InvalidInput("data", at + "no measured column: the header must name at least one of " +
-                                     std::string(load_ ? "mu, Fx, d (under --F0)"
-                                                       : "mu, Fx, FN (at fixed depth)"));
-    s.has_sd = s.record.measured.count("sd") > 0;
-    if (s.has_sd && s.columns.size() != 1)
-      throw InvalidInput("data", at + "an sd column weights one measured column; this record has " +
-                                     std::to_string(s.columns.size()));
+    read_columns(s, load_, path);
     if (!scenes_.empty() && s.has_sd != scenes_.front().has_sd)
-      throw InvalidInput("data", at + "every record or none must have an sd column");
-    for (std::size_t i = 0; i < s.record.t.size(); ++i) {
-      const double y = s.record.measured[s.columns.front()][i];
-      if (!std::isfinite(y)) continue;
-      ++m_;
-      if (s.has_sd && !(s.record.measured["sd"][i] > 0.0))
-        throw InvalidInput("data", path + ":" + std::to_string(s.record.line[i]) +
-                                       ": sd must be a number > 0 where " + s.columns.front() +
-                                       " is measured");
-    }
-    for (std::size_t c = 1; c < s.columns.size(); ++c)
-      for (const double y : s.record.measured[s.columns[c]])
-        m_ += std::isfinite(y) ? 1u : 0u;
+      throw InvalidInput("data", path + ": every record or none must have an sd column");
+    m_ += count_values(s, path);
     scenes_.push_back(std::move(s));
   }
   rtol_ = start.rtol;
