@@ -27,6 +27,9 @@
 #include "core/solvers/dispatch.hpp"
 #include "fit/least_squares.hpp"
 
+#ifndef MDRMAP_HAS_PYTHON
+#define MDRMAP_HAS_PYTHON 0
+#endif
 #ifndef MDRMAP_EXE
 #error "MDRMAP_EXE must name the mdrmap binary"
 #endif
@@ -336,6 +339,21 @@ TEST(FitCli, WritesJsonWithIntervals) {
   EXPECT_EQ(run_mdrmap(f, cmd).code, 0) << cmd;
 }
 
+TEST(FitCli, PlotDrawsTheFit) {
+  if (!MDRMAP_HAS_PYTHON) GTEST_SKIP() << "built without Python: --plot is refused";
+  Files f;
+  const std::string a = make_record(f, "a", kSceneA, kDepth, {"mu"}, 0.01, 1);
+  const std::string png = f.path("fit.png").string();
+  const Outcome o =
+      run_mdrmap(f, "fit --data " + a + " --free R --d 0.1 --tau 1 --R 20 --aT 2 --plot " + png);
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("\"records\": ["), std::string::npos); // the JSON on stdout
+  std::ifstream in(png, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
 /// Exit 2, one line naming `what`, the output not created.
 void expect_refused(const Files& f, const std::string& args, const std::string& what) {
   const std::string out = f.path("refused.json").string();
@@ -383,6 +401,8 @@ TEST(FitCli, RefusesBadInput) {
       f, "--data " + good + " --d 0.1 --R 10 --tau 1 --free T --T -60 --wlf 17.44:51.6:0", "--T");
   expect_refused(f, "--data " + good + " --d 0.1 --R 10 --tau 1 --free G",
                  "--free: the records do not determine G");
+  expect_refused(f, "--data " + good + c + " --plot " + f.path("no/fit.png").string(),
+                 "--plot: no directory");
   expect_refused(f, "--d 0.1 --R 10 --tau 1 --free R", "--data: is required");
   expect_refused(f, "--data " + good + " --d 0.1 --R 10 --tau 1", "--free: is required");
   expect_refused(f, "--data " + good + " --d 0.1 --R 10 --tau 1 --free R --v 1",

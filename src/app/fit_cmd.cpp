@@ -2,9 +2,12 @@
 
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -14,6 +17,7 @@
 #include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
 #include "app/fit_mpi.hpp"
+#include "app/fit_plot.hpp"
 #include "app/fit_problem.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
@@ -42,7 +46,7 @@ std::vector<std::string> case_names() {
 
 std::vector<std::string> option_names() {
   std::vector<std::string> names = case_names();
-  names.insert(names.end(), {"free", "output"});
+  names.insert(names.end(), {"free", "output", "plot"});
   return names;
 }
 
@@ -71,6 +75,7 @@ std::vector<std::string> take_repeated(std::vector<std::string>& args, const std
 struct FitArgs {
   FitSpec spec;
   std::string output;
+  std::string plot; ///< empty: none
   std::string command_line;
 };
 
@@ -83,6 +88,10 @@ FitArgs parse_args(const std::vector<std::string>& given) {
   a.spec.texts = given_texts(vm, case_names());
   if (vm.count("free")) a.spec.free = {vm["free"].as<std::string>()};
   a.output = output_option(vm);
+  if (vm.count("plot")) {
+    a.plot = vm["plot"].as<std::string>();
+    check_plot(a.plot);
+  }
   a.command_line = "mdrmap fit";
   for (const auto& s : given)
     a.command_line += " " + s;
@@ -190,6 +199,27 @@ std::string json(const FitProblem& p, const fit::Result& r, const FitArgs& a, do
   return s + "\n  ],\n  \"records\": [" + records_json(p, x) + "\n  ]\n}\n";
 }
 
+/// The figure of the JSON `text` (the --output file where it is a regular
+/// file, else a temporary copy).
+void plot(const std::string& text, const FitArgs& a) {
+  std::error_code ec;
+  if (!a.output.empty() && a.output != "-" && std::filesystem::is_regular_file(a.output, ec))
+    return draw_plot(a.output, a.plot);
+  std::string tmp = (std::filesystem::temp_directory_path() / "mdrmap_fit_XXXXXX").string();
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) throw std::runtime_error("--plot: cannot make a temporary file for the JSON");
+  const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  try {
+    if (!ok) throw std::runtime_error("--plot: cannot write a temporary file for the JSON");
+    draw_plot(tmp, a.plot);
+  } catch (...) {
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+  std::filesystem::remove(tmp, ec);
+}
+
 /// Rank 0: fits and writes. Throws InvalidInput("free") for a direction
 /// the records do not determine.
 int drive(const FitProblem& p, const FitArgs& a, fit::Evaluator& ev, int ranks) {
@@ -209,6 +239,7 @@ int drive(const FitProblem& p, const FitArgs& a, fit::Evaluator& ev, int ranks) 
   const std::string text = json(p, r, a, wall, ranks);
   if (std::fputs(text.c_str(), out.get()) < 0) throw std::runtime_error("cannot write the output");
   out.commit();
+  if (!a.plot.empty()) plot(text, a);
   return kExitOk;
 }
 
@@ -245,7 +276,9 @@ std::vector<HelpSection> sections() {
                               "of the start)"},
       {"--rtol E", "the model's accuracy per evaluation, in (0, 0.1]; the difference step is "
                    "100 E in ln(parameter). Default: 1e-4"},
-      {"--output FILE", "the JSON result. Default: standard output"}};
+      {"--output FILE", "the JSON result. Default: standard output"},
+      {"--plot FILE.png", "also draw the records, the fitted model and the residuals (python3 -m "
+                          "mdrmap plot_fit on the JSON; needs matplotlib)"}};
   std::vector<HelpEntry> geometry = {profile_entry(false)};
   for (const Part part : {Part::Loading, Part::Indenter})
     for (auto& e : parameter_entries(part))
