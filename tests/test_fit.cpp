@@ -190,6 +190,37 @@ TEST(Fit, FixedDepthRecoversDAndG) {
   expect_recovered(data, truth, {"d", "G"});
 }
 
+TEST(Fit, SpectrumModulusScaleAndShift) {
+  // A 2-term spectrum at fixed depth, mu and FN measured; the fit starts from
+  // every modulus half the truth's (Gscale 2 recovers them) and aT off.
+  Files f;
+  const OptionTexts truth = {
+      {"d", "0.1"}, {"R", "10"},     {"tau", "0"}, {"G", "2"}, {"prony", "4:0.1,4:10"},
+      {"aT", "2"},  {"rtol", "1e-4"}};
+  const std::vector<std::string> data = {
+      make_record(f, "a", kSceneA, truth, {"mu", "FN"}, 0.01, 11),
+      make_record(f, "b", kSceneB, truth, {"mu", "FN"}, 0.01, 12)};
+  for (const double aT : {2.5, 6.0}) {
+    FitSpec spec;
+    spec.texts = truth;
+    spec.texts["G"] = "1";
+    spec.texts["prony"] = "2:0.1,2:10";
+    spec.texts["aT"] = num(aT);
+    spec.data = data;
+    spec.free = {"Gscale,aT"};
+    const auto r = fit_from(spec);
+    ASSERT_TRUE(r.undetermined.empty());
+    for (const auto& [i, x] : {std::pair<int, double>{0, 2.0}, {1, 2.0}}) {
+      const auto& q = r.parameters[static_cast<std::size_t>(i)];
+      SCOPED_TRACE(q.name + ": " + num(q.value) + " [" + num(q.ci95_lo) + ", " + num(q.ci95_hi) +
+                   "]");
+      EXPECT_LE(q.ci95_lo, x);
+      EXPECT_GE(q.ci95_hi, x);
+      EXPECT_LT(q.ci95_hi - q.ci95_lo, 0.2 * x);
+    }
+  }
+}
+
 TEST(Fit, UnderLoadF0AndGAreReportedUndetermined) {
   // mu and d under load depend on F0 and G through F0 / G only (the Hertz
   // radius a0): F0 and G together are a flat direction, reported as such.

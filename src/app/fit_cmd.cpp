@@ -269,8 +269,8 @@ std::vector<HelpSection> sections() {
                       "mu, Fx, d under --F0; an empty or nan value is not measured; an optional sd "
                       "column (with one measured column) weights the rows by 1/sd"},
       {"--free NAME,...", "the parameters to fit: R (or beta, n, A), d or F0, G, tau, aT or T, "
-                          "and a --prony spectrum's Gk, tauk; their values as given are the "
-                          "start"},
+                          "a --prony spectrum's Gk, tauk, and Gscale (--G and every --prony "
+                          "modulus times it); their values as given are the start"},
       {"--bounds NAME=LO:HI", "bounds of a free parameter (repeatable); LO > 0 for a positive "
                               "one. Default: none (the pre-search spans a decade either side "
                               "of the start)"},

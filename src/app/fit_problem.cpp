@@ -109,6 +109,92 @@ std::size_t count_values(FitScene& s, const std::string& path) {
   return m;
 }
 
+/// The free parameter a whole-spectrum modulus scale is fitted as: it
+/// multiplies --G and every --prony term's modulus (start 1).
+constexpr const char* kScale = "Gscale";
+
+/// A free parameter of the table (R, beta, n, A, d, F0, G, tau, aT).
+fit::FreeParameter table_parameter(const ParamSpec& q, const OptionTexts& texts,
+                                   const CaseInput& start) {
+  const std::string name = q.name;
+  if (!q.applies_to(start.c.indenter.profile))
+    throw InvalidInput("free", name + " is not a parameter of this case's indenter (--profile " +
+                                   std::string(profile_name(start.c.indenter.profile)) + ")");
+  const ParamAlias* alias = alias_of(name);
+  if (q.one_of && !texts.count(name) && !(alias && texts.count(alias->alias)))
+    throw InvalidInput("free", name + " is not this case's loading; free the one given (" +
+                                   group_usage(group_members(q.one_of), ", ", " or ") + ")");
+  if (name == "aT" && texts.count("T"))
+    throw InvalidInput("free", "aT comes from --T and --wlf here; free T instead");
+  fit::FreeParameter p;
+  p.name = name;
+  p.start = q.get(start.c);
+  p.log = q.lo >= 0.0;
+  if (p.log && !(p.start > 0.0))
+    throw InvalidInput("free", name + " starts at " + format_number(p.start) +
+                                   "; give it a start > 0 (--" + name + ")");
+  return p;
+}
+
+/// A free term Gk (field 0) or tauk (field 1) of --prony.
+fit::FreeParameter term_parameter(const std::string& name, std::size_t term, int field,
+                                  const OptionTexts& texts) {
+  if (!texts.count("prony"))
+    throw InvalidInput("free", name + ": a spectrum's terms are free only when given with "
+                                      "--prony G1:TAU1,...");
+  const auto terms = items(texts.at("prony"));
+  if (term > terms.size())
+    throw InvalidInput("free", name + ": --prony has " + std::to_string(terms.size()) + " term(s)");
+  fit::FreeParameter p;
+  p.name = name;
+  p.start =
+      std::strtod(items(terms[term - 1], ':').at(static_cast<std::size_t>(field)).c_str(), nullptr);
+  return p;
+}
+
+/// The free parameter `name` (as typed: `raw`) with its start.
+fit::FreeParameter free_parameter(const std::string& name, const std::string& raw,
+                                  const OptionTexts& texts, const CaseInput& start) {
+  const ParamSpec* q = find_parameter(name);
+  const auto [term, field] = term_of(name);
+  if (q && (q->part == Part::Indenter || q->part == Part::Material || q->part == Part::Loading))
+    return table_parameter(*q, texts, start);
+  if (!q && term > 0) return term_parameter(name, term, field, texts);
+  fit::FreeParameter p;
+  p.name = name;
+  if (name == "T") {
+    if (!texts.count("T")) throw InvalidInput("free", "T needs a start: give --T (and --wlf)");
+    p.start = parse_temperature("T", texts.at("T")).value;
+    p.log = false;
+    return p;
+  }
+  if (name == kScale) {
+    if (texts.count("material") || texts.count("prony-file"))
+      throw InvalidInput("free", std::string(kScale) + " scales --G and --prony's moduli; a "
+                                                       "spectrum from a file cannot be scaled");
+    p.start = 1.0;
+    return p;
+  }
+  throw InvalidInput("free", shown(raw) + " is not a parameter that can be fitted; free ones are "
+                                          "the case's R (or beta, n, A), d or F0, G, tau, aT or "
+                                          "T, a --prony spectrum's Gk, tauk, and Gscale (every "
+                                          "modulus times it)");
+}
+
+/// --prony's text with term k's field set to `value`, or (k = 0) every
+/// modulus times `value`.
+std::string prony_with(const std::string& text, std::size_t k, int field, double value) {
+  auto terms = items(text);
+  std::string joined;
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    auto parts = items(terms[i], ':');
+    if (k == 0) parts.at(0) = full(std::strtod(parts.at(0).c_str(), nullptr) * value);
+    if (k == i + 1) parts.at(static_cast<std::size_t>(field)) = full(value);
+    joined += (i ? "," : "") + parts.at(0) + ":" + parts.at(1);
+  }
+  return joined;
+}
+
 } // namespace
 
 FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
@@ -144,52 +230,15 @@ void FitProblem::read_free(const FitSpec& spec, const CaseInput& start) {
       const std::string name = canonical_parameter_name(raw);
       if (name.empty()) throw InvalidInput("free", "an empty name in " + shown(text));
       if (!seen.insert(name).second) throw InvalidInput("free", name + " is named twice");
-      fit::FreeParameter p;
-      p.name = name;
-      const ParamSpec* spec_p = find_parameter(name);
-      const auto [term, field] = term_of(name);
-      if (name == "T") {
-        if (!texts_.count("T")) throw InvalidInput("free", "T needs a start: give --T (and --wlf)");
-        p.start = parse_temperature("T", texts_.at("T")).value;
-        p.log = false;
-      } else if (spec_p && (spec_p->part == Part::Indenter || spec_p->part == Part::Material ||
-                            spec_p->part == Part::Loading)) {
-        if (!spec_p->applies_to(start.c.indenter.profile))
-          throw InvalidInput("free", name +
-                                         " is not a parameter of this case's indenter (--profile " +
-                                         std::string(profile_name(start.c.indenter.profile)) + ")");
-        if (spec_p->one_of && !texts_.count(name))
-          throw InvalidInput("free", name + " is not this case's loading; free the one given (" +
-                                         group_usage(group_members(spec_p->one_of), ", ", " or ") +
-                                         ")");
-        if (name == "aT" && texts_.count("T"))
-          throw InvalidInput("free", "aT comes from --T and --wlf here; free T instead");
-        p.start = spec_p->get(start.c);
-        p.log = spec_p->lo >= 0.0;
-        if (p.log && !(p.start > 0.0))
-          throw InvalidInput("free", name + " starts at " + format_number(p.start) +
-                                         "; give it a start > 0 (--" + name + ")");
-      } else if (term > 0) {
-        if (!texts_.count("prony"))
-          throw InvalidInput(
-              "free",
-              name + ": a spectrum's terms are free only when given with --prony G1:TAU1,...");
-        const auto terms = items(texts_.at("prony"));
-        if (term > terms.size())
-          throw InvalidInput("free",
-                             name + ": --prony has " + std::to_string(terms.size()) + " term(s)");
-        const auto parts = items(terms[term - 1], ':');
-        p.start = std::strtod(parts.at(static_cast<std::size_t>(field)).c_str(), nullptr);
-      } else {
-        throw InvalidInput(
-            "free", shown(raw) +
-                        " is not a parameter that can be fitted; free ones are the case's R (or "
-                        "beta, n, A), d or F0, G, tau, aT or T, and a --prony spectrum's Gk, tauk");
-      }
-      params_.push_back(p);
+      params_.push_back(free_parameter(name, raw, texts_, start));
     }
   if (params_.empty())
     throw InvalidInput("free", "is required: the parameters to fit, e.g. --free R,aT");
+  if (seen.count(kScale))
+    for (const auto& name : seen)
+      if (name == "G" || (term_of(name).first > 0 && term_of(name).second == 0))
+        throw InvalidInput("free", std::string(kScale) + " scales every modulus; free it or " +
+                                       name + ", not both");
 }
 
 void FitProblem::read_bounds(const FitSpec& spec) {
@@ -235,17 +284,14 @@ OptionTexts FitProblem::texts_at(const std::vector<double>& x, std::size_t k) co
     const std::string& name = params_[i].name;
     const auto [term, field] = term_of(name);
     if (name == "T") {
-      const Temperature T0 = parse_temperature("T", texts_.at("T"));
-      t["T"] = full(x[i]) + unit_suffix(T0.unit);
+      t["T"] = full(x[i]) + unit_suffix(parse_temperature("T", texts_.at("T")).unit);
+    } else if (name == kScale) {
+      const double G = texts_.count("G") ? std::strtod(texts_.at("G").c_str(), nullptr)
+                                         : find_parameter("G")->fallback;
+      t["G"] = full(G * x[i]);
+      if (t.count("prony")) t["prony"] = prony_with(t.at("prony"), 0, 0, x[i]);
     } else if (term > 0 && !find_parameter(name)) {
-      auto terms = items(t.at("prony"));
-      auto parts = items(terms[term - 1], ':');
-      parts.at(static_cast<std::size_t>(field)) = full(x[i]);
-      terms[term - 1] = parts[0] + ":" + parts[1];
-      std::string joined;
-      for (const auto& s : terms)
-        joined += (joined.empty() ? "" : ",") + s;
-      t["prony"] = joined;
+      t["prony"] = prony_with(t.at("prony"), term, field, x[i]);
     } else {
       if (const ParamAlias* a = alias_of(name)) t.erase(a->alias);
       t[name] = full(x[i]);
