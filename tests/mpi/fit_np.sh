@@ -40,4 +40,14 @@ if [[ "$np" != 1 ]]; then
   diff <(grep -v -E '"(wall_seconds|ranks|command)"' "$dir/fit_np1.json") \
     <(grep -v -E '"(wall_seconds|ranks|command)"' "$out") || fail "np=$np differs from np=1"
 fi
+# a direction the records do not fix (F0 and G under load): exit 2 on every
+# rank count, one line naming them, nothing written, no rank left waiting
+flat="$dir/flat_np$np.json"
+code=0
+timeout 120 "$MPIEXEC" -np "$np" "$MDRMAP" fit --data "$dir/a.csv" --free F0,G --F0 0.1 --tau 1 \
+  --R 10 --aT 2 --output "$flat" 2>"$dir/flat_np$np.err" || code=$?
+[[ "$code" == 2 ]] || fail "np=$np: undetermined F0, G: exit $code, not 2: $(cat "$dir/flat_np$np.err")"
+[[ ! -e "$flat" ]] || fail "np=$np: undetermined F0, G: $flat written"
+grep -q "^mdrmap fit: error: --free: the records do not determine F0, G" "$dir/flat_np$np.err" ||
+  fail "np=$np: undetermined F0, G: $(cat "$dir/flat_np$np.err")"
 echo "PASS: np=$np fit $(grep -E '"(evaluations|wall_seconds)"' "$out" | tr -d '\n ')"
