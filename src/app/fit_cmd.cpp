@@ -46,7 +46,7 @@ std::vector<std::string> case_names() {
 
 std::vector<std::string> option_names() {
   std::vector<std::string> names = case_names();
-  names.insert(names.end(), {"free", "output", "plot"});
+  names.insert(names.end(), {"free", "starts", "output", "plot"});
   return names;
 }
 
@@ -87,6 +87,7 @@ FitArgs parse_args(const std::vector<std::string>& given) {
   const auto vm = option_texts(args, kCommand, option_names(), "--free R");
   a.spec.texts = given_texts(vm, case_names());
   if (vm.count("free")) a.spec.free = {vm["free"].as<std::string>()};
+  if (vm.count("starts")) a.spec.starts = vm["starts"].as<std::string>();
   a.output = output_option(vm);
   if (vm.count("plot")) {
     a.plot = vm["plot"].as<std::string>();
@@ -274,6 +275,8 @@ std::vector<HelpSection> sections() {
       {"--bounds NAME=LO:HI", "bounds of a free parameter (repeatable); LO > 0 for a positive "
                               "one. Default: none (the pre-search spans a decade either side "
                               "of the start)"},
+      {"--starts N", "Levenberg-Marquardt runs from the N best pre-search points, the best "
+                     "result kept; 1 to 25. Default: 1"},
       {"--rtol E", "the model's accuracy per evaluation, in (0, 0.1]; the difference step is "
                    "100 E in ln(parameter). Default: 1e-4"},
       {"--output FILE", "the JSON result. Default: standard output"},

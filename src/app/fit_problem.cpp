@@ -17,6 +17,8 @@
 namespace mdrmap::app {
 namespace {
 
+constexpr long kMaxStarts = 25;
+
 const std::vector<std::string> kMeasured = {"mu", "Fx", "FN", "d", "sd"};
 
 std::string full(double x) {
@@ -217,6 +219,14 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
   rtol_ = start.rtol;
   read_free(spec, start);
   read_bounds(spec);
+  if (!spec.starts.empty()) {
+    char* end = nullptr;
+    const long n = std::strtol(spec.starts.c_str(), &end, 10);
+    if (*end != '\0' || n < 1 || n > kMaxStarts)
+      throw InvalidInput("starts", "must be an integer from 1 to " + std::to_string(kMaxStarts) +
+                                       ", got " + shown(spec.starts));
+    starts_ = static_cast<int>(n);
+  }
   if (m_ <= params_.size())
     throw InvalidInput("data", std::to_string(m_) + " measured values for " +
                                    std::to_string(params_.size()) +
@@ -274,6 +284,7 @@ fit::Options FitProblem::options() const {
   fit::Options o;
   o.step = kStepPerRtol * rtol_;
   o.known_sd = scenes_.front().has_sd;
+  o.starts = starts_;
   return o;
 }
 

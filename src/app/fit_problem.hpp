@@ -37,6 +37,7 @@ struct FitSpec {
   std::vector<std::string> data;   ///< record files (--data)
   std::vector<std::string> free;   ///< free parameter names (--free)
   std::vector<std::string> bounds; ///< NAME=LO:HI texts (--bounds)
+  std::string starts;              ///< --starts N (empty: 1)
 };
 
 /// One record and what of it is fitted.
@@ -84,6 +85,7 @@ private:
   std::vector<FitScene> scenes_;
   bool load_ = false;
   double rtol_ = kDefaultRtol;
+  int starts_ = 1;
   std::size_t m_ = 0;
 };
 

@@ -198,12 +198,13 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
 /// GIL. The result as the CLI's JSON has it (parameters, correlation, ...).
 py::dict fit(const py::dict& options, const std::vector<std::string>& data,
              const std::vector<std::string>& free, const std::vector<std::string>& bounds,
-             unsigned threads) {
+             const std::string& starts, unsigned threads) {
   app::FitSpec spec;
   spec.texts = to_texts(options);
   spec.data = data;
   spec.free = free;
   spec.bounds = bounds;
+  spec.starts = starts;
   std::unique_ptr<app::FitProblem> p;
   fit::Result r;
   run_call(
@@ -325,7 +326,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
         "Runs one case from {option: text}; a dict of numpy arrays and records.");
   m.def("fit", &fit, py::arg("options"), py::arg("data"), py::arg("free"), py::arg("bounds"),
-        py::arg("threads"), "mdrmap fit: case parameters from lab records.");
+        py::arg("starts"), py::arg("threads"), "mdrmap fit: case parameters from lab records.");
   m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
         "The stationary states at v or v-list of a case given as {option: text}.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");

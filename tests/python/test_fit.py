@@ -17,12 +17,15 @@ CASE = dict(F0=0.1, tau=1, R=30, aT=0.667)
 def test_fit_recovers_the_truth_over_threads():
     one = mdrmap.fit(data=DATA, free="R,aT", threads=1, **CASE)
     two = mdrmap.fit(data=DATA, free=["R", "aT"], threads=2, **CASE)
+    three = mdrmap.fit(data=DATA, free="R,aT", starts=3, bounds={"R": (1, 100)}, **CASE)
     for name, truth in (("R", 10.0), ("aT", 2.0)):
         lo, hi = one["parameters"][name]["ci95"]
         assert lo <= truth <= hi
         assert two["parameters"][name] == one["parameters"][name]
+        lo, hi = three["parameters"][name]["ci95"]
+        assert lo <= truth <= hi
     assert one["undetermined"] == []
-    assert one["evaluations"] == two["evaluations"]
+    assert one["evaluations"] == two["evaluations"] < three["evaluations"]
 
 
 def test_fit_matches_the_command_line(tmp_path):

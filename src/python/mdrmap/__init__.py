@@ -285,11 +285,12 @@ simulate.__doc__ = _doc.docstring(
     "(the case cannot be computed within its budget or rtol, exit code 1).")
 
 
-def fit(*, data, free, bounds=(), threads=None, **options):
+def fit(*, data, free, bounds=(), starts=1, threads=None, **options):
     """Fits case parameters to lab records as `mdrmap fit` does (docs/fitting.md).
 
     data: a record file or a list of them; free: "R,aT" or ["R", "aT"];
-    bounds: {"R": (lo, hi)} or ["R=LO:HI", ...]; threads: how many threads
+    bounds: {"R": (lo, hi)} or ["R=LO:HI", ...]; starts: Levenberg-Marquardt
+    runs from the best pre-search points (1 to 25); threads: how many threads
     share a batch of evaluations (default: os.cpu_count()); the other
     keywords are the case's, as for simulate, their values the start.
     Returns a dict: parameters {NAME: {value, stderr, ci95, at_bound}},
@@ -305,7 +306,8 @@ def fit(*, data, free, bounds=(), threads=None, **options):
     threads = (os.cpu_count() or 1) if threads is None else int(threads)
     spelled = {}
     texts = _texts(options, _SIMULATE_KEYWORDS, "fit", spelled)
-    return _core.fit(texts, [os.fspath(d) for d in data], free, list(bounds), threads)
+    return _core.fit(texts, [os.fspath(d) for d in data], free, list(bounds), str(starts),
+                     threads)
 
 
 def stationary(*, progress=None, **options):
