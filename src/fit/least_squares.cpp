@@ -60,6 +60,36 @@ std::vector<std::vector<double>> search_grid(const Transform& tr, const std::vec
   return grid;
 }
 
+/// The pre-search: its points (z), their residuals, the points that the
+/// model took by cost, and the number of residuals.
+struct PreSearch {
+  std::vector<std::vector<double>> grid, r;
+  std::vector<std::pair<double, std::size_t>> ranked;
+  std::size_t m = 0;
+};
+
+PreSearch pre_search(const Transform& tr, const std::vector<double>& z0, CountingModel& counted,
+                     const Options& opt) {
+  PreSearch pre;
+  pre.grid = search_grid(tr, z0, opt);
+  std::vector<std::vector<double>> xs;
+  for (const auto& z : pre.grid)
+    xs.push_back(tr.x_of(z));
+  pre.r = counted(xs);
+  for (std::size_t k = 0; k < pre.r.size(); ++k)
+    if (!pre.r[k].empty()) {
+      pre.ranked.emplace_back(ssr_of(pre.r[k]), k);
+      pre.m = pre.r[k].size();
+    }
+  if (pre.ranked.empty()) throw std::runtime_error("the model failed at every pre-search point");
+  if (pre.m < tr.size() + 1)
+    throw std::invalid_argument(std::to_string(pre.m) + " residuals for " +
+                                std::to_string(tr.size()) +
+                                " parameters; a fit needs more residuals than parameters");
+  std::sort(pre.ranked.begin(), pre.ranked.end());
+  return pre;
+}
+
 void check_input(const std::vector<FreeParameter>& params) {
   if (params.empty()) throw std::invalid_argument("no free parameters");
   for (const auto& p : params) {
@@ -81,24 +111,11 @@ Result fit(const std::vector<FreeParameter>& params, Evaluator& model, const Opt
     z0[i] = tr.to_z(i, params[i].start);
 
   CountingModel counted{model};
-  const auto grid = search_grid(tr, z0, opt);
-  std::vector<std::vector<double>> xs;
-  for (const auto& z : grid)
-    xs.push_back(tr.x_of(z));
-  const auto r = counted(xs);
-  std::vector<std::pair<double, std::size_t>> ranked;
-  std::size_t m = 0;
-  for (std::size_t k = 0; k < r.size(); ++k)
-    if (!r[k].empty()) {
-      ranked.emplace_back(ssr_of(r[k]), k);
-      m = r[k].size();
-    }
-  if (ranked.empty()) throw std::runtime_error("the model failed at every pre-search point");
-  if (m < n + 1)
-    throw std::invalid_argument(std::to_string(m) + " residuals for " + std::to_string(n) +
-                                " parameters; a fit needs more residuals than parameters");
-  std::sort(ranked.begin(), ranked.end());
-
+  const PreSearch pre = pre_search(tr, z0, counted, opt);
+  const auto& grid = pre.grid;
+  const auto& r = pre.r;
+  const auto& ranked = pre.ranked;
+  const std::size_t m = pre.m;
   const BatchCost cost(tr, counted, m, opt.step);
   for (std::size_t k = 0; k < r.size(); ++k) // the pre-search's points are known
     if (!r[k].empty()) cost.remember(grid[k], r[k]);

@@ -21,6 +21,43 @@ namespace {
 /// largest one name a parameter in it.
 constexpr double kFlatComponent = 0.3;
 
+/// The covariance in z of the directions the data determine; `flat` marks
+/// the parameters of the others (a large component in one).
+Eigen::MatrixXd covariance(const Eigen::JacobiSVD<Eigen::MatrixXd>& svd, const Options& opt,
+                           const Result& out, std::vector<bool>& flat) {
+  const Eigen::VectorXd s = svd.singularValues();
+  const Eigen::MatrixXd V = svd.matrixV();
+  const Eigen::Index n = V.rows();
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double half = s(k) > 0.0 ? out.t_quantile * out.sigma / s(k) : INFINITY;
+    if (!(half <= opt.flat_halfwidth)) {
+      const double big = V.col(k).cwiseAbs().maxCoeff();
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (std::fabs(V(i, k)) >= kFlatComponent * big) flat[static_cast<std::size_t>(i)] = true;
+      continue;
+    }
+    cov += (out.sigma * out.sigma / (s(k) * s(k))) * V.col(k) * V.col(k).transpose();
+  }
+  return cov;
+}
+
+/// Parameter i's value, standard error and covariance interval.
+ParameterResult parameter_result(const Transform& tr, const std::vector<double>& z, std::size_t i,
+                                 double var_z, bool flat, double t) {
+  ParameterResult p;
+  p.name = tr.p[i].name;
+  p.value = tr.to_x(i, z[i]);
+  p.at_bound = z[i] <= tr.z_lo(i) || z[i] >= tr.z_hi(i);
+  const double sz = flat ? NAN : std::sqrt(var_z);
+  p.stderr_ = sz * (tr.p[i].log ? p.value : tr.scale[i]);
+  p.ci95_lo = flat ? NAN : tr.to_x(i, z[i] - t * sz);
+  p.ci95_hi = flat ? NAN : tr.to_x(i, z[i] + t * sz);
+  p.cov_lo = p.ci95_lo;
+  p.cov_hi = p.ci95_hi;
+  return p;
+}
+
 } // namespace
 
 void fill_statistics(const Transform& tr, const std::vector<double>& z,
@@ -40,20 +77,9 @@ void fill_statistics(const Transform& tr, const std::vector<double>& z,
 
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
   const Eigen::VectorXd s = svd.singularValues();
-  const Eigen::MatrixXd V = svd.matrixV();
   out.singular_values.assign(s.data(), s.data() + n);
   std::vector<bool> flat(tr.size(), false);
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    const double half = s(k) > 0.0 ? out.t_quantile * out.sigma / s(k) : INFINITY;
-    if (!(half <= opt.flat_halfwidth)) {
-      const double big = V.col(k).cwiseAbs().maxCoeff();
-      for (Eigen::Index i = 0; i < n; ++i)
-        if (std::fabs(V(i, k)) >= kFlatComponent * big) flat[static_cast<std::size_t>(i)] = true;
-      continue;
-    }
-    cov += (out.sigma * out.sigma / (s(k) * s(k))) * V.col(k) * V.col(k).transpose();
-  }
+  const Eigen::MatrixXd cov = covariance(svd, opt, out, flat);
   for (std::size_t i = 0; i < tr.size(); ++i)
     if (flat[i]) out.undetermined.push_back(tr.p[i].name);
 
@@ -61,18 +87,7 @@ void fill_statistics(const Transform& tr, const std::vector<double>& z,
   out.parameters.clear();
   for (std::size_t i = 0; i < tr.size(); ++i) {
     const auto ii = static_cast<Eigen::Index>(i);
-    ParameterResult p;
-    p.name = tr.p[i].name;
-    p.value = tr.to_x(i, z[i]);
-    p.at_bound = z[i] <= tr.z_lo(i) || z[i] >= tr.z_hi(i);
-    const double sz = flat[i] ? NAN : std::sqrt(cov(ii, ii));
-    const double dxdz = tr.p[i].log ? p.value : tr.scale[i];
-    p.stderr_ = sz * dxdz;
-    p.ci95_lo = flat[i] ? NAN : tr.to_x(i, z[i] - out.t_quantile * sz);
-    p.ci95_hi = flat[i] ? NAN : tr.to_x(i, z[i] + out.t_quantile * sz);
-    p.cov_lo = p.ci95_lo;
-    p.cov_hi = p.ci95_hi;
-    out.parameters.push_back(p);
+    out.parameters.push_back(parameter_result(tr, z, i, cov(ii, ii), flat[i], out.t_quantile));
     for (std::size_t j = 0; j < tr.size(); ++j) {
       const auto jj = static_cast<Eigen::Index>(j);
       if (!flat[i] && !flat[j])
