@@ -434,7 +434,10 @@ TEST(FitCli, RefusesBadInput) {
                  "--free: the records do not determine G");
   expect_refused(f, "--data " + good + c + " --plot " + f.path("no/fit.png").string(),
                  "--plot: no directory");
-  expect_refused(f, "--data " + good + c + " --starts 0", "--starts: must be an integer from 1 to 25");
+  expect_refused(f, "--data " + good + c + " --starts 0",
+                 "--starts: must be an integer from 1 to 25");
+  expect_refused(f, "--data " + good + c + " --rtol 0.01",
+                 "--rtol: a fit's model must be accurate");
   expect_refused(f, "--d 0.1 --R 10 --tau 1 --free R", "--data: is required");
   expect_refused(f, "--data " + good + " --d 0.1 --R 10 --tau 1", "--free: is required");
   expect_refused(f, "--data " + good + " --d 0.1 --R 10 --tau 1 --free R --v 1",

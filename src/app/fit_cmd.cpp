@@ -277,7 +277,7 @@ std::vector<HelpSection> sections() {
                               "of the start)"},
       {"--starts N", "Levenberg-Marquardt runs from the N best pre-search points, the best "
                      "result kept; 1 to 25. Default: 1"},
-      {"--rtol E", "the model's accuracy per evaluation, in (0, 0.1]; the difference step is "
+      {"--rtol E", "the model's accuracy per evaluation, in (0, 0.001]; the difference step is "
                    "100 E in ln(parameter). Default: 1e-4"},
       {"--output FILE", "the JSON result. Default: standard output"},
       {"--plot FILE.png", "also draw the records, the fitted model and the residuals (python3 -m "

@@ -18,6 +18,8 @@ namespace mdrmap::app {
 namespace {
 
 constexpr long kMaxStarts = 25;
+/// The largest rtol a fit takes: its difference step, 100 rtol, at most 0.1.
+constexpr double kMaxRtol = 1e-3;
 
 const std::vector<std::string> kMeasured = {"mu", "Fx", "FN", "d", "sd"};
 
@@ -217,6 +219,11 @@ FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
     scenes_.push_back(std::move(s));
   }
   rtol_ = start.rtol;
+  if (rtol_ > kMaxRtol)
+    throw InvalidInput("rtol", "a fit's model must be accurate well below its difference step "
+                               "(100 rtol in ln(parameter), at most 0.1): rtol at most 0.001, "
+                               "got " +
+                                   format_number(rtol_));
   read_free(spec, start);
   read_bounds(spec);
   if (!spec.starts.empty()) {
