@@ -325,19 +325,23 @@ Fits the free parameters of a case to one or more lab records (each record
 is one scene: its rows give the velocity history, as simulate --history-file,
 and the measured values). Each evaluation simulates every record. The fit
 works in ln(parameter) for positive parameters; it starts from the best point
-of a coarse pre-search (5 points a parameter over the bounds, or a decade
-either side of the start) and runs Levenberg-Marquardt with a forward-
-difference Jacobian whose columns are evaluated together (over the ranks
-under mpirun). Residuals are (model - data)/sd with an sd column, else
-(model - data)/max|data| per column with one common noise level estimated
-from them. At the optimum: the covariance from the Jacobian, 95% intervals
-from the Student t quantile (asymmetric for a log parameter). A parameter the
-records do not determine (its interval would span more than a factor 10) is
-reported as such, exit 2, nothing written.
+of a coarse pre-search (5 points a parameter, up to three parameters; 3 for
+four; over the bounds, or a decade either side of the start) and runs
+Levenberg-Marquardt (--starts: from several) with a forward-difference
+Jacobian whose columns are evaluated together (over the ranks under mpirun).
+Residuals are (model - data)/sd with an sd column, else (model -
+data)/max|data| per column with one common noise level estimated from them.
+At the optimum: the covariance from the Jacobian, 95% intervals from the
+Student t quantile (asymmetric for a log parameter); where the cost at a
+bound, the others re-fitted, misses its expected rise by over 10%, the
+profile-likelihood bound instead. A parameter the records do not determine
+(its interval would span more than a factor 10) is reported as such, exit 2,
+nothing written.
 
 )" + full_options(sections()) +
          R"(
-Output (JSON): parameters.NAME.{value, stderr, ci95, start, log, at_bound};
+Output (JSON): parameters.NAME.{value, stderr, ci95, ci95_method,
+ci95_covariance, start, log, at_bound};
 correlation.{names, matrix}; rms (of the weighted residuals), sigma, residuals,
 evaluations, batches, iterations, converged, termination, rtol, step,
 wall_seconds, ranks, command, best_fit (mdrmap simulate of each record at the
