@@ -2709,8 +2709,12 @@ void expect_fits(const std::string& text, std::size_t max_lines, std::size_t col
 // mdrmap --help and every subcommand's --help: at most 40 lines of at most 80
 // columns, pointing to --help-all; --help wins over bad options.
 TEST(cli, HelpOfEverySubcommandFitsAScreen) {
-  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-           {"--help"}, {"simulate", "--help"}, {"stationary", "--help"}, {"study", "--help"}}) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"--help"},
+                                             {"simulate", "--help"},
+                                             {"stationary", "--help"},
+                                             {"study", "--help"},
+                                             {"fit", "--help"}}) {
     SCOPED_TRACE(args.front());
     const Outcome r = run_mdrmap(args);
     EXPECT_EQ(r.code, 0);

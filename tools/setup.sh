@@ -26,6 +26,8 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
   # C++ libraries
   libboost-program-options-dev libgtest-dev libbenchmark-dev
+  # mdrmap fit: the least-squares solver (find_package(Ceres))
+  libceres-dev
   # post-processing (python -m mdrmap TOOL, tools/*.py; the tool mapxr: xarray;
   # Result.to_dataframe: pandas, optional)
   python3-numpy python3-h5py python3-matplotlib python3-xarray python3-h5netcdf

@@ -687,24 +687,8 @@ std::string shown(const std::string& text) {
 }
 
 std::string shown(const OptionValue& v) {
-  std::string s;
-  switch (v.kind) {
-  case OptionValue::Kind::Text:
-    return shown(v.text);
-  case OptionValue::Kind::Number:
-    return shortest(v.number);
-  case OptionValue::Kind::Flag:
-    return v.flag ? "true" : "false";
-  case OptionValue::Kind::Pairs:
-    for (const auto& [a, b] : v.pairs)
-      s += (s.empty() ? "" : ",") + shortest(a) + ":" + shortest(b);
-    return shown(s);
-  case OptionValue::Kind::Numbers:
-    for (const double x : v.numbers)
-      s += (s.empty() ? "" : ":") + shortest(x);
-    return shown(s);
-  }
-  return s;
+  if (v.kind == OptionValue::Kind::Number || v.kind == OptionValue::Kind::Flag) return text_of(v);
+  return shown(text_of(v)); // (text, pairs, numbers: quoted or cut as a text)
 }
 
 std::string parameter_help_text(const ParamSpec& p) {

@@ -4,6 +4,7 @@
 
 #include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
+#include "app/fit_cmd.hpp"
 #include "app/help_layout.hpp"
 #include "app/reference_pages.hpp"
 #include "app/simulate_cmd.hpp"
@@ -53,6 +54,7 @@ const std::vector<Topic>& topics() {
       {"simulate", "every option of mdrmap simulate, its CSV and events", simulate_help_all},
       {"stationary", "every option of mdrmap stationary and its CSV", stationary_help_all},
       {"study", "every option of mdrmap study (MPI parameter maps)", study_help_all},
+      {"fit", "every option of mdrmap fit (case parameters from lab records)", fit_help_all},
       {"profiles", "the indenter: parabola, cone, power law; depth or load", profiles_help},
       {"spectrum", "the material: Kelvin, Prony spectrum, aT, temperature", spectrum_help},
       {"history", "the velocity history: a step, or segments and holds", history_help},
@@ -120,6 +122,7 @@ Subcommands:
              rheology, fixed depth or load) at one or more velocities, as CSV
   study      parameter maps over many cases in parallel: MPI ranks share
              the cases, results go to one HDF5 friction map
+  fit        case parameters from lab records, with 95% intervals (JSON)
 
 'mdrmap <subcommand> --help' summarizes the options of a subcommand,
 'mdrmap <subcommand> --help-all' (or 'mdrmap help <subcommand>') gives all.

@@ -31,11 +31,17 @@ std::vector<std::string> fields(const std::string& line) {
 /// The columns of `t` and `v` in the header `names`.
 struct Columns {
   std::size_t t = 0, v = 0, count = 0;
+  std::map<std::string, std::size_t> measured; ///< name -> column
 };
 
-Columns header_columns(const std::vector<std::string>& names, const std::string& at) {
+Columns header_columns(const std::vector<std::string>& names, const std::string& at,
+                       const std::vector<std::string>& measured) {
   Columns c;
   c.count = names.size();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (const auto& m : measured)
+      if (names[i] == m && !c.measured.emplace(m, i).second)
+        throw InvalidInput(kOption, at + "the header names column " + m + " twice");
   bool has_t = false, has_v = false;
   for (std::size_t i = 0; i < names.size(); ++i) {
     bool* seen = names[i] == "t" ? &has_t : names[i] == "v" ? &has_v : nullptr;
@@ -79,6 +85,11 @@ void add_row(LabRecord& r, const Columns& cols, const std::string& line, const s
                                     "velocity is >= 0 (0 is a hold)");
   r.t.push_back(t);
   r.v.push_back(v);
+  for (const auto& [name, col] : cols.measured) {
+    const std::string& x = f[col];
+    const bool missing = x.empty() || x == "nan" || x == "NaN" || x == "NAN";
+    r.measured[name].push_back(missing ? NAN : number(x, name, at));
+  }
 }
 
 /// Refuses what is not a regular file (a FIFO would block the read).
@@ -94,7 +105,7 @@ void require_regular_file(const std::string& path) {
 
 } // namespace
 
-LabRecord read_lab_record(const std::string& path) {
+LabRecord read_lab_record(const std::string& path, const std::vector<std::string>& measured) {
   require_regular_file(path);
   std::ifstream in(path);
   if (!in) throw InvalidInput(kOption, "cannot read '" + path + "'");
@@ -110,8 +121,11 @@ LabRecord read_lab_record(const std::string& path) {
     if (t.empty() || t[0] == '#') continue;
     if (header) {
       add_row(r, cols, t, at);
+      r.line.push_back(n);
     } else {
-      cols = header_columns(fields(t), at);
+      cols = header_columns(fields(t), at, measured);
+      for (const auto& [name, col] : cols.measured)
+        r.measured[name]; // named by the header: present, if with no rows
       header = true;
     }
   }

@@ -13,6 +13,7 @@
 // The output instants are the rows' times: Sampling::at gets, per segment,
 // the times of its rows since its start and its end.
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,16 +24,22 @@ namespace mdrmap::app {
 /// The rows of a lab record, as read.
 struct LabRecord {
   std::string path;
-  std::vector<double> t; ///< times, strictly increasing
-  std::vector<double> v; ///< load-point velocities, finite and >= 0
+  std::vector<double> t;         ///< times, strictly increasing
+  std::vector<double> v;         ///< load-point velocities, finite and >= 0
+  std::vector<std::size_t> line; ///< the file's line of each row (1-based)
+  /// The columns asked for as measured (read_lab_record's `measured`) that
+  /// the header names: a number per row, NaN where the value is empty or
+  /// nan (not measured).
+  std::map<std::string, std::vector<double>> measured;
 };
 
 /// Reads a record: the first line that is not blank or a comment (first
 /// non-blank character '#') is the header; then one row per line with as
 /// many values as the header has names; at least two rows. Spaces around
 /// a value and a final CR are allowed. Throws InvalidInput("history-file")
-/// with "FILE:LINE: " where a line is at fault.
-LabRecord read_lab_record(const std::string& path);
+/// with "FILE:LINE: " where a line is at fault. The columns named in
+/// `measured` (mdrmap fit's mu, Fx, FN, d, sd) are read too.
+LabRecord read_lab_record(const std::string& path, const std::vector<std::string>& measured = {});
 
 /// Sets c.history (v0 and the segments) and c.sampling.at from the record
 /// as the header comment says. Throws InvalidInput("history-file") where

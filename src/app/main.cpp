@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/fit_cmd.hpp"
 #include "app/help_topics.hpp"
 #include "app/simulate_cmd.hpp"
 #include "app/stationary_cmd.hpp"
@@ -26,7 +27,7 @@ int print_stdout(const std::string& text) {
 int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
   if (args.empty()) {
     std::fputs("mdrmap: error: missing subcommand; usage: mdrmap <subcommand> [options] "
-               "(subcommands: simulate, stationary, study; see mdrmap --help)\n",
+               "(subcommands: simulate, stationary, study, fit; see mdrmap --help)\n",
                stderr);
     return kExitBadInput;
   }
@@ -41,6 +42,7 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
   if (cmd == "simulate") return mdrmap::app::simulate_main(rest);
   if (cmd == "study") return mdrmap::app::study_main(rest, argc, argv);
   if (cmd == "stationary") return mdrmap::app::stationary_main(rest);
+  if (cmd == "fit") return mdrmap::app::fit_main(rest, argc, argv);
 
   if (!cmd.empty() && cmd[0] == '-')
     std::fprintf(stderr,

@@ -64,6 +64,12 @@ inline OptionValues as_values(const std::map<std::string, std::string>& texts) {
   return out;
 }
 
+/// The text the command line would give for v: a number as the shortest
+/// text that reads back to it, pairs as A:B,C:D, numbers as A:B:C, a flag
+/// as true or false (mdrmap fit's problem takes a case as texts).
+std::string text_of(const OptionValue& v);
+std::map<std::string, std::string> as_texts(const OptionValues& values);
+
 /// The shortest text that reads back to x (a number given as a number, as a
 /// message quotes it: 0.1, not 0.10000000000000001).
 std::string shortest(double x);

@@ -22,12 +22,14 @@
 #include <pybind11/stl.h>
 
 #include "app/case_input.hpp"
+#include "app/fit_problem.hpp"
 #include "app/simulation.hpp"
 #include "app/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
 #include "core/model/temperature.hpp"
+#include "fit/least_squares.hpp"
 #include "mdrmap/version.hpp"
 #include "python/call.hpp"
 
@@ -268,6 +270,54 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
   return out;
 }
 
+/// mdrmap fit: the case's option texts, the records, the free names, the
+/// bounds texts; the points of a batch over `threads` threads without the
+/// GIL. The result as the CLI's JSON has it (parameters, correlation, ...).
+py::dict fit(const py::dict& options, const std::vector<std::string>& data,
+             const std::vector<std::string>& free, const std::vector<std::string>& bounds,
+             const std::string& starts, unsigned threads) {
+  app::FitSpec spec;
+  spec.texts = app::as_texts(to_values(options)); // (each number's text reads back to it)
+  spec.data = data;
+  spec.free = free;
+  spec.bounds = bounds;
+  spec.starts = starts;
+  std::unique_ptr<app::FitProblem> p;
+  fit::Result r;
+  run_call(
+      [&](const RunControl&) {
+        p = std::make_unique<app::FitProblem>(spec);
+        app::ThreadEvaluator ev(*p, threads);
+        r = fit::fit(p->parameters(), ev, p->options());
+      },
+      py::none());
+  py::dict params;
+  std::vector<std::string> names;
+  for (const auto& q : r.parameters) {
+    params[q.name.c_str()] =
+        py::dict(py::arg("value") = q.value, py::arg("stderr") = q.stderr_,
+                 py::arg("ci95") = py::make_tuple(q.ci95_lo, q.ci95_hi),
+                 py::arg("ci95_method") = q.ci95_method,
+                 py::arg("ci95_covariance") = py::make_tuple(q.cov_lo, q.cov_hi),
+                 py::arg("at_bound") = q.at_bound);
+    names.push_back(q.name);
+  }
+  py::dict out;
+  out["parameters"] = params;
+  out["undetermined"] = r.undetermined;
+  out["correlation"] = py::dict(py::arg("names") = names, py::arg("matrix") = r.correlation);
+  out["rms"] = r.rms;
+  out["sigma"] = r.sigma;
+  out["residuals"] = r.m;
+  out["evaluations"] = r.evaluations;
+  out["batches"] = r.batches;
+  out["iterations"] = r.iterations;
+  out["converged"] = r.converged;
+  out["rtol"] = p->rtol();
+  out["step"] = p->options().step;
+  return out;
+}
+
 /// The stationary states of the case's loading as `mdrmap stationary` gives
 /// them: `options` its options (the case's, and v or v-list), the result
 /// {"v": velocities, FN, Fx, mu, a2 (d, a1 under load): arrays}.
@@ -400,6 +450,8 @@ PYBIND11_MODULE(_core, m) {
         "The options of a case, as the CLI spells them, in the order of its help.");
   m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
         "Runs one case from {option: value}; a dict of numpy arrays and records.");
+  m.def("fit", &fit, py::arg("options"), py::arg("data"), py::arg("free"), py::arg("bounds"),
+        py::arg("starts"), py::arg("threads"), "mdrmap fit: case parameters from lab records.");
   m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
         "The stationary states at v or v-list of a case given as {option: value}.");
   m.def("read_part", &read_part, py::arg("options"), py::arg("part"),

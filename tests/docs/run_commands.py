@@ -3,7 +3,7 @@
 
     run_commands.py MDRMAP SRCDIR
 
-Every `mdrmap simulate` or `mdrmap stationary` command (also spelled
+Every `mdrmap simulate`, `mdrmap stationary` or `mdrmap fit` command (also spelled
 `build/src/mdrmap ...`) in a ```sh block of README.md and docs/*.md, with its
 backslash continuations, runs with the built MDRMAP in a scratch directory
 that links the repository's jobs/ (the example files the commands name). Each
@@ -18,7 +18,7 @@ import sys
 import tempfile
 
 BLOCK = re.compile(r"^```(?:sh|bash|console)\n(.*?)^```", re.S | re.M)
-COMMAND = re.compile(r"^(?:build/src/)?mdrmap (simulate|stationary)\b")
+COMMAND = re.compile(r"^(?:build/src/)?mdrmap (simulate|stationary|fit)\b")
 
 
 def commands(page):

@@ -52,7 +52,7 @@ from .parts import History, Indenter, Material
 from . import parts as _parts
 
 __version__ = _core.__version__
-__all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
+__all__ = ["simulate", "stationary", "fit", "parameters", "open_map", "to_grid", "Result",
            "Material", "Indenter", "History", "InvalidType",
            "InvalidInput", "MapError"]
 
@@ -195,6 +195,37 @@ simulate.__doc__ = _doc.docstring(
     _doc.entries(_OPTIONS, _TABLE, _ALIASES) + _doc.PARTS + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError\n"
     "(the case cannot be computed within its budget or rtol, exit code 1).")
+
+
+def fit(*, data, free, bounds=(), starts=1, threads=None, **options):
+    """Fits case parameters to lab records as `mdrmap fit` does (docs/fitting.md).
+
+    data: a record file or a list of them; free: "R,aT" or ["R", "aT"];
+    bounds: {"R": (lo, hi)} or ["R=LO:HI", ...]; starts: Levenberg-Marquardt
+    runs from the best pre-search points (1 to 25); threads: how many threads
+    share a batch of evaluations (default: os.cpu_count()); the other
+    keywords are the case's, as for simulate, their values the start.
+    Returns a dict: parameters {NAME: {value, stderr, ci95, at_bound}},
+    undetermined (names in a direction the records do not fix; their values
+    carry no interval, nan), correlation {names, matrix}, rms, sigma,
+    residuals, evaluations, batches, iterations, converged, rtol, step.
+    Raises InvalidInput as the CLI's exit code 2."""
+    import os
+    data = [data] if isinstance(data, (str, bytes, os.PathLike)) else list(data)
+    free = [free] if isinstance(free, str) else [",".join(free)]
+    if isinstance(bounds, dict):
+        bounds = [f"{k}={lo!r}:{hi!r}" for k, (lo, hi) in bounds.items()]
+    threads = (os.cpu_count() or 1) if threads is None else int(threads)
+    options = _parts.merged(options, ("material", "indenter"))
+    spelled = {}
+    values = _values.values(options, _SIMULATE_KEYWORDS, "fit", spelled)
+    try:
+        return _core.fit(values, [os.fspath(d) for d in data], free, list(bounds), str(starts),
+                         threads)
+    except InvalidInput as e:
+        if e.option not in spelled:
+            raise
+        raise _values.as_keyword(e, spelled) from None
 
 
 def stationary(*, progress=None, **options):

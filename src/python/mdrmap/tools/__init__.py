@@ -13,6 +13,7 @@ TOOLS = {
     "plot_run": "one run's friction and FN or depth against t or slip (simulate or a CSV)",
     "steps": "velocity-step responses and rate-and-state numbers of one case",
     "healing": "healing in slide-hold-slide runs of one case over hold times",
+    "plot_fit": "the records of mdrmap fit with the fitted model and residuals",
     "map_summary": "what a map holds; its rows as CSV",
     "plot_map": "colour map of map quantities over two parameters",
     "plot_timeseries": "a map's responses to velocity changes (time series)",
