@@ -19,6 +19,7 @@
 #include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 #include "core/solvers/dispatch.hpp"
+#include "material/text.hpp"
 
 namespace mdrmap::app {
 
@@ -68,9 +69,8 @@ std::vector<const ParamSpec*> group_members(const std::string& group);
 std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
                         const char* last_sep);
 
-/// The value as typed, quoted only when it would otherwise be unreadable;
-/// more than 60 characters are cut, with the length said.
-std::string shown(const std::string& text);
+/// The value as typed, quoted (material/text.hpp).
+using material::shown;
 
 /// A parameter's entry in simulate's help: "(unit) meaning. Allowed range",
 /// then ", required", ". Default: X" or its one_of group's usage.

@@ -17,7 +17,7 @@
 #include "core/model/rheology.hpp"
 #include "core/model/temperature.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 
 struct MaterialCard {
   double G = 0.0;                 ///< long-term shear modulus
@@ -30,4 +30,4 @@ struct MaterialCard {
 /// InvalidInput("material") with "FILE:LINE: " where a line is at fault.
 MaterialCard read_material(const std::string& path);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

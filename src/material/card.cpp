@@ -1,4 +1,4 @@
-#include "app/material_input.hpp"
+#include "material/card.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,14 +6,13 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "app/case_input.hpp"
-#include "app/pyvisco_input.hpp"
-#include "app/small_file.hpp"
-#include "app/text.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "material/pyvisco.hpp"
+#include "material/small_file.hpp"
+#include "material/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 namespace {
 
 const std::string kOption = "material";
@@ -196,4 +195,4 @@ MaterialCard read_material(const std::string& path) {
   return m;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material
