@@ -252,6 +252,11 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
 
 namespace {
 
+// The text of the study's material card ([run] material): the map holds its material.
+const FieldInfo kMaterialCard{"provenance/material_card", "text",
+                              "the material card of [run] material as read (an Abaqus card or "
+                              "pyvisco's CSV), UTF-8 bytes"};
+
 // Root attributes and /provenance (collective: identical calls on every rank).
 void write_header(hid_t f, const MapSpec& spec, const Provenance& prov) {
   write_string_attr(f, "mdrmap_schema", kSchema);
@@ -273,6 +278,13 @@ void write_header(hid_t f, const MapSpec& spec, const Provenance& prov) {
   Handle g = create_group(f, "provenance");
   write_text_dataset(f, "provenance/config_text", prov.config_text);
   write_text_dataset(f, "provenance/config_canonical", prov.config_canonical);
+  if (!prov.material_card.empty()) {
+    write_text_dataset(f, kMaterialCard.path, prov.material_card);
+    Handle d = make_dataset(H5Dopen2(f, kMaterialCard.path.c_str(), H5P_DEFAULT),
+                            "opening /" + kMaterialCard.path);
+    cf_attributes(d.id(), kMaterialCard);
+    d.close("closing /" + kMaterialCard.path);
+  }
   g.close("closing /provenance");
 }
 
@@ -402,6 +414,10 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
       create_ordered_group(f, std::string("schema/") + group)
           .close(std::string("closing /schema/") + group);
     if (!spec.grid.names.empty()) create_ordered_group(f, "schema/grid").close("/schema/grid");
+    if (!prov.material_card.empty()) {
+      create_ordered_group(f, "schema/provenance").close("closing /schema/provenance");
+      schema_entry(f, kMaterialCard);
+    }
     schema.close("closing /schema");
   }
   Dimensions dims{create_dimension(f, "case", n), create_dimension(f, "event", K),

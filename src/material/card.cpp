@@ -170,7 +170,11 @@ Block read_block(const std::string& path, const std::string& text) {
 
 MaterialCard read_material(const std::string& path) {
   const std::string text = read_small_file(kOption, path, "a material card is a few lines");
-  if (is_pyvisco_csv(text)) return read_pyvisco(path, text);
+  if (is_pyvisco_csv(text)) {
+    MaterialCard m = read_pyvisco(path, text);
+    m.text = text;
+    return m;
+  }
   const Block b = read_block(path, text);
   double sum_g = 0.0;
   for (double g : b.g)
@@ -181,6 +185,7 @@ MaterialCard read_material(const std::string& path) {
   const double G_E = b.E / (4.0 * (1.0 - b.nu * b.nu)); // DESIGN section 9
   const double G0 = b.instantaneous ? G_E : G_E / (1.0 - sum_g);
   MaterialCard m;
+  m.text = text;
   m.G = G0 * (1.0 - sum_g);
   for (std::size_t i = 0; i < b.g.size(); ++i)
     m.branches.push_back(Branch{b.g[i] * G0, b.tau[i]});

@@ -24,6 +24,7 @@ struct MaterialCard {
   std::vector<Branch> branches;   ///< absolute shear moduli g_i G0 and times tau_i
   std::optional<UnitWlf> wlf;     ///< *TRS, DEFINITION=WLF
   std::vector<std::string> notes; ///< what was read but does not enter (nonzero k_i)
+  std::string text;               ///< the file's text as read (what a study's map records)
 };
 
 /// Reads `path` (a regular file of at most 1 MiB). Throws

@@ -16,17 +16,6 @@ std::string shown(const std::string& text) {
   return "'" + (text.size() > 60 ? text.substr(0, 60) + "...'" : text + "'");
 }
 
-/// The unit letter ending `text` (C or K after a digit or a point), removed.
-TempUnit take_unit(std::string& text) {
-  if (text.size() < 2) return TempUnit::None;
-  const char last = text.back(), before = text[text.size() - 2];
-  if ((last != 'C' && last != 'K') ||
-      !(std::isdigit(static_cast<unsigned char>(before)) || before == '.'))
-    return TempUnit::None;
-  text.pop_back();
-  return last == 'C' ? TempUnit::Celsius : TempUnit::Kelvin;
-}
-
 /// Refuses a temperature below absolute zero in its unit.
 void check_absolute(const std::string& option, const std::string& what, double x, TempUnit u) {
   if (u == TempUnit::Kelvin && x < 0.0)
@@ -45,6 +34,16 @@ std::string degrees(double x) {
 }
 
 } // namespace
+
+TempUnit take_unit(std::string& text) {
+  if (text.size() < 2) return TempUnit::None;
+  const char last = text.back(), before = text[text.size() - 2];
+  if ((last != 'C' && last != 'K') ||
+      !(std::isdigit(static_cast<unsigned char>(before)) || before == '.'))
+    return TempUnit::None;
+  text.pop_back();
+  return last == 'C' ? TempUnit::Celsius : TempUnit::Kelvin;
+}
 
 const char* unit_suffix(TempUnit u) {
   return u == TempUnit::Celsius ? "C" : u == TempUnit::Kelvin ? "K" : "";

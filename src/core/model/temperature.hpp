@@ -21,6 +21,10 @@ inline constexpr double kScaleNearDegrees = 100.0;
 
 enum class TempUnit { None, Celsius, Kelvin };
 
+/// The unit letter ending `text` (C or K after a digit or a point), removed
+/// from it; None (and `text` unchanged) without one.
+TempUnit take_unit(std::string& text);
+
 /// "" , "C" or "K".
 const char* unit_suffix(TempUnit u);
 

@@ -1,0 +1,65 @@
+#include "study/temperature_column.hpp"
+
+#include "study/config_detail.hpp"
+#include "study/ini.hpp"
+
+namespace mdrmap::study::detail {
+
+namespace {
+
+/// The temperature `item` (as written) without its unit letter; its unit
+/// joins `unit` (the first item's) or is refused as another one.
+std::string one_temperature(const std::string& option, const std::string& item, TempUnit& unit,
+                            std::string& first, bool first_item) {
+  const std::size_t e = item.find_last_not_of(" \t");
+  std::string t = trim(item);
+  const TempUnit u = take_unit(t);
+  if (first_item) unit = u, first = trim(item);
+  if (u != unit)
+    throw ConfigError(option, "temperature takes one unit for all its values, C or K (or none: "
+                              "TREF's), got " +
+                                  first + " and " + trim(item));
+  if (u == TempUnit::None) return item;
+  try {
+    parse_temperature(option, trim(item));
+  } catch (const InvalidInput& err) {
+    throw ConfigError(option, std::string("temperature ") + err.what());
+  }
+  return item.substr(0, e) + item.substr(e + 1);
+}
+
+} // namespace
+
+std::string without_temperature_units(const std::string& option, const std::string& spec,
+                                      TempUnit& unit) {
+  unit = TempUnit::None;
+  const bool spaced = starts_with(spec, "linspace:") || starts_with(spec, "logspace:");
+  const char sep = spaced ? ':' : ',';
+  std::string out, first;
+  std::size_t start = 0;
+  for (std::size_t i = 0;; ++i) {
+    const std::size_t end = spec.find(sep, start);
+    const std::string item = spec.substr(start, end == std::string::npos ? end : end - start);
+    const bool temperature = !spaced || i == 1 || i == 2; // lo and hi of a spaced form
+    out +=
+        temperature ? one_temperature(option, item, unit, first, spaced ? i == 1 : i == 0) : item;
+    if (end == std::string::npos) return out;
+    out += sep;
+    start = end + 1;
+  }
+}
+
+void temperatures_in_wlf_unit(StudyConfig& c) {
+  if (!c.run.wlf || c.run.wlf_unit == TempUnit::None) return;
+  const UnitWlf w{*c.run.wlf, c.run.wlf_unit};
+  for (Axis& a : c.axes) {
+    if (a.column.kind != Column::Kind::Temperature || a.unit == TempUnit::None ||
+        a.unit == c.run.wlf_unit)
+      continue;
+    for (double& x : a.values)
+      x = in_wlf_unit(Temperature{x, a.unit}, w).value;
+    a.unit = c.run.wlf_unit;
+  }
+}
+
+} // namespace mdrmap::study::detail
