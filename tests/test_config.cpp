@@ -1424,6 +1424,24 @@ TEST(StudyMaterial, OverrideReplacesTheCard) {
   EXPECT_FALSE(c.run.wlf); // the first card's WLF went with it
 }
 
+TEST(StudyMaterial, OverrideGivesACardToAStudyWithoutOne) {
+  TempDir dir;
+  const std::string card = dir.write("card.inp", kCard);
+  // the default G = 1 of a finished study gives way to the card's
+  StudyConfig c = parse("[grid]\nd = 1e-2\nR = 1\ntau = 0\nv = 1\n[history]\nw1_over_v = "
+                        "0.5\nT1 = 1\n");
+  apply_override(c, "run.material", card);
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
+                                                "v", "w1_over_v", "T1"}));
+  EXPECT_DOUBLE_EQ(cases_of(c).at(0).rheology.branches.at(1).G, 3.0);
+  // a G of the study's own is not replaced
+  StudyConfig own = parse("[grid]\nd = 1e-2\nR = 1\ntau = 0\nG = 2\nv = 1\n[history]\n"
+                          "w1_over_v = 0.5\nT1 = 1\n");
+  const auto [option, message] = error_of([&] { apply_override(own, "run.material", card); });
+  EXPECT_EQ(option, "run.material") << message;
+  EXPECT_NE(message.find("and grid.G are given"), std::string::npos) << message;
+}
+
 TEST(StudyMaterial, BadCardsAndDoublesAreRefusedInOneLine) {
   TempDir dir;
   struct Bad {

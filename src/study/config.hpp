@@ -103,6 +103,7 @@ struct Axis {
   std::vector<double> values;
   bool logarithmic = false; ///< from logspace (plots use log axes)
   bool listed = false;      ///< case list: the values are a CSV column
+  bool by_default = false;  ///< not given: the table's default (G = 1)
   Column column;
   TempUnit unit = TempUnit::None; ///< temperature: the values' unit (25C: C; bare: TREF's)
   std::string given_by;           ///< "run.material": a value of the card, not a key of its own

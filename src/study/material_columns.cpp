@@ -65,7 +65,7 @@ std::vector<Axis> read_material_columns(StudyConfig& c, const std::string& value
 void refuse_beside_card(const StudyConfig& c, const Axis& a) {
   if (!sets_spectrum(a)) return;
   for (const Axis& b : c.axes) {
-    if (!sets_spectrum(b) || b.given_by.empty() == a.given_by.empty()) continue;
+    if (!sets_spectrum(b) || b.by_default || b.given_by.empty() == a.given_by.empty()) continue;
     const Axis& own = a.given_by.empty() ? a : b;
     throw ConfigError(a.option(), "both [run] material (" + c.run.material +
                                       ", which gives G and the spectrum G1, tau1, ...) and " +
