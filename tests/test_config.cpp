@@ -1315,6 +1315,7 @@ TEST(StudySpectrum, TemperaturesTakeUnits) {
   const std::vector<Bad> bad = {
       {"25C, 300K", "8.86:101.6:25C", "one unit for all its values, C or K"},
       {"25C, 35", "8.86:101.6:25C", "got 25C and 35"},
+      {"25C,, 35C", "8.86:101.6:25C", "empty item"},
       {"-300C", "8.86:101.6:25C", "absolute zero"},
       {"linspace:-1K:20K:3", "8.86:101.6:25C", "absolute zero"},
       {"35C", "8.86:101.6:298.15", "give TREF its unit"},

@@ -8,13 +8,14 @@ namespace mdrmap::study::detail {
 namespace {
 
 /// The temperature `item` (as written) without its unit letter; its unit
-/// joins `unit` (the first item's) or is refused as another one.
+/// joins `unit` (that of `first`, the first item; set by it) or is refused as another one.
 std::string one_temperature(const std::string& option, const std::string& item, TempUnit& unit,
-                            std::string& first, bool first_item) {
+                            std::string& first) {
   const std::size_t e = item.find_last_not_of(" \t");
   std::string t = trim(item);
+  if (t.empty()) return item; // the axis's reader says what an empty item is
   const TempUnit u = take_unit(t);
-  if (first_item) unit = u, first = trim(item);
+  if (first.empty()) unit = u, first = trim(item);
   if (u != unit)
     throw ConfigError(option, "temperature takes one unit for all its values, C or K (or none: "
                               "TREF's), got " +
@@ -41,8 +42,7 @@ std::string without_temperature_units(const std::string& option, const std::stri
     const std::size_t end = spec.find(sep, start);
     const std::string item = spec.substr(start, end == std::string::npos ? end : end - start);
     const bool temperature = !spaced || i == 1 || i == 2; // lo and hi of a spaced form
-    out +=
-        temperature ? one_temperature(option, item, unit, first, spaced ? i == 1 : i == 0) : item;
+    out += temperature ? one_temperature(option, item, unit, first) : item;
     if (end == std::string::npos) return out;
     out += sep;
     start = end + 1;
