@@ -91,14 +91,16 @@ void check_scales(const UnitWlf& w, const Temperature& T, const std::string& opt
                             " if one is in K and the other in C (a Kelvin/Celsius mix-up?); ";
   if (T.unit == TempUnit::None && w.unit == TempUnit::None)
     throw InvalidInput(option, "T = " + t + " and TREF = " + tref + " are bare numbers: " + apart +
-                                   "give T and TREF their units (C or K)");
+                                   "give T and TREF their units (C or K; a bare TREF, as a "
+                                   "card's, is read in T's)");
   const bool T_bare = T.unit == TempUnit::None;
   const TempUnit u = T_bare ? w.unit : T.unit;
   throw InvalidInput(option, (T_bare ? "T = " + t : "TREF = " + tref) +
                                  " is a bare number, read in " + unit_suffix(u) + " beside " +
                                  (T_bare ? "TREF = " + tref : "T = " + t) + unit_suffix(u) + ": " +
                                  apart + "give " + (T_bare ? "T" : "TREF") + " its unit (" +
-                                 (T_bare ? t : tref) + "K or " + (T_bare ? t : tref) + "C)");
+                                 (T_bare ? t : tref) + "K or " + (T_bare ? t : tref) + "C)" +
+                                 (T_bare ? "" : ", or T in TREF's scale (a card's TREF is bare)"));
 }
 
 double checked_shift(const UnitWlf& w, const Temperature& T, const std::string& option,
