@@ -1332,6 +1332,44 @@ TEST(StudySpectrum, TemperaturesTakeUnits) {
   }
 }
 
+// A case list's temperature cells take a unit each where TREF has one: each
+// converted to TREF's unit as it is read; with a bare TREF a unit is refused.
+TEST(StudySpectrum, ListedTemperaturesTakeUnits) {
+  TempDir dir;
+  dir.write("t.csv", "d,R,tau,temperature,v,w1,T1\n"
+                     "1e-2,1,1,25C,1,0.5,1\n"
+                     "1e-2,1,1,308.15K,1,0.5,1\n"
+                     "1e-2,1,1,35,1,0.5,1\n");
+  const auto study = [&](const std::string& wlf) {
+    return parse_config("[cases]\nfile = t.csv\n[run]\nwlf = " + wlf + "\n", dir.path(), "l.ini");
+  };
+  const auto cases = cases_of(study("8.86:101.6:25C"));
+  ASSERT_EQ(cases.size(), 3u);
+  const double at10 = -8.86 * 10.0 / 111.6;
+  EXPECT_NEAR(std::log10(cases[0].rheology.aT), 0.0, 1e-12);
+  EXPECT_NEAR(std::log10(cases[1].rheology.aT), at10, 1e-12);
+  EXPECT_NEAR(std::log10(cases[2].rheology.aT), at10, 1e-12); // bare: TREF's unit
+  // against a Kelvin TREF the bare 35 reads as a Kelvin/Celsius mix-up (case 3)
+  const auto [mixed_option, mixed] = error_of([&] { expand_cases(study("8.86:101.6:298.15K")); });
+  EXPECT_NE(mixed.find("case 3: temperature T = 35 is a bare number"), std::string::npos) << mixed;
+  // the rows as stored: in TREF's unit
+  dir.write("t.csv", "d,R,tau,temperature,v,w1,T1\n1e-2,1,1,25C,1,0.5,1\n"
+                     "1e-2,1,1,308.15K,1,0.5,1\n");
+  const StudyConfig k = study("8.86:101.6:298.15K");
+  const auto rows = expand_cases(k);
+  const auto order = names(k);
+  const auto T = static_cast<std::size_t>(
+      std::find(order.begin(), order.end(), "temperature") - order.begin());
+  EXPECT_EQ(rows.at(0).at(T), 25.0 + 273.15);
+  EXPECT_EQ(rows.at(1).at(T), 308.15);
+  EXPECT_NEAR(std::log10(case_for(k, rows.at(1)).rheology.aT), at10, 1e-12);
+  const auto [option, message] = error_of([&] { expand_cases(study("8.86:101.6:25")); });
+  EXPECT_EQ(option, "cases.temperature") << message;
+  EXPECT_NE(message.find("t.csv:2:4: temperature 25C has a unit and TREF none"), std::string::npos)
+      << message;
+  EXPECT_TRUE(one_line(message)) << message;
+}
+
 TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
   TempDir dir;
   dir.write("spec.csv", "tau1,G1,aT,d,R,tau,G,v,w1,T1_over_tau,G2,tau2\n"

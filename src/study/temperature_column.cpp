@@ -49,6 +49,28 @@ std::string without_temperature_units(const std::string& option, const std::stri
   }
 }
 
+TempUnit listed_temperature_unit(const StudyConfig& c, const std::string& option,
+                                 const std::string& here, std::string& cell) {
+  const std::string as_written = cell;
+  const TempUnit u = take_unit(cell);
+  if (u == TempUnit::None) return u;
+  if (!c.run.wlf || c.run.wlf_unit == TempUnit::None)
+    throw ConfigError(option, here + "temperature " + as_written +
+                                  " has a unit and TREF none: give TREF its unit ([run] wlf = "
+                                  "C1:C2:TREF with C or K), or the temperatures bare (in TREF's "
+                                  "unit)");
+  try {
+    parse_temperature(option, as_written);
+  } catch (const InvalidInput& e) {
+    throw ConfigError(option, here + "temperature " + e.what());
+  }
+  return u;
+}
+
+double listed_in_wlf_unit(const StudyConfig& c, double x, TempUnit unit) {
+  return in_wlf_unit(Temperature{x, unit}, UnitWlf{*c.run.wlf, c.run.wlf_unit}).value;
+}
+
 void temperatures_in_wlf_unit(StudyConfig& c) {
   if (!c.run.wlf || c.run.wlf_unit == TempUnit::None) return;
   const UnitWlf w{*c.run.wlf, c.run.wlf_unit};
