@@ -2818,6 +2818,32 @@ TEST(cli, HelpTopicsAndUnknownTopic) {
   }
 }
 
+// `mdrmap help --markdown [PAGE]` (either order) prints the generated
+// reference pages of docs/reference/: the config page has a row for every
+// case parameter of the core's table a study sets, the map page for every
+// root attribute written; an unknown page is one line naming the pages, exit 2.
+TEST(cli, HelpMarkdownPages) {
+  const Outcome config = run_mdrmap({"help", "--markdown", "config"});
+  ASSERT_EQ(config.code, 0) << config.err;
+  EXPECT_EQ(run_mdrmap({"help", "config", "--markdown"}).out, config.out);
+  for (const mdrmap::ParamSpec& p : mdrmap::case_parameters()) {
+    if (p.part == mdrmap::Part::Sampling) continue; // [run] samples, decades
+    const std::string row = "| `" + std::string(p.name) + "` | `SPEC` | " +
+                            mdrmap::dim_name(p.dim) + " | " + p.allowed();
+    EXPECT_NE(config.out.find(row), std::string::npos) << p.name;
+  }
+  const Outcome map = run_mdrmap({"help", "--markdown", "map-schema"});
+  ASSERT_EQ(map.code, 0) << map.err;
+  for (const char* a : {"mdrmap_schema", "n_cases", "segments", "samples", "loading"})
+    EXPECT_NE(map.out.find(std::string("| `") + a + "` |"), std::string::npos) << a;
+  EXPECT_EQ(run_mdrmap({"help", "--markdown"}).out.rfind("# Command-line reference", 0), 0u);
+  const Outcome bad = run_mdrmap({"help", "--markdown", "bogus"});
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(bad.out, "");
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("map-schema"), std::string::npos) << bad.err;
+}
+
 // The study's help no longer says that a cone's or a power law's case fails
 // (the spectrum solver takes them; the cone example study completes).
 TEST(cli, StudyHelpHasNoStaleProfileStatement) {

@@ -22,6 +22,7 @@
 #include "core/model/case.hpp"
 #include "study/case_columns.hpp"
 #include "study/config.hpp"
+#include "study/config_keys.hpp"
 
 namespace fs = std::filesystem;
 using mdrmap::InvalidInput;
@@ -739,6 +740,38 @@ TEST(StudyOverride, RunKeys) {
   EXPECT_EQ(k.sampling.spacing, mdrmap::Spacing::Log);
   EXPECT_EQ(k.sampling.decades, 3.0);
   EXPECT_EQ(names(c).size(), 7u); // replaced, not added
+}
+
+// The key table (study/config_keys.hpp) behind `mdrmap help config` and
+// docs/reference/config.md: every [grid] and [history] key it lists is a
+// column the reader takes (a pattern's k, K as 1), every [run] key is
+// accepted, and a [run] key's documented default, set explicitly, leaves the
+// study as it was (the reader's default is the one the reference states).
+TEST(StudyConfigKeys, TheReferenceTableIsWhatTheReaderTakes) {
+  const StudyConfig ref =
+      parse("[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1\n[history]\nw1 = 2\nT1 = 1\n");
+  const std::vector<std::string> keys = override_keys();
+  std::size_t run_defaults = 0;
+  for (const ConfigKey& k : config_keys()) {
+    std::string key = k.key;
+    for (const char* pattern : {"Gk", "tauk"})
+      if (key == pattern) key.back() = '1';
+    if (k.section == "history") key.replace(1, 1, "1"); // wK -> w1, TK_over_tau -> T1_over_tau
+    if (k.section == "grid" || k.section == "history") {
+      Column col;
+      EXPECT_TRUE(parse_column(key, col)) << k.section << "." << k.key;
+      EXPECT_EQ(col.history(), k.section == "history" || key == "v1" || key == "v1_over_v")
+          << k.key;
+    } else if (k.section == "run") {
+      EXPECT_EQ(std::count(keys.begin(), keys.end(), "run." + key), 1) << key;
+      if (k.given.rfind("default ", 0) != 0) continue;
+      StudyConfig c = ref;
+      apply_override(c, "run." + key, k.given.substr(8));
+      EXPECT_EQ(canonical(c), canonical(ref)) << "run." << key << " = " << k.given;
+      ++run_defaults;
+    }
+  }
+  EXPECT_EQ(run_defaults, 8u); // samples ... timeseries, allow_large_shift, profile
 }
 
 TEST(StudyOverride, GridAxesAndV1Switch) {

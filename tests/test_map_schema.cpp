@@ -15,11 +15,13 @@
 
 #include <fcntl.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -136,6 +138,34 @@ TEST_F(MapSchema, RootAttributesNameTheSchema) {
   EXPECT_EQ(io::read_string_attr(f(), "loading"), "depth");
   std::string why;
   EXPECT_TRUE(io::MapFile::is_map(made_->path, &why)) << why;
+}
+
+// The reference page (docs/reference/map-schema.md) lists the root attributes
+// and /provenance from io::root_attributes() and io::provenance_info(): the
+// map holds exactly those.
+TEST_F(MapSchema, RootAttributesAndProvenanceAreTheDeclaredOnes) {
+  std::vector<std::string> written;
+  const auto collect = [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->push_back(name);
+    return 0;
+  };
+  hsize_t idx = 0;
+  ASSERT_GE(H5Aiterate2(f(), H5_INDEX_NAME, H5_ITER_INC, &idx, collect, &written), 0);
+  std::vector<std::string> declared;
+  for (const io::RootAttribute& a : io::root_attributes())
+    declared.push_back(a.name);
+  std::sort(declared.begin(), declared.end());
+  EXPECT_EQ(written, declared);
+  std::vector<std::string> texts;
+  for (const io::FieldInfo& t : io::provenance_info())
+    texts.push_back(t.path.substr(t.path.find('/') + 1));
+  std::vector<std::string> held;
+  for (const std::string& m : members(f(), "provenance"))
+    if (m.size() < 5 || m.compare(m.size() - 5, 5, "_byte") != 0)
+      held.push_back(m); // not a dimension
+  std::sort(texts.begin(), texts.end());
+  EXPECT_EQ(held, texts);
+  EXPECT_THROW(io::root_attribute("no_such_attribute"), std::logic_error);
 }
 
 TEST_F(MapSchema, EveryCaseColumnHasTheParameterTablesUnitAndMeaning) {

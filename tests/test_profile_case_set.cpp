@@ -1,6 +1,6 @@
 // The indenter-profile case set (tests/cases/profile_case_set.hpp; issue 21,
 // "Done when" 2): transients of the cone and of the power laws n = 1.5 and 3
-// at fixed depth and under load within rtol 1e-3 and 1e-4 of references
+// at fixed depth and under load within rtol 1e-2, 1e-3 and 1e-4 of references
 // refined here, the estimate at least a third of the true error; the
 // brute-force solver converging to the references at first order.
 //
@@ -34,13 +34,13 @@ const NamedCase& by_name(const std::string& name) {
   return named_case(cases(), name);
 }
 
-constexpr double kRtols[] = {1e-3, 1e-4};
+constexpr double kRtols[] = {1e-2, 1e-3, 1e-4};
 
 constexpr double kGoal = 1e-5; // the references' own error: rtol / 10 of the finest
 
 class ProfileCases : public ::testing::TestWithParam<std::size_t> {};
 
-// Within rtol of the reference at rtol 1e-3 and 1e-4, the estimate at least a
+// Within rtol of the reference at rtol 1e-2, 1e-3 and 1e-4, the estimate at least a
 // third of the true error (and at most rtol).
 TEST_P(ProfileCases, MeetsRtolWithAnHonestEstimate) {
   const NamedCase& nc = cases()[GetParam()];

@@ -52,7 +52,7 @@ Refinement rule(double rtol, bool observed) {
 
 RunResult run(Synthetic& s, const Refinement& r) {
   const Case c = synthetic_case();
-  return refine(c, r, [&](double cells, double) { return s(c, cells); });
+  return refine(c, r, [&](double cells, double, double) { return s(c, cells); });
 }
 
 // Second order: the companion's difference C (1/16^2 - 1/32^2) is 3 times the

@@ -1,6 +1,6 @@
 // The spectrum case set (tests/cases/spectrum_case_set.hpp; issue 19, "Done
-// when" 2): every history at fixed depth and under load within rtol 1e-3 and
-// 1e-4 of a reference refined here, the estimate at least a third of the
+// when" 2): every history at fixed depth and under load within rtol 1e-2, 1e-3
+// and 1e-4 of a reference refined here, the estimate at least a third of the
 // true error; the brute-force solver converging to the references at first
 // order; creep under a step load against Lee-Radok to 1e-6; long segments
 // ending in the closed-form stationary state to 1e-6.
@@ -71,11 +71,11 @@ Series kelvin_truth(const Case& c) {
   return run_load(c, lo).series;
 }
 
-constexpr double kRtols[] = {1e-3, 1e-4};
+constexpr double kRtols[] = {1e-2, 1e-3, 1e-4};
 
 class SpectrumCases : public ::testing::TestWithParam<std::size_t> {};
 
-// Within rtol of the reference at rtol 1e-3 and 1e-4, the estimate at least a
+// Within rtol of the reference at rtol 1e-2, 1e-3 and 1e-4, the estimate at least a
 // third of the true error (and at most rtol). The reference is refined until
 // its own error is below rtol / 10 (N = 0: the Kelvin solvers' answer).
 TEST_P(SpectrumCases, MeetsRtolWithAnHonestEstimate) {

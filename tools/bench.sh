@@ -12,7 +12,10 @@
 #      bench.md (machine, tables, the cost targets, peak memory);
 #   3b. runs mdrmap_bench_history (velocity histories: history.csv, history.md)
 #       and mdrmap_bench_load (load control against the fixed-step load
-#       baseline, issue 11: load.csv, load.md); both appended to bench.md;
+#       baseline, issue 11: load.csv, load.md) and mdrmap_bench_material (an
+#       11-term elastomer and the 30-term PIB spectrum over a lab velocity-step
+#       test, and the growth with 10x longer segments: material.csv,
+#       material.md); all appended to bench.md;
 #   3d. the seed's own workload against the build before velocity histories
 #       (issue 22, tools/bench/seed_ratio.sh): CPU of the 1e5-case one-step
 #       grid, this build's mdrmap against commit 8876e42 built in a scratch
@@ -59,11 +62,20 @@ done
 BUILD_DIR=${BUILD_DIR:-build-bench}
 OUT_DIR=${OUT_DIR:-out/bench}
 log() { printf 'bench: %s\n' "$*" >&2; }
+# section TITLE FILE: appends "## TITLE" and FILE's text to bench.md
+section() {
+  {
+    echo
+    echo "## $1"
+    echo
+    cat "$2"
+  } >>"$OUT_DIR/bench.md"
+}
 
 # 1. build (Release: timings of an unoptimised build mean nothing)
 bash tools/setup.sh
 BUILD_DIR="$BUILD_DIR" BUILD_TYPE=Release \
-  BUILD_TARGETS="mdrmap mdrmap_bench mdrmap_bench_history mdrmap_bench_load" \
+  BUILD_TARGETS="mdrmap mdrmap_bench mdrmap_bench_history mdrmap_bench_load mdrmap_bench_material" \
   bash tools/build.sh -DMDRMAP_BUILD_BENCH=ON
 BENCH="$BUILD_DIR/tools/bench/mdrmap_bench"
 [[ -x "$BENCH" ]] || {
@@ -106,12 +118,7 @@ hist_args=(--out "$OUT_DIR")
 ((quick)) && hist_args+=(--quick)
 log "$HIST ${hist_args[*]}"
 "$HIST" "${hist_args[@]}" >"$OUT_DIR/history.log"
-{
-  echo
-  echo "## Velocity histories ($cmd, mdrmap_bench_history)"
-  echo
-  cat "$OUT_DIR/history.md"
-} >>"$OUT_DIR/bench.md"
+section "Velocity histories ($cmd, mdrmap_bench_history)" "$OUT_DIR/history.md"
 
 # 3c. load control: load.csv, load.md (a section of its own, appended to bench.md)
 LOAD="$BUILD_DIR/tools/bench/mdrmap_bench_load"
@@ -123,6 +130,14 @@ log "$LOAD ${load_args[*]}"
   echo
   cat "$OUT_DIR/load.md"
 } >>"$OUT_DIR/bench.md"
+
+# 3c'. real materials over a lab test, and the growth with the segments' length
+MAT="$BUILD_DIR/tools/bench/mdrmap_bench_material"
+mat_args=(--out "$OUT_DIR")
+((quick)) && mat_args+=(--quick)
+log "$MAT ${mat_args[*]}"
+"$MAT" "${mat_args[@]}" >"$OUT_DIR/material.log"
+section "Real materials over a lab test ($cmd, mdrmap_bench_material)" "$OUT_DIR/material.md"
 
 # 3d. the seed path against 8876e42 (SCRATCH: where to build it, kept if given)
 if ((!quick)); then

@@ -6,7 +6,7 @@ own time, and the speed-up of a thread pool over load-controlled cases.
   1. overhead: a fixed-depth step with 201 samples (the exact solver), called
      --calls times; per call: the whole call, the solver's own time (info
      wall_seconds, as the CLI's header gives it) and their difference; also
-     the extension's call alone (_core.simulate on prepared texts).
+     the extension's call alone (_core.simulate on prepared values).
   2. threads: --cases load-controlled steps (F0, v and the step spread over
      decades), run by a ThreadPoolExecutor of 1 and of --threads workers;
      prints both wall times, the speed-up, the process's CPU time over the
@@ -35,11 +35,10 @@ def overhead(calls):
     for _ in range(calls):
         walls.append(mdrmap.simulate(**STEP).info["wall_seconds"])
     total = (time.perf_counter() - start) / calls
-    texts = {k.replace("_", "-"): repr(v) if isinstance(v, float) else str(v)
-             for k, v in STEP.items()}
+    values = mdrmap._values.values(STEP, mdrmap._SIMULATE_KEYWORDS, "simulate")  # floats
     start = time.perf_counter()
     for _ in range(calls):
-        mdrmap._core.simulate(texts)
+        mdrmap._core.simulate(values)
     ext = (time.perf_counter() - start) / calls
     core = float(np.mean(walls))
     print(f"overhead: fixed-depth step, 201 samples, {calls} calls")

@@ -2,6 +2,8 @@
 #include "app/text.hpp"
 #include "material/card.hpp"
 #include "material/prony_file.hpp"
+#include "material/pyvisco.hpp"
+#include "material/small_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,15 +13,19 @@
 #include <cstring>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
 
 #include "app/prony_input.hpp"
+#include "core/model/row_limits.hpp"
 #include "core/model/scales.hpp"
 
 namespace mdrmap::app {
 
+using material::is_pyvisco_csv;
 using material::MaterialCard;
 using material::read_material;
 using material::read_prony_file;
+using material::read_small_file;
 using material::SpectrumFile;
 namespace {
 
@@ -31,14 +37,20 @@ constexpr const char* kRheologyOptions[] = {"material", "prony", "prony-file",  
 constexpr const char* kHistoryOptions[] = {"v1", "t-end", "history", "history-file"};
 constexpr const char* kRunOptions[] = {"spacing", "rtol", "solver"};
 
-/// The option texts with the questions the checks ask of them; `spelled`
+/// The option values with the questions the checks ask of them; `spelled`
 /// the old spelling (FN) an option of the table's name (F0) was given as.
-class Texts {
+class Values {
 public:
-  Texts(const OptionTexts& t, const std::map<std::string, std::string>& spelled)
-      : t_(t), spelled_(spelled) {}
-  bool has(const std::string& name) const { return t_.count(name) != 0; }
-  const std::string& operator[](const std::string& name) const { return t_.at(name); }
+  Values(const OptionValues& v, const std::map<std::string, std::string>& spelled)
+      : v_(v), spelled_(spelled) {}
+  bool has(const std::string& name) const { return v_.count(name) != 0; }
+  const OptionValue& operator[](const std::string& name) const { return v_.at(name); }
+  /// The text of an option whose value is text (a name, a path).
+  const std::string& text(const std::string& name) const {
+    const OptionValue& v = v_.at(name);
+    if (!v.is_text()) throw InvalidInput(name, "must be a text, got " + shown(v));
+    return v.text;
+  }
   /// The option `name` as the user spelled it.
   std::string as_given(const std::string& name) const {
     const auto it = spelled_.find(name);
@@ -46,7 +58,7 @@ public:
   }
 
 private:
-  const OptionTexts& t_;
+  const OptionValues& v_;
   const std::map<std::string, std::string>& spelled_;
 };
 
@@ -81,9 +93,18 @@ double parse_integer(const ParamSpec& spec, const std::string& text) {
   return static_cast<double>(n);
 }
 
-/// A table parameter's value from its text: parsed, checked against its range.
-double parse_parameter(const ParamSpec& spec, const std::string& text) {
-  const double x = spec.integer() ? parse_integer(spec, text) : parse_double(spec.name, text);
+/// The number of an option given as a number (itself) or as a text (parsed).
+double number_of(const std::string& option, const OptionValue& v) {
+  if (v.kind == OptionValue::Kind::Number) return v.number;
+  if (v.is_text()) return parse_double(option, v.text);
+  throw InvalidInput(option, "must be a number, got " + shown(v));
+}
+
+/// A table parameter's value, checked against its range: a number as it is
+/// (a count must be a whole number), a text parsed as the command line does.
+double parse_parameter(const ParamSpec& spec, const OptionValue& v) {
+  const double x =
+      spec.integer() && v.is_text() ? parse_integer(spec, v.text) : number_of(spec.name, v);
   spec.check(x);
   return x;
 }
@@ -158,11 +179,35 @@ std::vector<Segment> parse_history(const std::string& text) {
   return segments;
 }
 
+/// The history given as (W, T) pairs: each checked as a token of --history
+/// is (the message shows the pair as W:T). Throws InvalidInput("history").
+std::vector<Segment> history_of_pairs(const std::vector<std::pair<double, double>>& pairs) {
+  if (pairs.empty())
+    throw InvalidInput("history", "must be one or more segments (W, T), its velocity W then its "
+                                  "duration T; got none");
+  if (pairs.size() > kMaxSegments)
+    throw InvalidInput("history", "has " + std::to_string(pairs.size()) + " segments; at most " +
+                                      std::to_string(kMaxSegments) + " are allowed");
+  std::vector<Segment> segments;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto [w, T] = pairs[k];
+    const std::string where =
+        "segment " + std::to_string(k + 1) + " '" + shortest(w) + ":" + shortest(T) + "'";
+    for (const auto& [spec, x] :
+         {std::pair{&segment_velocity_spec(), w}, std::pair{&segment_duration_spec(), T}})
+      if (!spec->contains(x))
+        throw InvalidInput("history", where + ": " + spec->symbol + " must be " + spec->allowed() +
+                                          ", got " + format_number(x));
+    segments.push_back(Segment{w, T});
+  }
+  return segments;
+}
+
 // --- The case --------------------------------------------------------------------
 
 /// The parameters of the profile: each required one given, none of another
 /// profile's (--R with a cone, --beta with a parabola).
-void require_profile_options(const Texts& o, Profile profile) {
+void require_profile_options(const Values& o, Profile profile) {
   for (const auto& p : case_parameters()) {
     if (p.applies_to(profile)) continue;
     if (o.has(p.name))
@@ -174,7 +219,7 @@ void require_profile_options(const Texts& o, Profile profile) {
 
 /// --history-file gives V0 and the whole history: none of --v, --v1,
 /// --t-end, --history with it.
-void require_record_alone(const Texts& o) {
+void require_record_alone(const Values& o) {
   for (const char* other : {"v", "v1", "t-end", "history"})
     if (o.has(other))
       throw InvalidInput("history-file",
@@ -186,7 +231,7 @@ void require_record_alone(const Texts& o) {
                                              ": the output rows are at the record's times");
 }
 
-void require_options(const Texts& o, Profile profile) {
+void require_options(const Values& o, Profile profile) {
   require_profile_options(o, profile);
   const bool record = o.has("history-file");
   if (record) require_record_alone(o);
@@ -212,7 +257,7 @@ void require_options(const Texts& o, Profile profile) {
 /// Sets every table parameter from its option, or from the table's default
 /// (0 for the members of a one_of group that are not given). An explicitly
 /// given value is checked against its own range here, before the groups.
-void read_case_parameters(const Texts& o, Case& c) {
+void read_case_parameters(const Values& o, Case& c) {
   for (const auto& p : case_parameters()) {
     const double x = o.has(p.name) ? parse_parameter(p, o[p.name]) : p.fallback;
     p.set(c, x);
@@ -222,7 +267,7 @@ void read_case_parameters(const Texts& o, Case& c) {
 /// Exactly one option of each one_of group (e.g. --d or --F0, the loading)
 /// is given; otherwise one line naming the whole group. Raw message: no single
 /// option is at fault.
-void require_one_of_each_group(const Texts& o) {
+void require_one_of_each_group(const Values& o) {
   for (const auto& p : case_parameters()) {
     if (!p.one_of || group_members(p.one_of).front() != &p) continue; // each group once
     const auto members = group_members(p.one_of);
@@ -252,12 +297,12 @@ double default_window(const Indenter& ind, double a, double d, double tau, doubl
 
 /// The one segment of --v1 V1 [--t-end T], the shorthand's values reported as
 /// --v1 / --t-end. Needs the case parameters set (the default window).
-Segment one_step(const Texts& o, Case& c) {
-  const double v1 = parse_double("v1", o["v1"]);
+Segment one_step(const Values& o, Case& c) {
+  const double v1 = number_of("v1", o["v1"]);
   check_as("v1", segment_velocity_spec(), v1);
   std::optional<double> t_end;
   if (o.has("t-end")) {
-    t_end = parse_double("t-end", o["t-end"]);
+    t_end = number_of("t-end", o["t-end"]);
     check_as("t-end", segment_duration_spec(), *t_end);
   }
   // the scales first (as for any case), then the window they give
@@ -282,19 +327,21 @@ Segment one_step(const Texts& o, Case& c) {
 
 /// The history from --history, or the one segment of --v1 V1 [--t-end T];
 /// every value is checked with the segment specs.
-void read_history(const Texts& o, CaseInput& in) {
+void read_history(const Values& o, CaseInput& in) {
   Case& c = in.c;
   if (o.has("history-file")) {
-    in.record = read_lab_record(o["history-file"]);
+    in.record = read_lab_record(o.text("history-file"));
     apply_lab_record(*in.record, c);
     try { // what validate() says about the history is about the record
       validate(c);
     } catch (const InvalidInput& e) {
       if (e.option() != "history") throw;
-      throw InvalidInput("history-file", o["history-file"] + ": " + e.what());
+      throw InvalidInput("history-file", o.text("history-file") + ": " + e.what());
     }
   } else if (o.has("history"))
-    c.history.segments = parse_history(o["history"]);
+    c.history.segments = o["history"].kind == OptionValue::Kind::Pairs
+                             ? history_of_pairs(o["history"].pairs)
+                             : parse_history(o.text("history"));
   else
     c.history.segments = {one_step(o, c)};
 }
@@ -302,9 +349,9 @@ void read_history(const Texts& o, CaseInput& in) {
 // --- Rheology ------------------------------------------------------------------
 
 /// --nu, Poisson's ratio of the Young's moduli of a spectrum file: -1 < nu <= 0.5.
-double read_nu(const Texts& o) {
+double read_nu(const Values& o) {
   if (!o.has("nu")) return 0.5;
-  const double nu = parse_double("nu", o["nu"]);
+  const double nu = number_of("nu", o["nu"]);
   if (!(nu > -1.0 && nu <= 0.5))
     throw InvalidInput("nu", "must be a finite number > -1 and <= 0.5 (Poisson's ratio; 0.5: "
                              "incompressible), got " +
@@ -314,9 +361,9 @@ double read_nu(const Texts& o) {
 
 /// The terms of --prony-file and, for normalised moduli (column g), the
 /// long-term modulus G = G0 (1 - sum g) instead of --G (then true).
-bool read_spectrum_file(const Texts& o, Case& c) {
+bool read_spectrum_file(const Values& o, Case& c) {
   const double nu = read_nu(o);
-  SpectrumFile f = read_prony_file(o["prony-file"], nu);
+  SpectrumFile f = read_prony_file(o.text("prony-file"), nu);
   if (o.has("nu") && !f.uses_nu)
     throw InvalidInput("nu", "applies to Young's moduli (a column E or '# E0 = ...') of "
                              "--prony-file only; the file gives shear moduli");
@@ -331,14 +378,17 @@ bool read_spectrum_file(const Texts& o, Case& c) {
 }
 
 /// The Maxwell branches of --prony or --prony-file (at most one of them).
-void read_spectrum(const Texts& o, Case& c) {
+void read_spectrum(const Values& o, Case& c) {
   if (o.has("prony") && o.has("prony-file"))
     throw InvalidInput("prony-file", "cannot be combined with --prony: give the spectrum once, "
                                      "as --prony G1:TAU1,... or as a file");
   if (o.has("nu") && !o.has("prony-file"))
     throw InvalidInput("nu", "applies to a spectrum file's Young's moduli (--prony-file with a "
                              "column E) only");
-  if (o.has("prony")) c.rheology.branches = parse_prony(o["prony"]);
+  if (o.has("prony"))
+    c.rheology.branches = o["prony"].kind == OptionValue::Kind::Pairs
+                              ? prony_of_pairs(o["prony"].pairs)
+                              : parse_prony(o.text("prony"));
   const bool file_G = o.has("prony-file") && read_spectrum_file(o, c);
   if (!c.rheology.branches.empty() && !o.has("G") && !file_G)
     throw InvalidInput("G", "must be given with a spectrum (--" +
@@ -349,7 +399,7 @@ void read_spectrum(const Texts& o, Case& c) {
 
 /// --material FILE: the long-term modulus, the spectrum and the WLF
 /// constants of an Abaqus card; the options it sets are refused beside it.
-std::optional<MaterialCard> read_card(const Texts& o, Case& c) {
+std::optional<MaterialCard> read_card(const Values& o, Case& c) {
   if (!o.has("material")) return std::nullopt;
   for (const char* other : {"G", "prony", "prony-file", "nu"})
     if (o.has(other))
@@ -357,14 +407,40 @@ std::optional<MaterialCard> read_card(const Texts& o, Case& c) {
                                     (std::string(other) == "G"
                                          ? "the long-term modulus G = G0 (1 - sum g_i)"
                                          : "the spectrum (*VISCOELASTIC) and E, nu (*ELASTIC)"));
-  MaterialCard m = read_material(o["material"]);
+  MaterialCard m = read_material(o.text("material"));
   c.rheology.G = m.G;
   c.rheology.branches = m.branches;
   return m;
 }
 
+/// --T as a number (in the unit of TREF) or a text with an optional unit (25C).
+Temperature temperature_of(const OptionValue& v) {
+  if (v.is_text()) return parse_temperature("T", v.text);
+  const double x = number_of("T", v);
+  if (!std::isfinite(x))
+    throw InvalidInput("T", "must be a finite temperature, got '" + shortest(x) + "'");
+  return Temperature{x, TempUnit::None};
+}
+
+/// --wlf as three numbers (C1, C2, TREF) or its text C1:C2:TREF[unit].
+UnitWlf wlf_of(const OptionValue& v) {
+  if (v.is_text()) return parse_unit_wlf("wlf", v.text);
+  const std::string given = shown(v);
+  if (v.kind != OptionValue::Kind::Numbers || v.numbers.size() != 3)
+    throw InvalidInput("wlf", "must be " + wlf_form(given));
+  return UnitWlf{checked_wlf("wlf", v.numbers[0], v.numbers[1], v.numbers[2], given),
+                 TempUnit::None};
+}
+
+/// A flag given as a flag or as its text (true, false).
+bool flag_of(const std::string& option, const OptionValue& v) {
+  if (v.kind == OptionValue::Kind::Flag) return v.flag;
+  if (v.is_text()) return parse_flag(option, v.text);
+  throw InvalidInput(option, "must be true or false (a flag), got " + shown(v));
+}
+
 /// Which of --T, --wlf (or the card's *TRS) and --allow-large-shift go together.
-void check_temperature_options(const Texts& o, bool card_wlf) {
+void check_temperature_options(const Values& o, bool card_wlf) {
   if (o.has("T") && o.has("aT"))
     throw InvalidInput("T", "cannot be combined with --aT: give the shift factor --aT or the "
                             "temperature --T with its --wlf constants, not both");
@@ -383,14 +459,14 @@ void check_temperature_options(const Texts& o, bool card_wlf) {
 }
 
 /// --T TEMP with --wlf C1:C2:TREF (or the card's): the shift aT at T (instead of --aT).
-std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c,
+std::optional<TemperatureInput> read_temperature(const Values& o, Case& c,
                                                  const std::optional<UnitWlf>& card_wlf) {
   check_temperature_options(o, card_wlf.has_value());
   if (!o.has("T")) return std::nullopt;
-  const Temperature T = parse_temperature("T", o["T"]);
-  const UnitWlf w = card_wlf ? *card_wlf : parse_unit_wlf("wlf", o["wlf"]);
+  const Temperature T = temperature_of(o["T"]);
+  const UnitWlf w = card_wlf ? *card_wlf : wlf_of(o["wlf"]);
   const bool allow =
-      o.has("allow-large-shift") && parse_flag("allow-large-shift", o["allow-large-shift"]);
+      o.has("allow-large-shift") && flag_of("allow-large-shift", o["allow-large-shift"]);
   c.rheology.aT = checked_shift(w, T, "T", allow);
   const Temperature in_tref = in_wlf_unit(T, w);
   return TemperatureInput{in_tref.value, w.wlf, in_tref.unit};
@@ -398,7 +474,7 @@ std::optional<TemperatureInput> read_temperature(const Texts& o, Case& c,
 
 /// The spectrum and the shift, checked as a whole (validate(Rheology)): a
 /// shift that takes a time out of range names --T where the temperature gave it.
-void read_rheology(const Texts& o, CaseInput& in) {
+void read_rheology(const Values& o, CaseInput& in) {
   Case& c = in.c;
   const auto card = read_card(o, c);
   if (card)
@@ -454,8 +530,9 @@ namespace {
 /// The texts under the table's names: an alias's text (--FN) moved to its
 /// parameter (--F0); both spellings given is refused. `spelled` gets the
 /// alias each moved text was given under, by the table's name.
-OptionTexts canonical_texts(const OptionTexts& texts, std::map<std::string, std::string>& spelled) {
-  OptionTexts out = texts;
+OptionValues canonical_values(const OptionValues& values,
+                              std::map<std::string, std::string>& spelled) {
+  OptionValues out = values;
   for (const ParamAlias& a : parameter_aliases()) {
     const auto it = out.find(a.alias);
     if (it == out.end()) continue;
@@ -467,39 +544,116 @@ OptionTexts canonical_texts(const OptionTexts& texts, std::map<std::string, std:
   return out;
 }
 
-CaseInput read_canonical(const Texts& o) {
-  const Profile profile = o.has("profile") ? parse_profile(o["profile"]) : Profile::Parabola;
+CaseInput read_canonical(const Values& o) {
+  const Profile profile = o.has("profile") ? parse_profile(o.text("profile")) : Profile::Parabola;
   require_options(o, profile);
   CaseInput in;
   in.c.indenter.profile = profile;
   read_case_parameters(o, in.c);
   require_one_of_each_group(o);
   read_rheology(o, in);
-  if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o["spacing"]);
+  if (o.has("spacing")) in.c.sampling.spacing = parse_spacing(o.text("spacing"));
   if (o.has("log-decades") && in.c.sampling.spacing != Spacing::Log)
     throw InvalidInput("log-decades", "applies to --spacing log only; add --spacing log or "
                                       "drop --log-decades");
   read_history(o, in);
   validate(in.c);
   check_total_samples(in.c);
-  if (o.has("rtol")) in.rtol = parse_double("rtol", o["rtol"]);
-  if (o.has("solver")) in.solver = parse_solver(o["solver"]);
+  if (o.has("rtol")) in.rtol = number_of("rtol", o["rtol"]);
+  if (o.has("solver")) in.solver = parse_solver(o.text("solver"));
   validate_rtol(in.rtol);
+  return in;
+}
+
+// --- One part alone --------------------------------------------------------------
+
+/// Whether option `name` is one of the part's (read_case_part).
+bool of_part(const std::string& name, Part part) {
+  const std::vector<std::string> extra =
+      part == Part::Indenter
+          ? std::vector<std::string>(std::begin(kIndenterOptions), std::end(kIndenterOptions))
+      : part == Part::Material
+          ? std::vector<std::string>(std::begin(kRheologyOptions), std::end(kRheologyOptions))
+          : std::vector<std::string>{"history", "history-file"};
+  if (std::find(extra.begin(), extra.end(), name) != extra.end()) return true;
+  const ParamSpec* p = find_parameter(name);
+  return p != nullptr && p->part == part && part != Part::History;
+}
+
+/// The history alone: --history (pairs or text) or --history-file.
+void read_part_history(const Values& o, CaseInput& in) {
+  if (o.has("history-file")) {
+    require_record_alone(o);
+    in.record = read_lab_record(o.text("history-file"));
+    apply_lab_record(*in.record, in.c);
+  } else if (o.has("history")) {
+    in.c.history.segments = o["history"].kind == OptionValue::Kind::Pairs
+                                ? history_of_pairs(o["history"].pairs)
+                                : parse_history(o.text("history"));
+  } else
+    throw InvalidInput("history", "is required: one or more segments (W, T), or a lab record "
+                                  "(history-file); got nothing");
+}
+
+CaseInput read_part(const Values& o, const OptionValues& given, Part part) {
+  for (const auto& [name, value] : given)
+    if (!of_part(name, part)) throw InvalidInput(name, "is not an option of this part of a case");
+  CaseInput in;
+  Case& c = in.c;
+  if (part == Part::Indenter) {
+    c.indenter.profile = o.has("profile") ? parse_profile(o.text("profile")) : Profile::Parabola;
+    require_profile_options(o, c.indenter.profile);
+  }
+  const auto in_part = [&](const ParamSpec& p) {
+    return p.part == part && part != Part::History && p.applies_to(c.indenter.profile);
+  };
+  for (const auto& p : case_parameters())
+    if (in_part(p) && p.required && !o.has(p.name))
+      throw InvalidInput(p.name, "is required: " + describe(p) + ", got nothing");
+  for (const auto& p : case_parameters())
+    if (in_part(p)) p.set(c, o.has(p.name) ? parse_parameter(p, o[p.name]) : p.fallback);
+  if (part == Part::Material) read_rheology(o, in);
+  if (part == Part::Indenter) check_profile_limits(c.indenter);
+  if (part == Part::History) read_part_history(o, in);
   return in;
 }
 
 } // namespace
 
 CaseInput read_case_input(const OptionTexts& texts) {
+  return read_case_input(as_values(texts));
+}
+
+CaseInput read_case_input(const OptionValues& values) {
   std::map<std::string, std::string> spelled;
-  const OptionTexts canonical = canonical_texts(texts, spelled);
+  const OptionValues canonical = canonical_values(values, spelled);
   try {
-    return read_canonical(Texts(canonical, spelled));
+    return read_canonical(Values(canonical, spelled));
   } catch (const InvalidInput& e) { // blame the option as the user spelled it
     const auto it = spelled.find(e.option());
     if (it == spelled.end()) throw;
     throw InvalidInput(it->second, e.what());
   }
+}
+
+CaseInput read_case_part(const OptionValues& values, Part part) {
+  if (part != Part::Indenter && part != Part::Material && part != Part::History)
+    throw std::logic_error("read_case_part: the indenter, the material or the history");
+  return read_part(Values(values, {}), values, part);
+}
+
+std::string material_file_option(const std::string& path) {
+  const std::string text = read_small_file("material", path, "a material file is a few lines");
+  if (is_pyvisco_csv(text)) return "material";
+  std::size_t at = 0;
+  while (at < text.size()) { // the first line that is not blank or an Abaqus comment (**)
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    const std::string line = trimmed(text.substr(at, end - at));
+    if (!line.empty() && line != "\r" && line.rfind("**", 0) != 0)
+      return line[0] == '*' ? "material" : "prony-file";
+    at = end + 1;
+  }
+  return "prony-file";
 }
 
 std::vector<std::string> case_option_spellings() {
@@ -522,6 +676,27 @@ std::string group_usage(const std::vector<const ParamSpec*>& members, const char
   for (std::size_t i = 0; i < members.size(); ++i) {
     if (i > 0) s += i + 1 == members.size() ? last_sep : sep;
     s += std::string("--") + members[i]->name + " " + members[i]->symbol;
+  }
+  return s;
+}
+
+std::string shown(const OptionValue& v) {
+  std::string s;
+  switch (v.kind) {
+  case OptionValue::Kind::Text:
+    return shown(v.text);
+  case OptionValue::Kind::Number:
+    return shortest(v.number);
+  case OptionValue::Kind::Flag:
+    return v.flag ? "true" : "false";
+  case OptionValue::Kind::Pairs:
+    for (const auto& [a, b] : v.pairs)
+      s += (s.empty() ? "" : ",") + shortest(a) + ":" + shortest(b);
+    return shown(s);
+  case OptionValue::Kind::Numbers:
+    for (const double x : v.numbers)
+      s += (s.empty() ? "" : ":") + shortest(x);
+    return shown(s);
   }
   return s;
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "app/lab_record.hpp"
+#include "app/option_value.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
@@ -61,6 +62,28 @@ std::vector<std::string> case_option_spellings();
 /// parameter are refused (option ""). Throws InvalidInput.
 CaseInput read_case_input(const OptionTexts& texts);
 
+/// read_case_input of typed values (app/option_value.hpp): a number given as
+/// a number is that double (a count must be whole), pairs are the history's
+/// segments or the spectrum's terms, three numbers the WLF constants, a flag
+/// allow-large-shift; a text is read as the command line reads it. The
+/// checks, their order and their messages are the texts'.
+CaseInput read_case_input(const OptionValues& values);
+
+/// One part of a case alone, read and checked as read_case_input reads it
+/// (the same messages), without the checks that need the other parts (the
+/// scales, the default window): Part::Indenter (profile and its
+/// parameters), Part::Material (the table's material parameters, the
+/// spectrum, the temperature), Part::History (history, or history-file).
+/// The part is set in the result's case, the other parts are defaults.
+/// Throws InvalidInput; an option of another part is refused.
+CaseInput read_case_part(const OptionValues& values, Part part);
+
+/// The option a material file goes under: "material" for an Abaqus card
+/// (its first line that is not blank or a comment ** is a keyword *...)
+/// or pyvisco's CSV, "prony-file" for a spectrum file (columns by name).
+/// Throws InvalidInput("material") where the file cannot be read.
+std::string material_file_option(const std::string& path);
+
 /// The members of the table's one_of group `group`, in the table's order.
 std::vector<const ParamSpec*> group_members(const std::string& group);
 
@@ -71,6 +94,10 @@ std::string group_usage(const std::vector<const ParamSpec*>& members, const char
 
 /// The value as typed, quoted (material/text.hpp).
 using material::shown;
+
+/// A value as given, for a message: a text as shown(text), a number as its
+/// shortest text, pairs as W:T,W:T,..., numbers as A:B:C, a flag true or false.
+std::string shown(const OptionValue& v);
 
 /// A parameter's entry in simulate's help: "(unit) meaning. Allowed range",
 /// then ", required", ". Default: X" or its one_of group's usage.

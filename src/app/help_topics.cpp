@@ -5,6 +5,7 @@
 #include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
 #include "app/help_layout.hpp"
+#include "app/reference_pages.hpp"
 #include "app/simulate_cmd.hpp"
 #include "app/stationary_cmd.hpp"
 #include "app/study_cmd.hpp"
@@ -126,9 +127,35 @@ Subcommands:
          "\n" + exit_codes_help();
 }
 
+namespace {
+
+/// The generated reference pages of docs/reference/ (mdrmap help --markdown [PAGE]).
+struct Page {
+  const char* name;
+  std::string (*text)();
+};
+const Page kPages[] = {{"cli", markdown},
+                       {"config", config_reference_markdown},
+                       {"map-schema", map_reference_markdown}};
+
+/// `mdrmap help --markdown [PAGE]` (either order): the page's Markdown, or
+/// one line naming the pages.
+int markdown_page(const std::vector<std::string>& args) {
+  const std::string name = args.size() == 1 ? "cli" : args[0] == "--markdown" ? args[1] : args[0];
+  for (const Page& p : kPages)
+    if (name == p.name) return print_help(p.text());
+  std::fprintf(stderr,
+               "mdrmap help: error: no reference page '%s'; pages: cli, config, map-schema\n",
+               one_line(name).c_str());
+  return kExitBadInput;
+}
+
+} // namespace
+
 int help_main(const std::vector<std::string>& args) {
   if (args.empty()) return print_help(topic_list());
-  if (args.size() == 1 && args.front() == "--markdown") return print_help(markdown());
+  if (args.size() <= 2 && (args.front() == "--markdown" || args.back() == "--markdown"))
+    return markdown_page(args);
   if (args.size() == 1)
     for (const auto& t : topics())
       if (args.front() == t.name) return print_help(t.text());

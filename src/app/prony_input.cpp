@@ -79,6 +79,26 @@ std::vector<Branch> parse_prony(const std::string& text) {
   }
 }
 
+std::vector<Branch> prony_of_pairs(const std::vector<std::pair<double, double>>& pairs) {
+  if (pairs.empty())
+    throw InvalidInput("prony", "must be one or more terms (G, TAU), a modulus then a relaxation "
+                                "time; got none");
+  if (pairs.size() > kMaxBranches) too_many("prony", "has ");
+  std::vector<Branch> out;
+  for (std::size_t k = 1; k <= pairs.size(); ++k) {
+    const auto [G, tau] = pairs[k - 1];
+    const std::string where =
+        "term " + std::to_string(k) + " '" + shortest(G) + ":" + shortest(tau) + "': ";
+    for (const auto& [spec, x] :
+         {std::pair{&branch_modulus_spec(), G}, std::pair{&branch_time_spec(), tau}})
+      if (!spec->contains(x))
+        throw InvalidInput("prony", where + spec->name + std::to_string(k) + " must be " +
+                                        spec->allowed() + ", got " + format_number(x));
+    out.push_back(Branch{G, tau});
+  }
+  return out;
+}
+
 std::string format_prony(const std::vector<Branch>& branches) {
   std::string s;
   for (const Branch& b : branches)

@@ -13,6 +13,7 @@
 #include "app/simulation.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/solvers/result.hpp"
 
 namespace po = boost::program_options;
 
@@ -100,8 +101,8 @@ std::vector<HelpEntry> output_entries() {
 }
 
 std::vector<HelpEntry> solver_entries() {
-  return {{"--rtol E", "target accuracy: bound on the case error (see the output), a number in "
-                       "(0, 0.1]. Default: 1e-4"},
+  return {{"--rtol E", std::string("target accuracy: bound on the case error (see the output), ") +
+                           kRtolAllowed + ". Default: 1e-4"},
           {"--solver S", "auto, exact, mdr, baseline or spectrum. Default: auto",
            "                   exact     continuum (dx -> 0) solution, semi-analytic\n"
            "                   mdr       discrete MDR element simulation, error control\n"

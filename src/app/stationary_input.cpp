@@ -44,6 +44,21 @@ double velocity(const std::string& option, const std::string& what, const std::s
   return x;
 }
 
+/// --v-list as numbers: each in the range of the table's v.
+std::vector<double> velocity_numbers(const std::vector<double>& x) {
+  if (x.size() > static_cast<std::size_t>(kMaxVelocities))
+    throw InvalidInput("v-list", "has " + std::to_string(x.size()) + " items; " +
+                                     velocity_count_text() + " are allowed");
+  const ParamSpec& v = *find_parameter("v");
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (!v.contains(x[k]))
+      throw InvalidInput("v-list", "item " + std::to_string(k + 1) + " must be a velocity (" +
+                                       dim_name(v.dim) + "), " + v.allowed() + ", got " +
+                                       shortest(x[k]));
+  if (x.empty()) throw InvalidInput("v-list", "must be one or more velocities, got none");
+  return x;
+}
+
 /// --v-list V1,V2,...: the velocities in the order given.
 std::vector<double> velocity_list(const std::string& text) {
   const std::vector<std::string> items = split(text, ',');
@@ -94,7 +109,7 @@ std::vector<double> velocity_range(const std::string& text) {
 }
 
 /// Which of --v, --v-list, --v-range gives the velocities: exactly one.
-std::string velocity_option(const OptionTexts& texts) {
+std::string velocity_option(const OptionValues& texts) {
   std::string given, first;
   for (const char* o : {"v", "v-list", "v-range"}) {
     if (!texts.count(o)) continue;
@@ -110,8 +125,14 @@ std::string velocity_option(const OptionTexts& texts) {
 /// The case from its option texts, as simulate reads it, with a history of
 /// one segment at the case's velocity (its first checks of a velocity blame
 /// `vopt`).
-CaseInput read_stationary_case(OptionTexts texts, const std::string& vopt) {
-  texts["history"] = texts["v"] + ":1";
+CaseInput read_stationary_case(OptionValues texts, const std::string& vopt) {
+  const OptionValue& v = texts["v"];
+  if (v.is_text())
+    texts["history"] = OptionValue::of_text(v.text + ":1");
+  else if (v.kind == OptionValue::Kind::Number)
+    texts["history"] = OptionValue::of_pairs({{v.number, 1.0}});
+  else
+    throw InvalidInput(vopt, "must be a velocity, got " + shown(v));
   try {
     return read_case_input(texts);
   } catch (const InvalidInput& e) {
@@ -136,15 +157,32 @@ void check_velocity(const Case& base, double w, const std::string& vopt) {
 }
 } // namespace
 
-StationaryInput read_stationary_input(OptionTexts texts) {
+StationaryInput read_stationary_input(const OptionTexts& texts) {
+  return read_stationary_input(as_values(texts));
+}
+
+StationaryInput read_stationary_input(OptionValues texts) {
   StationaryInput a;
   a.velocity_option = velocity_option(texts);
-  if (a.velocity_option == "v-list") a.velocities = velocity_list(texts["v-list"]);
-  if (a.velocity_option == "v-range") a.velocities = velocity_range(texts["v-range"]);
+  if (a.velocity_option == "v-list") {
+    const OptionValue& list = texts["v-list"];
+    if (list.kind == OptionValue::Kind::Numbers)
+      a.velocities = velocity_numbers(list.numbers);
+    else if (list.is_text())
+      a.velocities = velocity_list(list.text);
+    else
+      throw InvalidInput("v-list", "must be a list of velocities, got " + shown(list));
+  }
+  if (a.velocity_option == "v-range") {
+    if (!texts["v-range"].is_text())
+      throw InvalidInput("v-range", "must be LO:HI:N, got " + shown(texts["v-range"]));
+    a.velocities = velocity_range(texts["v-range"].text);
+  }
   texts.erase("v-list");
   texts.erase("v-range");
   if (!a.velocities.empty()) // the slowest: the case's own checks at v the mildest
-    texts["v"] = format_double(*std::min_element(a.velocities.begin(), a.velocities.end()));
+    texts["v"] =
+        OptionValue::of_number(*std::min_element(a.velocities.begin(), a.velocities.end()));
   a.in = read_stationary_case(texts, a.velocity_option);
   if (a.velocities.empty()) a.velocities = {a.in.c.history.v0};
   for (const double w : a.velocities)

@@ -29,7 +29,11 @@ struct StationaryInput {
 /// Reads the case from its option texts as simulate does (without history
 /// and sampling) and its velocities from exactly one of v, v-list
 /// ("V1,V2,...") and v-range ("LO:HI:N"). Throws InvalidInput.
-StationaryInput read_stationary_input(OptionTexts texts);
+StationaryInput read_stationary_input(const OptionTexts& texts);
+
+/// read_stationary_input of typed values (read_case_input's): v a number,
+/// v-list a list of numbers.
+StationaryInput read_stationary_input(OptionValues values);
 
 /// The stationary states at a.velocities, in order; charges one unit to
 /// `control` per velocity (a stop request ends it: Interrupted) and reports

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/help_layout.hpp"
+#include "app/reference_pages.hpp"
 #include "app/study_cmd.hpp"
 #include "app/study_options.hpp"
 #include "core/model/params.hpp"
@@ -99,8 +100,8 @@ HelpSection study_section() {
   return {"study",
           "The study and its map",
           {{"--config FILE.ini",
-            "the study (INI: [grid] or [cases], [history], [run]; see docs/map-schema.md and "
-            "mdrmap help config)"},
+            "the study (INI: [grid] or [cases], [history], [run]; every key: mdrmap help config, "
+            "docs/reference/config.md)"},
            {"--output MAP.h5",
             "the map file. Default: the config's name with .h5, in the current directory. An "
             "existing file is never touched without --resume or --overwrite; one that is not a "
@@ -166,7 +167,7 @@ velocities and durations, or a CSV list of cases) is one velocity history
 under a fixed depth d or a prescribed normal load F0, solved as by 'mdrmap
 simulate' (a parabola, a cone or a power law). Rank 0 hands out cases in
 chunks on request and computes too; every rank writes its results into one
-HDF5 friction map (schema mdrmap-map/2, docs/map-schema.md): the event
+HDF5 friction map (schema mdrmap-map/2, docs/reference/map-schema.md): the event
 metrics of every velocity change (a, b, D_c, peaks), the closed-form
 stationary states and the residuals between the two. Works with P = 1.
 
@@ -191,16 +192,18 @@ banner away).
 }
 
 std::string study_config_help() {
-  std::string s = R"(Config keys a command-line option of mdrmap study overrides (any key:
---set SECTION.KEY=VALUE). The config's sections and keys: docs/map-schema.md
-and docs/studies.md.
+  std::string s = R"(Every key of a study config, section by section (docs/reference/config.md;
+how to write a study: docs/studies.md). mdrmap study --set SECTION.KEY=VALUE
+sets any key from the command line; these options set one each:
 
 )";
   std::vector<HelpEntry> entries;
   for (const auto& ov : study_overrides())
     if (!spectrum_term(ov.option)) entries.push_back({ov.key, "--" + ov.option});
   entries.push_back({"grid.Gk, grid.tauk", "--Gk, --tauk (k = 1..32): a spectrum's term k"});
-  return s + render_entries(entries);
+  return s + render_entries(entries) +
+         "\nThe keys (SPEC: a number, a comma list, linspace:lo:hi:n or\n" +
+         "logspace:lo:hi:n):\n" + config_keys_text();
 }
 
 } // namespace mdrmap::app

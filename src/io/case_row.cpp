@@ -1,6 +1,9 @@
 #include "io/case_row.hpp"
 
+#include <cstring>
 #include <stdexcept>
+
+#include "core/model/params.hpp"
 
 namespace mdrmap::io {
 namespace {
@@ -275,6 +278,54 @@ const FieldInfo& other_info(const std::string& path) {
   for (const FieldInfo& i : other_result_info())
     if (i.path == path) return i;
   throw std::out_of_range("no map dataset " + path);
+}
+
+FieldInfo segment_case_info(const std::string& name) {
+  const ParamSpec& spec = name == "w" ? segment_velocity_spec() : segment_duration_spec();
+  return {"cases/" + name, dim_name(spec.dim),
+          std::string(spec.meaning) + " (absolute, as run), per segment"};
+}
+
+const std::vector<RootAttribute>& root_attributes() {
+  static const std::vector<RootAttribute> a = {
+      {"mdrmap_schema", "string", "the schema of the map (mdrmap-map/2)"},
+      {"program_version", "string", "the version of the mdrmap that made the map"},
+      {"git_commit", "string", "the commit it was built from"},
+      {"created_utc", "string", "when the map was created (UTC, ISO 8601)"},
+      {"command_line", "string", "the command line of the study"},
+      {"units", "string", "the study's units, as its config names them"},
+      {"loading", "string", "depth (fixed depth d) or force (prescribed load F0)"},
+      {"mpi_size", "int64", "the number of MPI ranks that created the map"},
+      {"n_cases", "int64", "N, the number of cases"},
+      {"segments", "int64", "K, the number of history segments"},
+      {"samples", "int64", "S, the samples per segment"},
+      {"timeseries", "int64", "1 when /timeseries holds every sample, else 0"},
+      {"config_text", "string",
+       "the config as written (a long one: a pointer to /provenance/config_text)"}};
+  return a;
+}
+
+const char* root_attribute(const char* name) {
+  for (const RootAttribute& a : root_attributes())
+    if (std::strcmp(a.name, name) == 0) return a.name;
+  throw std::logic_error(std::string("no map root attribute ") + name);
+}
+
+const std::vector<FieldInfo>& provenance_info() {
+  static const std::vector<FieldInfo> f = {
+      {"provenance/config_text", "text", "the config file as written (dimension config_text_byte)"},
+      {"provenance/config_canonical", "text",
+       "the study as --resume compares it: columns, values and [run] settings in normal form "
+       "(dimension config_canonical_byte)"}};
+  return f;
+}
+
+const FieldInfo& material_card_info() {
+  static const FieldInfo f{"provenance/material_card", "text",
+                           "the material card of [run] material as read, an Abaqus card or "
+                           "pyvisco's CSV (dimension material_card_byte); the map holds its "
+                           "material"};
+  return f;
 }
 
 } // namespace mdrmap::io

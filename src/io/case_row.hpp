@@ -1,5 +1,5 @@
 #pragma once
-// One case's row of the friction map (schema mdrmap-map/2, docs/map-schema.md),
+// One case's row of the friction map (schema mdrmap-map/2, docs/reference/map-schema.md),
 // as computed (study/compute.hpp) and as written (io/map_file.hpp): which
 // per-case datasets a study's map has, their units and meanings, and the row
 // that holds one case's values. MPI- and HDF5-free.
@@ -109,6 +109,28 @@ private:
 const std::vector<FieldInfo>& other_result_info();
 /// The entry of `path` in other_result_info(); throws std::out_of_range.
 const FieldInfo& other_info(const std::string& path);
+
+/// /cases/w and /cases/T [N, K]: each segment's velocity and duration as
+/// run (name "w" or "T"; the case parameters' come with the study).
+FieldInfo segment_case_info(const std::string& name);
+
+/// An attribute of a map's root group.
+struct RootAttribute {
+  const char* name;
+  const char* type;    ///< "string", "int64", ...
+  const char* meaning; ///< one line, lower case, no final period
+};
+/// Every root attribute the map writer writes (io/map_file.cpp writes no other).
+const std::vector<RootAttribute>& root_attributes();
+/// The entry of `name` in root_attributes(); throws std::logic_error.
+const char* root_attribute(const char* name);
+
+/// /provenance/config_text and /provenance/config_canonical: uint8 text
+/// datasets (path, "text", meaning; no `units` attribute or /schema entry).
+const std::vector<FieldInfo>& provenance_info();
+
+/// /provenance/material_card: in a map of a study with [run] material only.
+const FieldInfo& material_card_info();
 
 struct CaseRow {
   std::vector<double> values;              ///< RowLayout::row_width() values

@@ -47,14 +47,6 @@ Handle create_dataset(hid_t loc, const std::string& name, hid_t type, std::vecto
 
 // ---- self-description: /schema, CF attributes, dimension scales ----------------
 
-// Unit and meaning of the history's /cases datasets: the segment velocity
-// and duration (the case parameters' come with the MapSpec).
-FieldInfo case_info(const std::string& name) {
-  const ParamSpec& spec = name == "w" ? segment_velocity_spec() : segment_duration_spec();
-  return {"cases/" + name, dim_name(spec.dim),
-          std::string(spec.meaning) + " (absolute, as run), per segment"};
-}
-
 // A group whose links iterate in creation order (h5py and xarray list them so).
 // With `dense_attributes`, its attributes live in a fractal heap outside the
 // object header (no 64 KiB limit: /grid's axes of 10000 segments).
@@ -252,39 +244,31 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
 
 namespace {
 
-// The text of the study's material card ([run] material): the map holds its material.
-const FieldInfo kMaterialCard{"provenance/material_card", "text",
-                              "the material card of [run] material as read (an Abaqus card or "
-                              "pyvisco's CSV), UTF-8 bytes"};
-
 // Root attributes and /provenance (collective: identical calls on every rank).
 void write_header(hid_t f, const MapSpec& spec, const Provenance& prov) {
-  write_string_attr(f, "mdrmap_schema", kSchema);
-  write_string_attr(f, "program_version", prov.program_version);
-  write_string_attr(f, "git_commit", prov.git_commit);
-  write_string_attr(f, "created_utc", prov.created_utc);
-  write_string_attr(f, "command_line", prov.command_line);
-  write_string_attr(f, "units", prov.units);
-  write_string_attr(f, "loading", spec.by_force ? "force" : "depth");
-  write_scalar_attr(f, "mpi_size", prov.mpi_size);
-  write_scalar_attr(f, "n_cases", static_cast<long long>(spec.n_cases));
-  write_scalar_attr(f, "segments", static_cast<long long>(spec.segments));
-  write_scalar_attr(f, "samples", spec.samples);
-  write_scalar_attr(f, "timeseries", spec.timeseries ? 1 : 0);
+  const auto name = root_attribute; // each declared in io::root_attributes()
+  write_string_attr(f, name("mdrmap_schema"), kSchema);
+  write_string_attr(f, name("program_version"), prov.program_version);
+  write_string_attr(f, name("git_commit"), prov.git_commit);
+  write_string_attr(f, name("created_utc"), prov.created_utc);
+  write_string_attr(f, name("command_line"), prov.command_line);
+  write_string_attr(f, name("units"), prov.units);
+  write_string_attr(f, name("loading"), spec.by_force ? "force" : "depth");
+  write_scalar_attr(f, name("mpi_size"), prov.mpi_size);
+  write_scalar_attr(f, name("n_cases"), static_cast<long long>(spec.n_cases));
+  write_scalar_attr(f, name("segments"), static_cast<long long>(spec.segments));
+  write_scalar_attr(f, name("samples"), spec.samples);
+  write_scalar_attr(f, name("timeseries"), spec.timeseries ? 1 : 0);
   // an attribute must fit in the object header (64 KiB): long configs live in /provenance only
-  write_string_attr(f, "config_text",
+  write_string_attr(f, name("config_text"),
                     prov.config_text.size() < 48 * 1024 ? prov.config_text
                                                         : "(long: see /provenance/config_text)");
   Handle g = create_group(f, "provenance");
-  write_text_dataset(f, "provenance/config_text", prov.config_text);
-  write_text_dataset(f, "provenance/config_canonical", prov.config_canonical);
-  if (!prov.material_card.empty()) {
-    write_text_dataset(f, kMaterialCard.path, prov.material_card);
-    Handle d = make_dataset(H5Dopen2(f, kMaterialCard.path.c_str(), H5P_DEFAULT),
-                            "opening /" + kMaterialCard.path);
-    cf_attributes(d.id(), kMaterialCard);
-    d.close("closing /" + kMaterialCard.path);
-  }
+  for (const FieldInfo& t : provenance_info())
+    write_text_dataset(
+        f, t.path, t.path == "provenance/config_text" ? prov.config_text : prov.config_canonical);
+  if (!prov.material_card.empty()) // a study with [run] material
+    write_text_dataset(f, material_card_info().path, prov.material_card);
   g.close("closing /provenance");
 }
 
@@ -414,10 +398,6 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
       create_ordered_group(f, std::string("schema/") + group)
           .close(std::string("closing /schema/") + group);
     if (!spec.grid.names.empty()) create_ordered_group(f, "schema/grid").close("/schema/grid");
-    if (!prov.material_card.empty()) {
-      create_ordered_group(f, "schema/provenance").close("closing /schema/provenance");
-      schema_entry(f, kMaterialCard);
-    }
     schema.close("closing /schema");
   }
   Dimensions dims{create_dimension(f, "case", n), create_dimension(f, "event", K),
@@ -428,7 +408,7 @@ void MapFile::create(MPI_Comm comm, const std::string& path, const MapSpec& spec
     case_sets.push_back(per_case(f, dims, c, H5T_IEEE_F64LE, n, 0, -1, false));
   for (const char* c : {"w", "T"})
     case_sets.push_back(
-        per_case(f, dims, case_info(c), H5T_IEEE_F64LE, n, K, dims.events.id(), false));
+        per_case(f, dims, segment_case_info(c), H5T_IEEE_F64LE, n, K, dims.events.id(), false));
   create_results(f, dims, spec);
   create_failures(f, spec.n_cases);
   Handle segment;

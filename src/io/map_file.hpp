@@ -3,7 +3,7 @@
 // through MPI-IO.
 //
 // Layout: schema "mdrmap-map/2", described dataset by dataset in
-// docs/map-schema.md (N cases, K segments, S samples per segment):
+// docs/reference/map-schema.md (N cases, K segments, S samples per segment):
 //   /cases/{d|F0,R,tau,G,v} [N], /cases/{w,T} [N, K]   the cases as run
 //   /results, /events, /analytic, /residuals           io::RowLayout: float64 [N] or [N, K]
 //   /results/status                         int8 [N]   0 pending, 1 done, -1 failed

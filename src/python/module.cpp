@@ -1,14 +1,18 @@
 // The extension module mdrmap._core: the C++ half of the Python package
-// `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes option
-// texts as the command line does (app/case_input.hpp builds and checks the
-// case) and runs it as `mdrmap simulate` does (app/simulation.hpp), without
-// the GIL, looking at Ctrl-C and reporting progress now and then
+// `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes the
+// options' values as Python gives them, numbers as doubles (never as texts;
+// app/option_value.hpp), and builds and checks the case with the command
+// line's checks and messages (app/case_input.hpp) and runs it as `mdrmap simulate` does
+// (app/simulation.hpp), without the GIL, looking at Ctrl-C and reporting progress now and then
 // (python/call.hpp); the time series are handed over as
 // numpy arrays that own the result's vectors (no copy). InvalidInput becomes
 // mdrmap.InvalidInput.
 #include <algorithm>
+#include <cstddef>
 #include <exception>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -23,6 +27,7 @@
 #include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
+#include "core/model/temperature.hpp"
 #include "mdrmap/version.hpp"
 #include "python/call.hpp"
 
@@ -63,11 +68,36 @@ void make_invalid_input_class(py::module_& m) {
   invalid_input_class = cls.release();
 }
 
-app::OptionTexts to_texts(const py::dict& options) {
-  app::OptionTexts texts;
-  for (const auto& [key, value] : options)
-    texts.emplace(py::cast<std::string>(key), py::cast<std::string>(value));
-  return texts;
+/// A value the package (mdrmap/__init__.py) hands over: a str (a text: a
+/// name, a path, or a number as the command line writes it), a float (a
+/// number: that double), a bool (a flag), a tuple of floats (wlf, v-list) or
+/// a list of pairs of floats (history, prony). The package has checked the
+/// types against the keyword; anything else here is its error.
+app::OptionValue to_value(const std::string& option, const py::handle& value) {
+  if (py::isinstance<py::str>(value))
+    return app::OptionValue::of_text(py::cast<std::string>(value));
+  if (py::isinstance<py::bool_>(value)) return app::OptionValue::of_flag(py::cast<bool>(value));
+  if (py::isinstance<py::float_>(value))
+    return app::OptionValue::of_number(py::cast<double>(value));
+  if (py::isinstance<py::list>(value)) {
+    std::vector<std::pair<double, double>> pairs;
+    for (const py::handle item : value)
+      pairs.push_back(py::cast<std::pair<double, double>>(item));
+    return app::OptionValue::of_pairs(std::move(pairs));
+  }
+  if (py::isinstance<py::tuple>(value))
+    return app::OptionValue::of_numbers(py::cast<std::vector<double>>(value));
+  throw std::logic_error("mdrmap._core: the value of " + option + " is a " +
+                         py::cast<std::string>(py::str(value.get_type())));
+}
+
+app::OptionValues to_values(const py::dict& options) {
+  app::OptionValues values;
+  for (const auto& [key, value] : options) {
+    const std::string option = py::cast<std::string>(key);
+    values.emplace(option, to_value(option, value));
+  }
+  return values;
 }
 
 /// A numpy array over `v`, kept alive by `owner` (no copy).
@@ -154,28 +184,11 @@ py::dict case_dict(const Case& c) {
   return d;
 }
 
-/// Runs one case from its option texts; the result as a dict of numpy arrays
-/// (t, segment, FN, Fx, mu, a2; d, a1 under load) and the records.
-py::dict simulate(const py::dict& options, const py::object& progress) {
-  const app::OptionTexts texts = to_texts(options);
-  auto sim = std::make_unique<app::Simulation>();
-  run_call( // (the input reads a spectrum file)
-      [&](const RunControl& control) {
-        *sim = app::simulate(app::read_case_input(texts), control);
-      },
-      progress);
-  py::dict out;
-  out["events"] = events(sim->record);
-  const bool load = sim->record.c.loading.by_force();
-  out["pre"] = fields(app::state_fields(sim->series.pre, load));
-  out["info"] = info(sim->record);
-  out["case"] = case_dict(sim->record.c);
-  const Scales sc = scales(sim->record.c);
-  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
-                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
-                           py::arg("time") = sc.time);
+/// The series as numpy arrays (t, segment, FN, Fx, mu, a2; d, a1 under
+/// load) that are views of its vectors: the capsule takes `sim` over.
+void series_views(py::dict& out, std::unique_ptr<app::Simulation> sim) {
   const Series& s = sim->series;
-  // the capsule owns the result: the arrays below are views of its vectors
+  const bool load = sim->record.c.loading.by_force();
   py::capsule owner(sim.get(), [](void* p) { delete static_cast<app::Simulation*>(p); });
   sim.release();
   out["t"] = view(s.t, owner);
@@ -188,6 +201,70 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
     out["d"] = view(s.d, owner);
     out["a1"] = view(s.a1, owner);
   }
+}
+
+/// The elements `rows` of v, as a new array.
+template <class T>
+py::array_t<T> picked(const std::vector<T>& v, const std::vector<std::size_t>& rows) {
+  py::array_t<T> a(static_cast<py::ssize_t>(rows.size()));
+  auto x = a.template mutable_unchecked<1>();
+  for (std::size_t n = 0; n < rows.size(); ++n)
+    x(static_cast<py::ssize_t>(n)) = v[rows[n]];
+  return a;
+}
+
+/// A lab record's run as the CLI's CSV gives it (csv_output.cpp): one row
+/// per record row, the series' columns at the row and the row's load-point
+/// velocity v and slip since t = 0.
+void record_rows(py::dict& out, const app::Simulation& sim, const app::LabRecord& r) {
+  std::vector<std::size_t> rows = app::record_rows(sim.record.c);
+  rows.resize(std::min(rows.size(), r.v.size()));
+  const Series& s = sim.series;
+  out["t"] = picked(s.t, rows);
+  out["segment"] = picked(s.segment, rows);
+  out["FN"] = picked(s.FN, rows);
+  out["Fx"] = picked(s.Fx, rows);
+  out["mu"] = picked(s.mu, rows);
+  out["a2"] = picked(s.a2, rows);
+  if (sim.record.c.loading.by_force()) {
+    out["d"] = picked(s.d, rows);
+    out["a1"] = picked(s.a1, rows);
+  }
+  std::vector<double> v(r.v.begin(), r.v.begin() + static_cast<std::ptrdiff_t>(rows.size()));
+  std::vector<double> slip = app::record_slip(r);
+  slip.resize(rows.size());
+  out["v"] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+  out["slip"] = py::array_t<double>(static_cast<py::ssize_t>(slip.size()), slip.data());
+}
+
+/// Runs one case from its options' values; the result as a dict of numpy
+/// arrays and the records. A lab record's run (history-file) has one row
+/// per record row (and its v and slip), as the CLI's CSV.
+py::dict simulate(const py::dict& options, const py::object& progress) {
+  const app::OptionValues values = to_values(options);
+  auto sim = std::make_unique<app::Simulation>();
+  std::optional<app::LabRecord> record;
+  run_call( // (the input reads a spectrum file)
+      [&](const RunControl& control) {
+        const app::CaseInput in = app::read_case_input(values);
+        record = in.record;
+        *sim = app::simulate(in, control);
+      },
+      progress);
+  py::dict out;
+  out["events"] = events(sim->record);
+  const bool load = sim->record.c.loading.by_force();
+  out["pre"] = fields(app::state_fields(sim->series.pre, load));
+  out["info"] = info(sim->record);
+  out["case"] = case_dict(sim->record.c);
+  const Scales sc = scales(sim->record.c);
+  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
+                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
+                           py::arg("time") = sc.time);
+  if (record)
+    record_rows(out, *sim, *record);
+  else
+    series_views(out, std::move(sim));
   return out;
 }
 
@@ -195,12 +272,12 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
 /// them: `options` its options (the case's, and v or v-list), the result
 /// {"v": velocities, FN, Fx, mu, a2 (d, a1 under load): arrays}.
 py::dict stationary(const py::dict& options, const py::object& progress) {
-  const app::OptionTexts texts = to_texts(options);
+  const app::OptionValues values = to_values(options);
   app::StationaryInput in;
   std::vector<State> states;
   run_call( // a spectrum file, quadratures
       [&](const RunControl& control) {
-        in = app::read_stationary_input(texts);
+        in = app::read_stationary_input(values);
         states = app::stationary_states(in, control);
       },
       progress);
@@ -217,6 +294,53 @@ py::dict stationary(const py::dict& options, const py::object& progress) {
     out[app::state_fields(State{}, load)[j].first] = a;
   }
   return out;
+}
+
+/// One part of a case as read_case_part reads it: its options as the case
+/// holds them (the indenter: profile and its parameters; the material: G,
+/// tau, aT, the spectrum's (G, tau) pairs, the temperature and the WLF
+/// constants that gave aT, notes; the history: its (w, T) pairs, and v and
+/// the record's path and rows where a lab record gave it).
+py::dict read_part(const py::dict& options, const std::string& part) {
+  const Part which = part == "indenter"   ? Part::Indenter
+                     : part == "material" ? Part::Material
+                     : part == "history"  ? Part::History
+                                          : throw std::logic_error("read_part: " + part);
+  const app::OptionValues values = to_values(options);
+  app::CaseInput in;
+  run_call([&](const RunControl&) { in = app::read_case_part(values, which); }, // (files)
+           py::none());
+  const Case& c = in.c;
+  py::dict d;
+  if (which == Part::Indenter) d["profile"] = profile_name(c.indenter.profile);
+  for (const auto& p : case_parameters())
+    if (p.part == which && which != Part::History && p.applies_to(c.indenter.profile))
+      d[p.name] = p.get(c);
+  if (which == Part::Material) {
+    py::list prony;
+    for (const Branch& b : c.rheology.branches)
+      prony.append(py::make_tuple(b.G, b.tau));
+    d["prony"] = prony;
+    if (in.temperature) {
+      const app::TemperatureInput& t = *in.temperature;
+      d["temperature"] = t.T;
+      d["wlf"] = py::make_tuple(t.wlf.C1, t.wlf.C2, t.wlf.Tref);
+      d["unit"] = unit_suffix(t.unit);
+    }
+    d["notes"] = in.notes;
+  }
+  if (which == Part::History) {
+    py::list history;
+    for (const Segment& seg : c.history.segments)
+      history.append(py::make_tuple(seg.w, seg.T));
+    d["history"] = history;
+    if (in.record) {
+      d["v"] = c.history.v0;
+      d["record"] = in.record->path;
+      d["rows"] = in.record->t.size();
+    }
+  }
+  return d;
 }
 
 /// The old spellings the options take: {alias: the table's name}.
@@ -238,6 +362,7 @@ py::list parameter_table() {
     d["meaning"] = p.meaning;
     d["required"] = p.required;
     d["one_of"] = p.one_of ? py::object(py::str(p.one_of)) : py::object(py::none());
+    d["profile"] = p.profile ? py::object(py::str(p.profile)) : py::object(py::none());
     d["default"] =
         p.required || p.one_of ? py::object(py::none()) : py::object(py::float_(p.fallback));
     d["sampling"] = p.part == Part::Sampling;
@@ -274,9 +399,13 @@ PYBIND11_MODULE(_core, m) {
   m.def("option_names", &mdrmap::app::case_option_names,
         "The options of a case, as the CLI spells them, in the order of its help.");
   m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
-        "Runs one case from {option: text}; a dict of numpy arrays and records.");
+        "Runs one case from {option: value}; a dict of numpy arrays and records.");
   m.def("stationary", &stationary, py::arg("options"), py::arg("progress") = py::none(),
-        "The stationary states at v or v-list of a case given as {option: text}.");
+        "The stationary states at v or v-list of a case given as {option: value}.");
+  m.def("read_part", &read_part, py::arg("options"), py::arg("part"),
+        "One part (indenter, material, history) of a case from {option: value}, checked.");
+  m.def("material_file_option", &mdrmap::app::material_file_option, py::arg("path"),
+        "The option a material file goes under: material (a card) or prony-file.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");

@@ -35,19 +35,21 @@ const ParamSpec& ratio_spec(bool velocity) {
                            "a segment's velocity over v; 0 is a hold",
                            no_get,
                            no_set};
-  static const ParamSpec T{"T_over_tau",
-                           "X",
-                           Part::History,
-                           Dim::Number,
-                           0.0,
-                           false,
-                           kInf,
-                           true,
-                           nullptr,
-                           0.0,
-                           "a segment's duration over tau",
-                           no_get,
-                           no_set};
+  static const ParamSpec T{
+      "T_over_tau",
+      "X",
+      Part::History,
+      Dim::Number,
+      0.0,
+      false,
+      kInf,
+      true,
+      nullptr,
+      0.0,
+      "a segment's duration over the case's time scale (tau; aT max(tau, tauk) with a "
+      "spectrum or a shift)",
+      no_get,
+      no_set};
   return velocity ? w : T;
 }
 

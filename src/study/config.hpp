@@ -1,7 +1,8 @@
 #pragma once
 // A parameter study: which cases to run and how. Read from an INI file,
 // overridden from the command line, expanded to cases. Pure C++: no MPI, no
-// HDF5, no printing. The syntax is documented in docs/map-schema.md:
+// HDF5, no printing. Every key: docs/reference/config.md
+// (generated from study/config_keys.hpp); the syntax:
 //
 //   [grid]                  ; the case parameters of the core's table
 //   F0  = 1e-3              ; d (depth control) or F0 (load control), one of them
@@ -16,25 +17,13 @@
 //
 //   [history]               ; segments k = 1..K after stationary sliding at v
 //   w1_over_v   = 0         ; velocity: wk, or wk_over_v (times v)
-//   T1_over_tau = 1, 10     ; duration: Tk, or Tk_over_tau (times tau)
+//   T1_over_tau = 1, 10     ; duration: Tk, or Tk_over_tau (times the time scale)
 //
 //   [cases]                 ; instead of [grid]
 //   file = cases.csv        ; columns d|F0, R, tau, v, [G], w1, T1, ... (or the seed's v1)
 //
-//   [run]
-//   samples = 201           ; per segment
-//   spacing = linear        ; linear | log
-//   decades = 4             ; log spacing: the first instant after a start is T 10^-decades
-//   rtol = 1e-4
-//   solver = auto           ; auto | exact | mdr | baseline
-//   timeseries = false      ; store the full time series of every case
-//   wlf = 17.44:51.6:-70    ; WLF constants C1:C2:TREF of a temperature column; TREF may
-//                           ;   take a unit (25C, 298.15K), the column's values are in it
-//   allow_large_shift = false ; true: take a temperature's |log10 aT| > 12
-//   profile = parabola      ; parabola (column R) | cone (column beta) | power (n, A)
-//   material = rubber.inp   ; an Abaqus card or pyvisco's CSV (relative to the config's
-//                           ;   directory): the columns G, Gk, tauk (one value each) and the
-//                           ;   card's WLF; refused beside [grid] G, Gk, tauk or [run] wlf
+//   [run]                   ; one value per key; every key, its values and default:
+//   samples = 101           ;   study/config_keys.cpp (mdrmap help config)
 //
 // Every key of [grid] and [history] is a column of the study; in a grid each
 // column is an axis (case order: C order over the columns in column order, the

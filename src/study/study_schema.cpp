@@ -12,6 +12,7 @@
 #include "study/columns.hpp"
 #include "study/config.hpp"
 #include "study/config_detail.hpp"
+#include "study/config_keys.hpp"
 #include "study/ini.hpp"
 #include "study/material_columns.hpp"
 #include "study/temperature_column.hpp"
@@ -21,8 +22,6 @@ namespace mdrmap::study {
 using namespace detail;
 
 namespace {
-
-constexpr long kMaxRunSamples = 1'000'000;
 
 std::vector<std::string> grid_keys() {
   std::vector<std::string> k;
@@ -65,11 +64,7 @@ std::string spectrum_term_hint(const std::string& key) {
 
 const IniSchema& study_schema() {
   static const IniSchema s{{"grid", "history", "cases", "run"},
-                           {grid_keys(),
-                            history_names(1),
-                            {"file"},
-                            {"samples", "spacing", "decades", "rtol", "solver", "timeseries", "wlf",
-                             "allow_large_shift", "profile", "t_end_over_tau", "G", "material"}},
+                           {grid_keys(), history_names(1), {"file"}, run_key_names()},
                            "[grid], [history], [cases] or [run]",
                            "[grid] or [cases], [history] and [run]",
                            [](const std::string& section, const std::string& key) {
@@ -145,7 +140,7 @@ double run_decades(const std::string& option, const std::string& text) {
 double run_rtol(const std::string& option, const std::string& text) {
   const Num n = to_number(text);
   if (n.err != NumError::None)
-    throw ConfigError(option, number_problem(text, n.err) + "; rtol must be a number in (0, 0.1]");
+    throw ConfigError(option, number_problem(text, n.err) + "; rtol must be " + kRtolAllowed);
   try {
     validate_rtol(n.x);
   } catch (const InvalidInput& e) {
@@ -158,8 +153,10 @@ std::string run_solver(const std::string& option, const std::string& text) {
   try {
     return solver_name(parse_solver(text));
   } catch (const InvalidInput&) {
-    throw ConfigError(option, "unknown solver " + shown(text) +
-                                  "; solver must be one of auto, exact, mdr, baseline, spectrum");
+    std::string names;
+    for (const SolverKind k : kSolverKinds)
+      names += (names.empty() ? "" : ", ") + std::string(solver_name(k));
+    throw ConfigError(option, "unknown solver " + shown(text) + "; solver must be one of " + names);
   }
 }
 

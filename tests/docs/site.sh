@@ -26,7 +26,7 @@ fi
 
 rm -rf "$out"
 "$py" -m sphinx -W --keep-going -E -q -b html -d "$out/.doctrees" "$src/docs" "$out"
-for page in index install quickstart studies python physics changelog design map-schema jobs; do
+for page in index install quickstart studies python physics changelog design reference/config reference/map-schema reference/python jobs; do
   [[ -s "$out/$page.html" ]] || { echo "docs_site: $out/$page.html was not written"; exit 1; }
 done
 echo "docs_site: built $(find "$out" -maxdepth 1 -name '*.html' | wc -l) pages in $out"

@@ -315,7 +315,7 @@ def test_numbers_are_refused_as_their_texts():
              ({"FN": 1}, "", "give exactly one of --d D or --F0 F0"),
              ({"v1": None, "history": [(1, 2, 3)]}, "history", "segment 1 must be a pair"),
              ({"v1": None, "history": 5}, "history", "must be a list of segments"),
-             ({"v1": None, "history": []}, "history", "got an empty string"),
+             ({"v1": None, "history": []}, "history", "segments (W, T), its velocity W then its duration T; got none"),
              ({"v1": None, "history": [(1, -2)]}, "history", "segment 1 '1:-2': T must be")]
     for change, option, said in cases:
         kw = {k: v for k, v in dict(base, **change).items() if not (k == "v1" and v is None

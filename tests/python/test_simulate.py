@@ -200,6 +200,10 @@ def test_parameters_are_the_table_of_the_help(exe):
             assert not p["required"] and p["one_of"] is None
     assert {p["name"]: p["default"] for p in table}["samples"] == 201
     assert {p["name"]: p["required"] for p in table}["tau"]
+    # a profile's own parameters say which (required for it alone); the rest apply to every one
+    profiles = {p["name"]: p["profile"] for p in table}
+    assert profiles["R"] == "parabola" and profiles["beta"] == "cone"
+    assert profiles["n"] == profiles["A"] == "power" and profiles["tau"] is None
 
 
 def test_info_names_the_build():
@@ -209,21 +213,51 @@ def test_info_names_the_build():
     assert r.info["solver"] == "exact" and r.info["wall_seconds"] >= 0
 
 
-def test_history_file_samples_at_the_records_times(tmp_path):
+def test_history_file_gives_the_records_rows_as_the_cli(exe, tmp_path):
     """A lab record: v0 and the history from its rows, a segment per velocity
-    change; the samples at the rows' times (t from the first row), each
-    segment's end too; the case says sampling "record"."""
+    change; one sample per record row (t from the first row), with the row's
+    v and slip, equal to the CLI's CSV rows bit for bit; the case says
+    sampling "record"."""
     rec = tmp_path / "record.csv"
     rec.write_text("# step and hold\nmu,v,t\n0.5,1,10\n0.5,1,11\n0.5,0.5,12\n"
                    "0.5,0.5,14\n0.5,0,15\n0.5,0,17\n")
-    r = mdrmap.simulate(d=0.1, R=10, tau=1, history_file=rec)
-    assert r.case["history"] == [(1.0, 2.0), (0.5, 3.0), (0.0, 2.0)]
-    assert r.case["v"] == 1.0 and r.case["sampling"] == "record"
-    assert "samples" not in r.case and "spacing" not in r.case
-    assert list(r.t) == [0, 1, 2, 2, 4, 5, 5, 7]
-    assert list(r.segment) == [0, 0, 0, 1, 1, 1, 2, 2]
+    for load in (False, True):
+        kw = dict(F0=0.1) if load else dict(d=0.1)
+        r = mdrmap.simulate(**kw, R=10, tau=1, history_file=rec)
+        assert r.case["history"] == [(1.0, 2.0), (0.5, 3.0), (0.0, 2.0)]
+        assert r.case["v"] == 1.0 and r.case["sampling"] == "record" and r.record
+        assert "samples" not in r.case and "spacing" not in r.case
+        assert list(r.t) == [0, 1, 2, 4, 5, 7]  # the rows' times
+        assert list(r.segment) == [0, 0, 1, 1, 2, 2]
+        assert list(r.v) == [1, 1, 0.5, 0.5, 0, 0] and list(r.slip) == [0, 1, 2, 3, 3.5, 3.5]
+        code, out, err = run_cli(exe, [x for k, v in kw.items() for x in ("--" + k, str(v))] +
+                                 ["--R", "10", "--tau", "1", "--history-file", str(rec)])
+        assert code == 0, err
+        _, _, header, rows = parse_csv(out)
+        assert header == r.columns and len(rows) == 6
+        for j, name in enumerate(header):
+            assert np.array_equal(getattr(r, name), rows[:, j]), name
+        assert list(r.to_dataframe().columns) == r.columns
     ref = mdrmap.simulate(d=0.1, R=10, tau=1, v=1, history=[(1, 2), (0.5, 3), (0, 2)],
                           samples=3)
+    r = mdrmap.simulate(d=0.1, R=10, tau=1, history_file=rec)
     # instants both have: just after the change at t = 2, and the end at t = 7
-    assert (r.t[3], r.segment[3], r.mu[3]) == (ref.t[3], ref.segment[3], ref.mu[3])
+    assert (r.t[2], r.segment[2], r.mu[2]) == (ref.t[3], ref.segment[3], ref.mu[3])
     assert (r.t[-1], r.mu[-1], r.a2[-1]) == (ref.t[-1], ref.mu[-1], ref.a2[-1])
+
+
+def test_segments_and_events_are_numbered_as_the_cli_csv(exe):
+    """Segment k (the k-th pair of history=, from 0) is the CSV's segment k
+    and the change at its start the CSV's event k; a study config names the
+    same segment k + 1 (wK, TK). The convention of docs/python.md."""
+    kw = dict(d=0.1, R=10, tau=1, v=1, history=[(0.5, 1), (0, 2), (2, 1)], samples=4)
+    r = mdrmap.simulate(**kw)
+    code, out, err = run_cli(exe, cli_args(kw))
+    assert code == 0, err
+    _, events, header, rows = parse_csv(out)
+    assert np.array_equal(r.segment, rows[:, header.index("segment")])
+    assert sorted(set(r.segment)) == [0, 1, 2]
+    assert [e["k"] for e in r.events] == [int(e["k"]) for e in events] == [0, 1, 2]
+    for k, (w, T) in enumerate(kw["history"]):
+        assert r.events[k]["w_after"] == w and r.events[k]["t"] == r.t[r.segment == k][0]
+        assert r.t[r.segment == k][-1] - r.t[r.segment == k][0] == T

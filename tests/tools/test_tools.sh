@@ -4,7 +4,7 @@
 #
 #   bash tests/tools/test_tools.sh MDRMAP_EXE PYRUN SRCDIR WORKDIR
 #
-# The maps are mdrmap-map/2 maps (docs/map-schema.md) made from configs in the
+# The maps are mdrmap-map/2 maps (docs/reference/map-schema.md) made from configs in the
 # seed's one-step syntax (v1_over_v in [grid], t_end_over_tau in [run]: the
 # history axis w1_over_v and T1_over_tau); the checks name their datasets
 # (mu_after_0, analytic/mu_ss_0, ...) and accept either name of the step's axis.

@@ -3,7 +3,7 @@
 
 Usage: check_map.py MAP.h5 [--complete] [--expect-failed N] [--quiet]
 
-Checks every dataset of the map's schema, mdrmap-map/2 (docs/map-schema.md)
+Checks every dataset of the map's schema, mdrmap-map/2 (docs/reference/map-schema.md)
 or mdrmap-map/1 (names, shapes, types), the root provenance attributes, that
 status holds only -1/0/1, that no value is NaN or infinite, and that done
 cases carry a positive normal force. For mdrmap-map/2 also: /scales (length,
@@ -54,7 +54,7 @@ EVENTS = ["t", "FN_after", "Fx_after", "mu_after", "a2_after", "mu_before", "mu_
 # the extrema and the healing of a reslide (issue 32): in maps written since
 EXTREMA = ["mu_max", "t_max", "slip_max", "mu_min", "t_min", "slip_min", "healing"]
 FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c", "events/healing"}
-SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/map-schema.md)
+SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/reference/map-schema.md)
 
 
 def expected_datasets2(n, k, s, load, timeseries, indenter=("R",), extrema=True):

@@ -116,10 +116,12 @@ bool ParamSpec::applies_to(Profile p) const {
 
 std::string ParamSpec::allowed() const {
   if (integer()) return "an integer from " + format_number(lo) + " to " + format_number(hi);
-  std::string s = "a finite number ";
-  s += lo_inclusive ? ">= " : "> ";
-  s += format_number(lo);
-  if (std::isfinite(hi)) s += (hi_inclusive ? " and <= " : " and < ") + format_number(hi);
+  std::string s = "a finite number";
+  if (std::isfinite(lo)) s += (lo_inclusive ? " >= " : " > ") + format_number(lo);
+  if (std::isfinite(hi))
+    s += (std::isfinite(lo) ? (hi_inclusive ? " and <= " : " and < ")
+                            : (hi_inclusive ? " <= " : " < ")) +
+         format_number(hi);
   return s;
 }
 

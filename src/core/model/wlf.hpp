@@ -23,28 +23,54 @@ struct Wlf {
   double Tref = 0.0; ///< reference temperature (aT = 1 there)
 };
 
+/// "C1:C2:TREF (log10 aT = ...), e.g. 17.44:51.6:-70, got 'GIVEN'": the form
+/// a message about the WLF constants ends with.
+inline std::string wlf_form(const std::string& given) {
+  return "C1:C2:TREF (log10 aT = -C1 (T - TREF) / (C2 + T - TREF)), e.g. 17.44:51.6:-70, got '" +
+         given + "'";
+}
+
+/// Constant i (0: C1, 1: C2, 2: TREF) of the WLF constants: finite, C1 and C2
+/// > 0. `given` is the constants as the caller wrote them, for the message.
+/// Throws InvalidInput(option).
+inline void check_wlf_constant(const std::string& option, int i, double x,
+                               const std::string& given) {
+  const char* names[3] = {"C1", "C2", "TREF"};
+  if (!std::isfinite(x))
+    throw InvalidInput(option,
+                       std::string(names[i]) + " must be a finite number; give " + wlf_form(given));
+  if (i < 2 && !(x > 0.0))
+    throw InvalidInput(option, std::string(names[i]) + " must be > 0; give " + wlf_form(given));
+}
+
+/// The WLF constants given as numbers C1, C2, TREF (`given` as above),
+/// checked in order. Throws InvalidInput(option).
+inline Wlf checked_wlf(const std::string& option, double C1, double C2, double Tref,
+                       const std::string& given) {
+  check_wlf_constant(option, 0, C1, given);
+  check_wlf_constant(option, 1, C2, given);
+  check_wlf_constant(option, 2, Tref, given);
+  return Wlf{C1, C2, Tref};
+}
+
 /// "C1:C2:TREF", three finite numbers, C1 > 0 and C2 > 0. Throws
 /// InvalidInput(option) saying which of the three is wrong.
 inline Wlf parse_wlf(const std::string& option, const std::string& text) {
-  const std::string form = "C1:C2:TREF (log10 aT = -C1 (T - TREF) / (C2 + T - TREF)), e.g. "
-                           "17.44:51.6:-70, got '" +
-                           text + "'";
   double x[3] = {0.0, 0.0, 0.0};
   const char* names[3] = {"C1", "C2", "TREF"};
   std::size_t start = 0;
   for (int i = 0; i < 3; ++i) {
     const std::size_t colon = text.find(':', start);
-    if ((i < 2) == (colon == std::string::npos)) throw InvalidInput(option, "must be " + form);
+    if ((i < 2) == (colon == std::string::npos))
+      throw InvalidInput(option, "must be " + wlf_form(text));
     const std::string part = text.substr(start, i < 2 ? colon - start : std::string::npos);
     char* end = nullptr;
     errno = 0;
     x[i] = std::strtod(part.c_str(), &end);
     if (part.empty() || std::strchr(" \t\n\r\f\v", part.front()) != nullptr || *end != '\0')
-      throw InvalidInput(option, std::string(names[i]) + " is not a number; give " + form);
-    if (!std::isfinite(x[i]))
-      throw InvalidInput(option, std::string(names[i]) + " must be a finite number; give " + form);
-    if (i < 2 && !(x[i] > 0.0))
-      throw InvalidInput(option, std::string(names[i]) + " must be > 0; give " + form);
+      throw InvalidInput(option,
+                         std::string(names[i]) + " is not a number; give " + wlf_form(text));
+    check_wlf_constant(option, i, x[i], text);
     start = colon + 1;
   }
   return Wlf{x[0], x[1], x[2]};

@@ -39,7 +39,8 @@ const char* solver_name(SolverKind k) {
 
 void validate_rtol(double rtol) {
   if (!std::isfinite(rtol) || !(rtol > 0.0) || !(rtol <= 0.1))
-    throw InvalidInput("rtol", "must be a number in (0, 0.1], got " + format_number(rtol));
+    throw InvalidInput("rtol",
+                       std::string("must be ") + kRtolAllowed + ", got " + format_number(rtol));
 }
 
 ModelNeeds model_needs(const Case& c) {

@@ -99,8 +99,9 @@ RunResult run_mdr(const Case& s, const MdrOptions& opt) {
   r.rounding_level = 1e-11; // an estimate below it is rounding noise of the two runs
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
-  return refine(
-      s, r, [&](double cells, double phase) { return run_once(s, cells, phase, opt, control); });
+  return refine(s, r, [&](double cells, double phase, double) {
+    return run_once(s, cells, phase, opt, control);
+  });
 }
 
 } // namespace mdrmap

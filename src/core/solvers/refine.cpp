@@ -36,7 +36,7 @@ double credited(const Case& c, const RunAtResolution& once, double cells, double
                 const ResolutionRun& coarse, double d0, RunInfo& info) {
   ResolutionRun third;
   try {
-    third = once(0.25 * cells, companion_phase(phase2));
+    third = once(0.25 * cells, companion_phase(phase2), cells);
   } catch (const CaseAbandoned&) {
     return d0;
   }
@@ -76,12 +76,12 @@ RunResult refine(const Case& c, const Refinement& r, const RunAtResolution& once
   const double phase2 = companion_phase(r.phase);
   double cells = r.cells, prev_est = 0.0;
   for (int attempt = 0;; ++attempt) {
-    ResolutionRun fine = once(cells, r.phase);
+    ResolutionRun fine = once(cells, r.phase, cells);
     add_cost(res.info, fine);
     res.info.refinements = attempt + 1;
     double est = 0.0;
     if (r.estimate || r.adaptive) {
-      const ResolutionRun coarse = once(0.5 * cells, phase2);
+      const ResolutionRun coarse = once(0.5 * cells, phase2, cells);
       add_cost(res.info, coarse);
       est = estimate(coarse, fine, c);
       const double floor = r.tolerance_floor;

@@ -117,8 +117,11 @@ Series sample_history(const Case& c, const RunControl& control, Change change, A
 }
 
 /// Runs the solver once at resolution `cells` (a1/dx) with element phase
-/// `phase`.
-using RunAtResolution = std::function<ResolutionRun(double cells, double phase)>;
+/// `phase`, for the estimate of a run at `fine` (cells for the run itself; a
+/// solver whose discretisation changes form at a cell's width, as the element
+/// row's leading-edge layers, takes the fine run's cell in all of them, so the
+/// companion does not switch where the fine run does not).
+using RunAtResolution = std::function<ResolutionRun(double cells, double phase, double fine)>;
 
 /// How the error control proceeds.
 struct Refinement {

@@ -37,6 +37,8 @@ struct RunResult {
 };
 
 /// Throws InvalidInput("rtol") unless 0 < rtol <= 0.1.
+/// The range of rtol, as messages and help texts say it.
+inline constexpr const char* kRtolAllowed = "a number in (0, 0.1]";
 void validate_rtol(double rtol);
 
 } // namespace mdrmap

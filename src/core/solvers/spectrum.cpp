@@ -31,6 +31,12 @@ constexpr double kEdgeTol = 1e-3, kEdgeFloor = 4e-3;
 
 constexpr const char* kName = "spectrum";
 constexpr double kMaxCells = 2e5; // window memory: 4e5 elements of up to 33 doubles
+/// The first resolution is a1/dx = 1/sqrt(rtol) (the row's error is second
+/// order in the cell), but at most kStartCells: a case that needs more is
+/// refined from there by its own estimate, and one that needs less (a slow
+/// branch's smooth transient) is not run at 1/sqrt(rtol) (the two-term case
+/// under load at aT 1e-3 met rtol 1e-6 at a1/dx 100; it started at 1000).
+constexpr double kStartCells = 64.0;
 
 /// The stationary state at w > 0 (F_N = 0 where there is none: w = 0, or no
 /// closed form at this w; the steps then go on).
@@ -64,7 +70,7 @@ private:
 };
 
 ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
-                       const SpectrumOptions& o, const RunControl& control,
+                       double fine, const SpectrumOptions& o, const RunControl& control,
                        StationaryStates& states) {
   double travel = 2.0 * cells + 8.0;
   for (const auto& seg : c.history.segments)
@@ -73,6 +79,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
     throw CaseAbandoned("spectrum: the indenter travels " + format_number(travel) +
                         " cells over the history, more than the element row can count (1e18)");
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
+  row.set_layer_width(c.a1() / fine);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
   // (the companions of the estimate, at other phases, are not probed: their
@@ -419,7 +426,7 @@ void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rt
 }
 
 ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cells, double phase,
-                            const SpectrumOptions& o, const RunControl& control,
+                            double fine, const SpectrumOptions& o, const RunControl& control,
                             StationaryStates& states) {
   const LoadGeometry geo = load_geometry(c);
   const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
@@ -428,6 +435,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
                         format_number(2.0 * a_win / dx) + " elements (at most 8e5)");
   spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
+  row.set_layer_width(geo.a_ref / fine);
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
               StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);
@@ -474,7 +482,7 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   c.rheology = given.rheology.shifted();
   const spectrum::Law law(c.rheology);
   double cells =
-      adaptive ? std::clamp(std::ceil(1.0 / std::sqrt(o.rtol)), 16.0, kMaxCells) : o.cells_per_a1;
+      adaptive ? std::clamp(std::ceil(1.0 / std::sqrt(o.rtol)), 16.0, kStartCells) : o.cells_per_a1;
   if (!(cells >= 4.0) || cells > kMaxCells)
     throw InvalidInput("cells-per-a1", "must be between 4 and 2e5");
   Refinement r;
@@ -490,9 +498,9 @@ RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
   const RunControl own;
   const RunControl& control = o.control != nullptr ? *o.control : own;
   StationaryStates states(c);
-  return refine(c, r, [&](double n, double ph) {
-    return c.loading.by_force() ? run_once_load(c, law, n, ph, o, control, states)
-                                : run_once(c, law, n, ph, o, control, states);
+  return refine(c, r, [&](double n, double ph, double fine) {
+    return c.loading.by_force() ? run_once_load(c, law, n, ph, fine, o, control, states)
+                                : run_once(c, law, n, ph, fine, o, control, states);
   });
 }
 

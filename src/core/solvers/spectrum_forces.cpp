@@ -221,12 +221,13 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 // then holds q_k = r (t - tau_k + tau_k exp(-t / tau_k)) at t = s / c behind
 // the edge: the smooth r (t - tau_k) plus the layer -G_k q_k's part
 // -G_k r tau_k exp(-s / (c tau_k)), of width c tau_k. A layer thinner than a
-// cell (the ones no seam resolves, add_seam) is taken out of the values and
+// cell (the fine run's, for every run of one estimate: set_layer_width; the
+// ones no seam resolves, add_seam) is taken out of the values and
 // integrated exactly (to a relative (c tau_k / a1)^2: u'' is taken in). Without
 // it the rule saw B jump from 0 within the first cell, a first-order error:
 // slow steady sliding (v tau_k / a1 = 1e-5) erred by 1.7e-3 at rtol 1e-3 at
 // fixed depth, 1.6e-3 under load. Which branches have a layer is decided by
-// w alone (w tau_k < dx), not by c: under load c follows the depth rate, and
+// w alone (w tau_k < the cell), not by c: under load c follows the depth rate, and
 // a switch on it made F_N jump in the rate the load balance varies. At rest
 // (w = 0) none forms: a hold's edge creeps at a varying rate, the quasi-steady
 // form does not hold there, and the slow branches' hold layers, kept into the
@@ -238,7 +239,7 @@ void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   for (std::size_t k = 0; k < law_.branches(); ++k) {
     out[k] = BranchLayer{};
     const double tk = law_.tauk(k), width = c * tk;
-    if (w > 0.0 && w * tk < dx_ && c > 0.0 &&
+    if (w > 0.0 && w * tk < layer_dx_ && c > 0.0 &&
         r > 0.0) // (u = r t - bend t^2 / 2: amp r + bend tau_k)
       out[k] = BranchLayer{-law_.Gk(k) * tk * (r + bend * tk), width};
   }

@@ -189,15 +189,16 @@ void Row::change_velocity(double w, double dd) {
 // The seam of a change to w at log entry `entry`, before it acts: the
 // material point at the leading edge, where fresh material starts to enter at
 // w. Fresh material's branches form layers w tau_k wide behind the edge; the
-// kink is a seam only where those are resolved (w tau_k >= dx for every
-// branch): across an unresolved layer the parts on either side are no
-// smoother than the whole. Seams past the window are dropped (that material
-// never touches again), and the oldest beyond kMaxSeams.
+// kink is a seam only where those are resolved (w tau_k at least the layer
+// width of set_layer_width for every branch): across an unresolved layer the
+// parts on either side are no smoother than the whole. Seams past the window
+// are dropped (that material never touches again), and the oldest beyond
+// kMaxSeams.
 void Row::add_seam(std::size_t entry, double w) {
   seams_.erase(std::remove_if(seams_.begin(), seams_.end(),
                               [&](const Seam& m) { return position(m.J) > aw_ + 2.0 * dx_; }),
                seams_.end());
-  if (!(w * law_.shortest_time() >= dx_)) return;
+  if (!(w * law_.shortest_time() >= layer_dx_)) return;
   seams_.push_back({entry, label(-a1_now())});
   if (seams_.size() > kMaxSeams)
     seams_.erase(seams_.begin(), seams_.end() - static_cast<std::ptrdiff_t>(kMaxSeams));

@@ -119,6 +119,11 @@ public:
     d_ = d;
     start_stationary(v0);
   }
+  /// The width below which a branch's leading-edge layer is taken out of the
+  /// grid's values (spectrum_forces.cpp, entry_layers): the cell by default.
+  /// The runs of one error estimate share the finest run's cell, so that a
+  /// layer one to two fine cells wide is taken out in all of them or in none.
+  void set_layer_width(double width) { layer_dx_ = width; }
   /// Velocity change to w: contact elements whose force turns negative let go
   /// (dd: the depth rate just after the change, for the parallel dashpot).
   void change_velocity(double w, double dd = 0.0);
@@ -315,7 +320,8 @@ private:
   double gc_, gn_;   // the profile's g = gc_ |x|^gn_ (Indenter::coefficient, exponent)
   bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
   double R_, d_, dx_, aw_, phase_, sub_travel_;
-  double dd_ = 0.0; // depth rate now (load control)
+  double layer_dx_ = dx_; // set_layer_width
+  double dd_ = 0.0;       // depth rate now (load control)
   std::size_t cap_, stride_;
   std::vector<double> y_; // per slot: q (contact) or z (free), stride_ each
   std::vector<Mode> mode_;

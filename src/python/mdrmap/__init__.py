@@ -9,20 +9,25 @@
     r.events[0]["a_minus_b"], r.pre["mu"], r.info["error_estimate"]
 
 The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
-lists the table's: d or F0, R, tau, G, v, samples, log_decades), with '_' for
-'-' (t_end, log_decades), and the same checks and messages: bad input raises
+lists those of the parameter table: the loading d or F0, the indenter's R,
+beta, n, A, the material's tau, G, aT, the velocity v and the sampling),
+with '_' for '-' (t_end, log_decades), and the same checks and messages: bad input raises
 InvalidInput (a ValueError) naming the option. Numbers are given as Python
-numbers (or as the text the command line takes); the history as a list of
+or numpy numbers, which reach the solvers as those doubles (or as the text
+the command line takes); a value of the wrong type raises InvalidType (an
+InvalidInput and a TypeError); the history as a list of
 (w, T) pairs (or "W1:T1,W2:T2"), a spectrum as prony=[(G, tau), ...], the
 WLF constants as wlf=(C1, C2, TREF) with temperature= (T= its old spelling).
 FN= is accepted as the old spelling of the prescribed load F0= (not both).
+The parts of a case may be given as objects, checked when made:
+material=mdrmap.Material(G=1, tau=1), indenter=mdrmap.Indenter(R=10),
+history=mdrmap.History([(0.1, 20), (1, 20)]) (mdrmap.parts).
 help(mdrmap.simulate) lists every keyword. The results equal the command
 line's bit for bit; the solver runs without the GIL, so a thread pool over
 cases uses every core; Ctrl-C raises KeyboardInterrupt within a fraction of
 a second, and progress=callable reports how far a call got.
 """
 
-import numbers
 import os
 import sys
 
@@ -41,10 +46,14 @@ except ImportError as _error:  # not built (for this Python), or does not load
                       "`pip install --no-build-isolation --no-index .`") from None
 from ._core import InvalidInput
 from .maps import MapError, open_map, to_grid
-from . import _doc
+from . import _doc, _values
+from ._values import InvalidType
+from .parts import History, Indenter, Material
+from . import parts as _parts
 
 __version__ = _core.__version__
 __all__ = ["simulate", "stationary", "parameters", "open_map", "to_grid", "Result",
+           "Material", "Indenter", "History", "InvalidType",
            "InvalidInput", "MapError"]
 
 # the options as the command line spells them -> the keyword of each
@@ -59,117 +68,8 @@ _STATIONARY = [p["name"] for p in _TABLE if not p["sampling"]] + \
                     "allow-large-shift") if o in _OPTIONS]
 
 
-def _keywords(options):
-    """keyword -> option: each option under its Python name (and as spelled),
-    and the old spelling of a parameter (FN) as itself (the core reads it as
-    its parameter's and refuses both)."""
-    out = {o.replace("-", "_"): o for o in options}
-    out.update({o: o for o in options})
-    out.update({alias: alias for alias, name in _ALIASES.items() if name in options})
-    out.update({_doc.keyword(o): o for o in options})  # temperature for T
-    return out
-
-
-_SIMULATE_KEYWORDS = _keywords(_OPTIONS)
-_STATIONARY_KEYWORDS = _keywords(_STATIONARY)
-
-
-def _number_text(option, value):
-    """The text the command line would get for a number: the shortest that
-    reads back to the same double (repr), an integer's digits."""
-    kind = type(value)
-    if kind is float and option not in _INTEGER:  # the common cases first
-        return repr(value)
-    if kind is int or kind is str:
-        return str(value)
-    if value is None:
-        keyword = option.replace("-", "_")
-        raise InvalidInput(f"needs a value, e.g. {keyword}=1.5", option)
-    if isinstance(value, bool) or (getattr(getattr(value, "dtype", None), "kind", "") == "b"
-                                   and getattr(value, "ndim", None) == 0):
-        return str(bool(value))  # refused: "must be a number, got True" (numpy's bool_ too)
-    if isinstance(value, (bytes, bytearray, memoryview)):
-        raise InvalidInput(f"must be a number, got {type(value).__name__} {bytes(value)[:60]!r}",
-                           option)
-    if isinstance(value, os.PathLike):
-        if option in _PATHS:
-            return os.fspath(value)
-        raise InvalidInput(f"must be a number, got a path {os.fspath(value)[:60]!r}", option)
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return str(value)  # refused as the command line refuses a word
-    if option in _INTEGER and x.is_integer() and abs(x) < 2.0 ** 63:
-        return str(int(x))
-    return repr(x)
-
-
-# the options that name a file (they take a str or an os.PathLike)
-_PATHS = {"prony-file", "history-file", "material"}
-
-_PAIRS = {"history": ("segment", "(W, T): its velocity W then its duration T"),
-          "prony": ("term", "(G, TAU): its modulus G then its relaxation time TAU")}
-
-
-def _pairs_text(option, value):
-    """history [(w1, T1), (w2, T2), ...] as "W1:T1,W2:T2,...", prony [(G1, tau1),
-    ...] as "G1:TAU1,..." (a str as it is)."""
-    if isinstance(value, str) or value is None:
-        return _number_text(option, value)
-    item, pair = _PAIRS[option]
-    try:
-        items = list(value)
-    except TypeError:
-        raise InvalidInput(f"must be a list of {item}s {pair.split(':')[0]}, got {value!r}",
-                           option) from None
-    parts = []
-    for k, it in enumerate(items, 1):
-        try:
-            a, b = it
-        except (TypeError, ValueError):
-            raise InvalidInput(f"{item} {k} must be a pair {pair}, got {it!r}", option) from None
-        parts.append(f"{_number_text(option, a)}:{_number_text(option, b)}")
-    return ",".join(parts)
-
-
-def _texts(kwargs, keywords, function, spelled=None):
-    """{option: text} of the keyword arguments; `spelled` gets {option:
-    keyword} where the keyword is not the option's spelling (temperature)."""
-    texts = {}
-    spelled = {} if spelled is None else spelled
-    for key, value in kwargs.items():
-        option = keywords.get(key)
-        if option is None:
-            names = ", ".join(k for k in keywords if "-" not in k)
-            raise InvalidInput(f"not a keyword of mdrmap.{function} (keywords are "
-                               f"case-sensitive: {names}), got {key}", key)
-        if option in texts:
-            raise InvalidInput("may be given only once", option)
-        if option in ("history", "prony"):
-            texts[option] = _pairs_text(option, value)
-        elif option == "wlf":
-            texts[option] = _wlf_text(value)
-        else:
-            texts[option] = _number_text(option, value)
-        if key != option and key == _doc.keyword(option):
-            spelled[option] = key
-    return texts
-
-
-def _wlf_text(value):
-    """wlf=(C1, C2, TREF) as "C1:C2:TREF" (a str as it is)."""
-    if isinstance(value, str) or value is None:
-        return _number_text("wlf", value)
-    try:
-        items = list(value)
-    except TypeError:
-        items = None
-    if items is None or len(items) != 3:
-        raise InvalidInput(f"must be the three WLF constants (C1, C2, TREF), got {value!r}",
-                           "wlf")
-    return ":".join(_number_text("wlf", x) for x in items)
+_SIMULATE_KEYWORDS = _values.keyword_map(_OPTIONS)
+_STATIONARY_KEYWORDS = _values.keyword_map(_STATIONARY)
 
 
 def _call(function, texts, progress, spelled):
@@ -182,18 +82,22 @@ def _call(function, texts, progress, spelled):
     except InvalidInput as e:
         if e.option not in spelled:
             raise
-        e.keyword = spelled[e.option]
-        e.args = (f"{e.keyword}: {e.message}",)
-        raise e from None
+        raise _values.as_keyword(e, spelled) from None
 
 
 class Result:
     """One case's result (mdrmap.simulate).
 
     t, segment, FN, Fx, mu, a2   numpy arrays, one value per sample (segment
-                                 after segment; t since the first change);
-                                 under load (F0=) also d and a1
-    events   one dict per velocity change k (the CSV's `# event` line): k, t,
+                                 after segment; t since the first change;
+                                 segment k from 0, as the CSV's column: the
+                                 history's k-th pair, a study config's
+                                 segment k + 1); under load (F0=) also d and
+                                 a1; a lab record's run (history_file=) has
+                                 one sample per record row, as the CSV, and
+                                 v (the row's velocity) and slip
+    events   one dict per velocity change k, the change into segment k (the
+             CSV's `# event k=` line, k from 0): k, t,
              w_before, w_after, mu_before, mu_after, mu_max, t_max, slip_max,
              mu_min, t_min, slip_min, mu_peak, t_peak, slip_peak, mu_end,
              mu_ss_before, mu_ss_after, D_c, overshoot, a, a_minus_b, b,
@@ -225,10 +129,17 @@ class Result:
         return "F0" in self.case
 
     @property
+    def record(self):
+        """Whether a lab record (history_file=) gave the history: then one
+        sample per record row, with its v and slip."""
+        return self.case.get("sampling") == "record"
+
+    @property
     def columns(self):
         """The names of the per-sample arrays, in the CSV's order: t, segment,
-        FN, Fx, mu, a2 (and d, a1 under load)."""
-        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else [])
+        FN, Fx, mu, a2 (and d, a1 under load; v, slip of a lab record)."""
+        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else []) + \
+            (["v", "slip"] if self.record else [])
 
     def _attrs(self):
         return {"case": dict(self.case), "pre": dict(self.pre), "scales": dict(self.scales),
@@ -271,8 +182,9 @@ class Result:
 
 
 def simulate(*, progress=None, **options):
+    options = _parts.merged(options, ("material", "indenter", "history"))
     spelled = {}
-    texts = _texts(options, _SIMULATE_KEYWORDS, "simulate", spelled)
+    texts = _values.values(options, _SIMULATE_KEYWORDS, "simulate", spelled)
     return Result(_call(_core.simulate, texts, progress, spelled))
 
 
@@ -280,12 +192,13 @@ simulate.__doc__ = _doc.docstring(
     "Runs one case as `mdrmap simulate` does and returns a Result.\n\n"
     "The keywords are the command line's options with '_' for '-'; numbers as\n"
     "Python or numpy numbers (or the text the command line takes).",
-    _doc.entries(_OPTIONS, _TABLE, _ALIASES) + [("progress", _doc.PROGRESS)],
+    _doc.entries(_OPTIONS, _TABLE, _ALIASES) + _doc.PARTS + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2), RuntimeError\n"
     "(the case cannot be computed within its budget or rtol, exit code 1).")
 
 
 def stationary(*, progress=None, **options):
+    options = _parts.merged(options, ("material", "indenter"))
     v = options.get("v")
     many = v is not None and not isinstance(v, (str, bytes)) and \
         (getattr(v, "ndim", None) or 0) > 0 or isinstance(v, (list, tuple, range))
@@ -293,9 +206,11 @@ def stationary(*, progress=None, **options):
         options = dict(options)
         del options["v"]
     spelled = {}
-    texts = _texts(options, _STATIONARY_KEYWORDS, "stationary", spelled)
+    texts = _values.values(options, _STATIONARY_KEYWORDS, "stationary", spelled)
     if many:
-        texts["v-list"] = ",".join(_number_text("v", x) for x in v)
+        texts["v-list"] = tuple(_values.number("v", x) for x in v)
+        if any(isinstance(x, str) for x in texts["v-list"]):
+            texts["v-list"] = ",".join(str(x) for x in texts["v-list"])
         spelled["v-list"] = "v"
     out = _call(_core.stationary, texts, progress, spelled)
     if many:
@@ -312,15 +227,17 @@ stationary.__doc__ = _doc.docstring(
     "arrays, one value per velocity, with v itself.",
     [(k, t) if k != "v" else ("v", t + "; or a list or array of velocities")
      for k, t in _doc.entries(_STATIONARY, _TABLE, _ALIASES)] +
-    [("progress", _doc.PROGRESS)],
+    _doc.PARTS + [("progress", _doc.PROGRESS)],
     "Raises InvalidInput (bad input, as the CLI's exit code 2).")
 
 
 def parameters():
     """The parameter table, one dict per parameter in the table's order
     (`mdrmap simulate --help-all` groups them by part): name (option), keyword, symbol, unit, range,
-    meaning, required, one_of (group or None), default (None if required or
-    in a group), sampling (a sampling parameter) and help (the CLI's text)."""
+    meaning, required, one_of (group or None), profile (the indenter profile
+    it belongs to, for which alone it is required, or None: every profile),
+    default (None if required or in a group), sampling (a sampling parameter)
+    and help (the CLI's text)."""
     out = []
     for p in _TABLE:
         q = dict(p)

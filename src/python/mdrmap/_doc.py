@@ -16,7 +16,8 @@ OTHER = {
                   "the columns, tau and one of G (shear moduli), E (Young's moduli) or g "
                   "(normalised by a line '# G0 = VALUE', then G = G0 (1 - sum g)), then "
                   "one term per line; not with prony",
-    "material": "the material from an Abaqus card (a str or a path): *ELASTIC E, nu, "
+    "material": "a mdrmap.Material (its keywords: G, tau, prony, aT, temperature, ...), "
+                "or the material from an Abaqus card (a str or a path): *ELASTIC E, nu, "
                 "*VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i and *TRS, DEFINITION=WLF "
                 "Tref, C1, C2; instead of G, prony, prony_file and wlf",
     "nu": "Poisson's ratio of a spectrum file's Young's moduli (column E): "
@@ -36,7 +37,8 @@ OTHER = {
           "0 stops the indenter",
     "t-end": "with v1: how long the step is followed (time), > 0; default 6 tau "
              "(with a spectrum 6 aT max(tau, tauk))",
-    "history": "segments one after another from t = 0: [(w1, T1), (w2, T2), ...] "
+    "history": "a mdrmap.History, or segments one after another from t = 0: "
+               "[(w1, T1), (w2, T2), ...] "
                '(or "W1:T1,W2:T2,..."), velocity wk >= 0 (0: a hold) for the '
                "duration Tk > 0; give v1 or history",
     "history-file": "a lab record (a str or a path): CSV with a header naming the "
@@ -51,6 +53,9 @@ OTHER = {
     "solver": '"auto" (the default: the cheapest that meets rtol), "exact", "mdr", '
               '"baseline" or "spectrum"',
 }
+# the parts of a case as objects (mdrmap.parts), keywords beside the options
+PARTS = [("indenter", "a mdrmap.Indenter: the profile and its parameters (instead of profile, "
+                      "R, beta, n, A)")]
 # keywords that are not the option with '_' for '-'
 KEYWORD = {"T": "temperature"}
 PROGRESS = ("a callable, called from the calling thread with the fraction of the "

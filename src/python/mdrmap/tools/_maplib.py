@@ -3,7 +3,7 @@ map_steps, map_rate_state, map_friction_velocity, mapxr): opening an mdrmap
 map with clear one-line errors, and reading it.
 
 The tools read mdrmap-map/2 maps (a history of K segments per case,
-docs/map-schema.md): /cases/<p> [N] and /cases/{w,T} [N, K], /events/<m>
+docs/reference/map-schema.md): /cases/<p> [N] and /cases/{w,T} [N, K], /events/<m>
 [N, K], /analytic/<q>_ss [N, K], /failures, time series [N, K*S] with
 /timeseries/segment [K*S]; undefined values hold the netCDF fill value FILL
 (read_masked turns them into NaN). Everything a tool names comes from the

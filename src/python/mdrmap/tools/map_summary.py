@@ -2,7 +2,7 @@
 """Summarise what an mdrmap map holds, and export its rows to CSV.
 
 Reads mdrmap-map/2 maps (a history of K segments per case,
-docs/map-schema.md) with /schema and /scales; everything it names comes from
+docs/reference/map-schema.md) with /schema and /scales; everything it names comes from
 the map: the case parameters and their order from /schema/cases (the loading
 first), each dataset's unit from /schema, the scales from /scales (length:
 a0 under load, a1 at depth; friction: a/R; time: tau). A map made before

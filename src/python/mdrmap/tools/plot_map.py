@@ -2,7 +2,7 @@
 """Colour map of one or more quantities of an mdrmap map over two parameters.
 
 QUANTITY is a dataset of /results, /events, /analytic or /residuals of an
-mdrmap-map/2 map (docs/map-schema.md); per-event datasets ([N, K]: /events,
+mdrmap-map/2 map (docs/reference/map-schema.md); per-event datasets ([N, K]: /events,
 analytic/<q>_ss, residuals/<q>_end) are quantities <name>_<k> for event k,
 e.g. `mu_after_0` (the friction just after the change at t = 0: the
 default), `mu_peak_1`, `a_0`, `d_c_0`, `analytic/mu_ss_0`,
