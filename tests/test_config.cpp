@@ -1391,8 +1391,8 @@ TEST(StudySpectrum, ListedTemperaturesTakeUnits) {
   const StudyConfig k = study("8.86:101.6:298.15K");
   const auto rows = expand_cases(k);
   const auto order = names(k);
-  const auto T = static_cast<std::size_t>(
-      std::find(order.begin(), order.end(), "temperature") - order.begin());
+  const auto T = static_cast<std::size_t>(std::find(order.begin(), order.end(), "temperature") -
+                                          order.begin());
   EXPECT_EQ(rows.at(0).at(T), 25.0 + 273.15);
   EXPECT_EQ(rows.at(1).at(T), 308.15);
   EXPECT_NEAR(std::log10(case_for(k, rows.at(1)).rheology.aT), at10, 1e-12);
