@@ -1045,6 +1045,10 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
       {"wlf TREF below 0K", {{"T", "20C"}, {"wlf", "17.44:51.6:-5K"}}, {}, "wlf"},
       {"T more than 12 decades from TREF", {{"T", "25C"}, {"wlf", "17.44:51.6:-100C"}}, {}, "T"},
       {"T 25 against TREF 298.15K", {{"T", "25"}, {"wlf", "8.86:101.6:298.15K"}}, {}, "T"},
+      // a bare number whose pair reads as the other scale: a shift the 12 decades miss
+      {"T 308.15 against TREF 25C", {{"T", "308.15"}, {"wlf", "8.86:101.6:25C"}}, {}, "T"},
+      {"T 35C against TREF 298.15", {{"T", "35C"}, {"wlf", "8.86:101.6:298.15"}}, {}, "T"},
+      {"T 308.15 against TREF 25, both bare", {{"T", "308.15"}, {"wlf", "8.86:101.6:25"}}, {}, "T"},
       {"allow-large-shift without T",
        {{"aT", "2"}, {"allow-large-shift", "true"}},
        {},
@@ -1341,6 +1345,43 @@ TEST(cli, TemperatureGivesTheWlfShift) {
   EXPECT_EQ(ref.c.rheology.aT, 1.0);
   // the default window is six shifted times
   EXPECT_NEAR(in.c.history.segments.at(0).T, 6.0 * aT, 1e-15 * aT);
+}
+
+// Issue 33: a bare temperature whose pair reads as the other scale is a
+// Kelvin/Celsius mix-up (--T 308.15 against TREF 25C: 35C taken as 308.15C,
+// log10 aT = -6.5, within the 12 decades): refused naming --T, saying to give
+// the unit; with the unit the same temperature gives the shift at 35C.
+TEST(cli, BareTemperatureOfTheOtherScaleIsRefused) {
+  const auto message = [](const std::string& T, const std::string& wlf) {
+    try {
+      mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}));
+    } catch (const mdrmap::InvalidInput& e) {
+      EXPECT_EQ(e.option(), "T") << e.what();
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("308.15", "8.86:101.6:25C").find("give T its unit (308.15K or 308.15C)"),
+            std::string::npos);
+  EXPECT_NE(message("35C", "8.86:101.6:298.15").find("give TREF its unit"), std::string::npos);
+  EXPECT_NE(message("308.15", "8.86:101.6:25").find("give T and TREF their units"),
+            std::string::npos);
+  const std::string hot = message("308.15", "8.86:101.6:25C");
+  EXPECT_EQ(hot.find('\n'), std::string::npos) << hot;
+  // within 150 degrees of TREF a bare number is read as before (no refusal)
+  EXPECT_EQ(message("140", "8.86:101.6:25C"), "");
+  EXPECT_EQ(message("0", "8.86:101.6:25"), "");
+  // with its unit the temperature is converted: 308.15K is 35C
+  for (const char* T : {"308.15K", "35C", "35"}) {
+    SCOPED_TRACE(T);
+    const auto in = mdrmap::app::read_case_input(
+        spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", "8.86:101.6:25C"}}));
+    EXPECT_NEAR(std::log10(in.c.rheology.aT), -8.86 * 10.0 / 111.6, 1e-12);
+  }
+  // a temperature at or below TREF - C2 is refused in one line naming --T
+  const std::string cold = message("-76.6C", "8.86:101.6:25C");
+  EXPECT_NE(cold.find("must be > TREF - C2"), std::string::npos) << cold;
+  EXPECT_EQ(cold.find('\n'), std::string::npos) << cold;
 }
 
 // Issue 33: --material reads an Abaqus card: *ELASTIC E, nu (LONG TERM by

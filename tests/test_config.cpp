@@ -1305,6 +1305,104 @@ TEST(StudySpectrum, WlfTakesTheUnitOfItsReference) {
   EXPECT_NEAR(std::log10(cases_of(large).at(0).rheology.aT), -17.44 * 125.0 / 176.6, 1e-12);
 }
 
+// Issue 33: the temperature column takes a unit, as --T does: converted to
+// TREF's unit where TREF has another (the column, /cases and canonical in it);
+// a bare TREF is read in the column's unit; one unit per column.
+TEST(StudySpectrum, TemperaturesTakeUnits) {
+  const auto grid = [](const std::string& T, const std::string& wlf) {
+    return "[grid]\nd = 1e-2\nR = 1\ntau = 1\nv = 1\ntemperature = " + T +
+           "\n[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nwlf = " + wlf + "\n";
+  };
+  const double at10 = -8.86 * 10.0 / 111.6; // log10 aT 10 degrees above TREF
+  const StudyConfig k = parse(grid("25C, 35C", "8.86:101.6:298.15K"));
+  ASSERT_EQ(k.axes.at(4).name, "temperature");
+  EXPECT_EQ(k.axes[4].values, std::vector<double>({25.0 + 273.15, 35.0 + 273.15}));
+  EXPECT_EQ(k.axes[4].unit, mdrmap::TempUnit::Kelvin);
+  auto cases = cases_of(k);
+  EXPECT_NEAR(std::log10(cases.at(0).rheology.aT), 0.0, 1e-12);
+  EXPECT_NEAR(std::log10(cases.at(1).rheology.aT), at10, 1e-12);
+  EXPECT_NE(canonical(k).find("temperature = 298.14999999999998K, 308.14999999999998K\n"),
+            std::string::npos)
+      << canonical(k);
+  // the same study in C, spaced, against a Celsius TREF; and against a bare one
+  for (const char* wlf : {"8.86:101.6:25C", "8.86:101.6:25"}) {
+    const StudyConfig c = parse(grid("linspace:25C:35C:2", wlf));
+    EXPECT_EQ(c.axes[4].values, std::vector<double>({25.0, 35.0}));
+    EXPECT_NEAR(std::log10(cases_of(c).at(1).rheology.aT), at10, 1e-12);
+  }
+  // Kelvin values against a Celsius TREF
+  const StudyConfig kc = parse(grid("308.15K", "8.86:101.6:25C"));
+  EXPECT_NEAR(kc.axes[4].values.at(0), 35.0, 1e-12);
+  EXPECT_NEAR(std::log10(cases_of(kc).at(0).rheology.aT), at10, 1e-12);
+  // an override takes a unit too
+  StudyConfig o = parse(grid("25", "8.86:101.6:25C"));
+  apply_override(o, "grid.temperature", "308.15K");
+  EXPECT_NEAR(std::log10(cases_of(o).at(0).rheology.aT), at10, 1e-12);
+  // bare values keep their meaning: TREF's unit
+  EXPECT_NEAR(std::log10(cases_of(parse(grid("35", "8.86:101.6:25C"))).at(0).rheology.aT), at10,
+              1e-12);
+
+  struct Bad {
+    std::string T, wlf, said;
+  };
+  const std::vector<Bad> bad = {
+      {"25C, 300K", "8.86:101.6:25C", "one unit for all its values, C or K"},
+      {"25C, 35", "8.86:101.6:25C", "got 25C and 35"},
+      {"25C,, 35C", "8.86:101.6:25C", "empty item"},
+      {"-300C", "8.86:101.6:25C", "absolute zero"},
+      {"linspace:-1K:20K:3", "8.86:101.6:25C", "absolute zero"},
+      {"35C", "8.86:101.6:298.15", "give TREF its unit"},
+      {"308.15", "8.86:101.6:25C", "give T its unit"},
+      {"-77C", "8.86:101.6:25C", "must be > TREF - C2"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.T + " " + b.wlf);
+    const auto [option, message] = error_of([&] { parse(grid(b.T, b.wlf)); });
+    EXPECT_EQ(option, "grid.temperature") << message;
+    EXPECT_NE(message.find(b.said), std::string::npos) << message;
+    EXPECT_EQ(message.rfind("t.ini:6: ", 0), 0u) << message;
+    EXPECT_TRUE(one_line(message)) << message;
+  }
+}
+
+// A case list's temperature cells take a unit each where TREF has one: each
+// converted to TREF's unit as it is read; with a bare TREF a unit is refused.
+TEST(StudySpectrum, ListedTemperaturesTakeUnits) {
+  TempDir dir;
+  dir.write("t.csv", "d,R,tau,temperature,v,w1,T1\n"
+                     "1e-2,1,1,25C,1,0.5,1\n"
+                     "1e-2,1,1,308.15K,1,0.5,1\n"
+                     "1e-2,1,1,35,1,0.5,1\n");
+  const auto study = [&](const std::string& wlf) {
+    return parse_config("[cases]\nfile = t.csv\n[run]\nwlf = " + wlf + "\n", dir.path(), "l.ini");
+  };
+  const auto cases = cases_of(study("8.86:101.6:25C"));
+  ASSERT_EQ(cases.size(), 3u);
+  const double at10 = -8.86 * 10.0 / 111.6;
+  EXPECT_NEAR(std::log10(cases[0].rheology.aT), 0.0, 1e-12);
+  EXPECT_NEAR(std::log10(cases[1].rheology.aT), at10, 1e-12);
+  EXPECT_NEAR(std::log10(cases[2].rheology.aT), at10, 1e-12); // bare: TREF's unit
+  // against a Kelvin TREF the bare 35 reads as a Kelvin/Celsius mix-up (case 3)
+  const auto [mixed_option, mixed] = error_of([&] { expand_cases(study("8.86:101.6:298.15K")); });
+  EXPECT_NE(mixed.find("case 3: temperature T = 35 is a bare number"), std::string::npos) << mixed;
+  // the rows as stored: in TREF's unit
+  dir.write("t.csv", "d,R,tau,temperature,v,w1,T1\n1e-2,1,1,25C,1,0.5,1\n"
+                     "1e-2,1,1,308.15K,1,0.5,1\n");
+  const StudyConfig k = study("8.86:101.6:298.15K");
+  const auto rows = expand_cases(k);
+  const auto order = names(k);
+  const auto T = static_cast<std::size_t>(std::find(order.begin(), order.end(), "temperature") -
+                                          order.begin());
+  EXPECT_EQ(rows.at(0).at(T), 25.0 + 273.15);
+  EXPECT_EQ(rows.at(1).at(T), 308.15);
+  EXPECT_NEAR(std::log10(case_for(k, rows.at(1)).rheology.aT), at10, 1e-12);
+  const auto [option, message] = error_of([&] { expand_cases(study("8.86:101.6:25")); });
+  EXPECT_EQ(option, "cases.temperature") << message;
+  EXPECT_NE(message.find("t.csv:2:4: temperature 25C has a unit and TREF none"), std::string::npos)
+      << message;
+  EXPECT_TRUE(one_line(message)) << message;
+}
+
 TEST(StudySpectrum, ACaseListWithTermsAndAnAT) {
   TempDir dir;
   dir.write("spec.csv", "tau1,G1,aT,d,R,tau,G,v,w1,T1_over_tau,G2,tau2\n"
@@ -1337,6 +1435,119 @@ TEST(StudySpectrum, ATIsAColumnOnlyWhereGiven) {
   // the seed's default window t_end_over_tau = 6: six shifted times
   EXPECT_EQ(cases[0].history.segments[0].T, 6.0 * 2.0 * 1e-2);
   EXPECT_EQ(cases[1].history.segments[0].T, 12.0);
+}
+
+// Issue 33: [run] material = FILE takes the spectrum (G, Gk, tauk: columns
+// of one value) and the WLF constants from an Abaqus card, relative to the
+// config's directory; the canonical study holds the card's text.
+const std::string kCard = "** two terms\n*Material, name=R\n*Elastic, moduli=INSTANTANEOUS\n"
+                          "15., 0.5\n*Viscoelastic, time=PRONY\n0.2, 0.1, 0.5\n0.6, 0., 20.\n"
+                          "*Trs, definition=WLF\n25., 8.86, 101.6\n";
+
+std::string card_study(const std::string& grid = "", const std::string& run = "") {
+  return "[grid]\nd = 1e-2\nR = 1\ntau = 0\nv = 1\n" + grid +
+         "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nmaterial = card.inp\n" + run;
+}
+
+TEST(StudyMaterial, CardGivesTheSpectrumAndItsWlf) {
+  TempDir dir;
+  dir.write("sub/card.inp", kCard);
+  const std::string ini = dir.write("sub/s.ini", card_study("temperature = 25, 35\n"));
+  const StudyConfig c = load_config(ini); // the card is found beside the config, not in the cwd
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
+                                                "temperature", "v", "w1_over_v", "T1"}));
+  const auto cases = cases_of(c);
+  ASSERT_EQ(cases.size(), 2u);
+  // G0 = E / 3 = 5 (INSTANTANEOUS), G_i = g_i G0, G = G0 (1 - sum g_i)
+  EXPECT_DOUBLE_EQ(cases[0].rheology.G, 1.0);
+  ASSERT_EQ(cases[0].rheology.branches.size(), 2u);
+  EXPECT_DOUBLE_EQ(cases[0].rheology.branches[0].G, 1.0);
+  EXPECT_EQ(cases[0].rheology.branches[0].tau, 0.5);
+  EXPECT_DOUBLE_EQ(cases[0].rheology.branches[1].G, 3.0);
+  EXPECT_EQ(cases[0].rheology.branches[1].tau, 20.0);
+  EXPECT_EQ(cases[0].rheology.aT, 1.0); // the card's Tref: 25
+  EXPECT_NEAR(std::log10(cases[1].rheology.aT), -8.86 * 10.0 / 111.6, 1e-12);
+  EXPECT_EQ(c.run.material_text, kCard);
+  // the card's text is part of the study: another card is another study
+  const std::string canon = canonical(c);
+  EXPECT_NE(canon.find("[material card]\n| ** two terms\n| *Material, name=R\n"), std::string::npos)
+      << canon;
+  dir.write("sub/card.inp", kCard + "** a comment more\n");
+  EXPECT_NE(canonical(load_config(ini)), canon);
+  // a card without *TRS gives no WLF; the study then has no temperature
+  dir.write("sub/card.inp", kCard.substr(0, kCard.find("*Trs")));
+  const StudyConfig plain = load_config(dir.write("sub/p.ini", card_study()));
+  EXPECT_FALSE(plain.run.wlf);
+  EXPECT_DOUBLE_EQ(cases_of(plain).at(0).rheology.G, 1.0);
+}
+
+TEST(StudyMaterial, OverrideReplacesTheCard) {
+  TempDir dir;
+  dir.write("card.inp", kCard);
+  StudyConfig c = load_config(dir.write("s.ini", card_study()));
+  const std::string other =
+      dir.write("other.inp", "*Elastic\n9., 0.5\n*Viscoelastic, time=PRONY\n0.5, 0, 2.\n");
+  apply_override(c, "run.material", other);
+  EXPECT_EQ(names(c),
+            std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "v", "w1_over_v", "T1"}));
+  const mdrmap::Case k = cases_of(c).at(0);
+  EXPECT_DOUBLE_EQ(k.rheology.G, 3.0); // LONG TERM: E / 3
+  EXPECT_DOUBLE_EQ(k.rheology.branches.at(0).G, 3.0);
+  EXPECT_FALSE(c.run.wlf); // the first card's WLF went with it
+}
+
+TEST(StudyMaterial, OverrideGivesACardToAStudyWithoutOne) {
+  TempDir dir;
+  const std::string card = dir.write("card.inp", kCard);
+  // the default G = 1 of a finished study gives way to the card's
+  StudyConfig c = parse("[grid]\nd = 1e-2\nR = 1\ntau = 0\nv = 1\n[history]\nw1_over_v = "
+                        "0.5\nT1 = 1\n");
+  apply_override(c, "run.material", card);
+  EXPECT_EQ(names(c), std::vector<std::string>({"d", "R", "tau", "G", "G1", "tau1", "G2", "tau2",
+                                                "v", "w1_over_v", "T1"}));
+  EXPECT_DOUBLE_EQ(cases_of(c).at(0).rheology.branches.at(1).G, 3.0);
+  // a G of the study's own is not replaced
+  StudyConfig own = parse("[grid]\nd = 1e-2\nR = 1\ntau = 0\nG = 2\nv = 1\n[history]\n"
+                          "w1_over_v = 0.5\nT1 = 1\n");
+  const auto [option, message] = error_of([&] { apply_override(own, "run.material", card); });
+  EXPECT_EQ(option, "run.material") << message;
+  EXPECT_NE(message.find("and grid.G are given"), std::string::npos) << message;
+}
+
+TEST(StudyMaterial, BadCardsAndDoublesAreRefusedInOneLine) {
+  TempDir dir;
+  struct Bad {
+    std::string card, grid, run, option, said;
+  };
+  const std::string elastic = "*Elastic\n3., 0.5\n*Viscoelastic, time=PRONY\n";
+  const std::vector<Bad> bad = {
+      // both named; the option is the later in the file: [run] material
+      {kCard, "G1 = 2\n", "", "run.material", "both [run] material (" + dir.path() + "/card.inp"},
+      {kCard, "G = 2\n", "", "run.material", "and grid.G are given; give the material once"},
+      {kCard, "G3 = 1\ntau3 = 1\n", "", "run.material", "and grid.G3 are given"},
+      {kCard, "temperature = 30\n", "wlf = 8.86:101.6:25\n", "run.wlf", "*TRS"},
+      {elastic + "0., 0.3, 1.\n", "", "", "run.material", "card.inp:4: g1 must be > 0 and < 1"},
+      {elastic + "0.5, 0, 1.\n0.5, 0, 10.\n", "", "", "run.material", "the Prony g_i sum to 1"},
+      {"*Elastic, moduli=SHORT\n3., 0.5\n", "", "", "run.material",
+       "card.inp:1: *ELASTIC: the option MODULI=SHORT is not supported"},
+      {kCard, "temperature = -76.6\n", "", "grid.temperature", "must be > TREF - C2"},
+      {kCard, "temperature = 308.15\n", "", "grid.temperature", "a Kelvin/Celsius mix-up"},
+  };
+  for (const Bad& b : bad) {
+    SCOPED_TRACE(b.card + b.grid + b.run);
+    dir.write("card.inp", b.card);
+    const std::string ini = dir.write("s.ini", card_study(b.grid, b.run));
+    const auto [option, message] = error_of([&] { load_config(ini); });
+    EXPECT_EQ(option, b.option) << message;
+    EXPECT_NE(message.find(b.said), std::string::npos) << message;
+    EXPECT_NE(message.find("s.ini:"), std::string::npos) << message; // located in the config
+    EXPECT_TRUE(one_line(message)) << message;
+  }
+  // a missing card names the option and the path as resolved
+  const auto [option, message] =
+      error_of([&] { parse_config(card_study(), dir.path() + "/none", "m.ini"); });
+  EXPECT_EQ(option, "run.material");
+  EXPECT_NE(message.find("none/card.inp"), std::string::npos) << message;
 }
 
 TEST(StudySpectrum, OverridesSetTermsTheShiftAndTheTemperature) {
@@ -1396,6 +1607,10 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
       {"temperature = 25\n", "wlf = 17.44:51.6:-100C\n", "grid.temperature",
        "more than 12 decades from 1"},
       {"temperature = 20\n", "wlf = 8.86:101.6:20F\n", "run.wlf", "TREF is not a number"},
+      {"temperature = 308.15\n", "wlf = 8.86:101.6:25C\n", "grid.temperature",
+       "give T its unit (308.15K or 308.15C)"},
+      {"temperature = 20, 308.15\n", "wlf = 8.86:101.6:25\n", "grid.temperature",
+       "a Kelvin/Celsius mix-up"},
       {"temperature = 20\n", "wlf = 8.86:101.6:-5K\n", "run.wlf", "absolute zero"},
       {"temperature = 20\n", "wlf = 8.86:101.6:20\nallow_large_shift = maybe\n",
        "run.allow_large_shift", "allow_large_shift must be true or false"},
@@ -1816,6 +2031,7 @@ std::size_t check_cases(const StudyConfig& c, const std::string& input) {
 /// The repository's study configs and case lists: the fuzz seeds.
 struct FuzzCorpus {
   std::vector<std::pair<std::string, std::string>> ini, csv; ///< file name, text
+  std::vector<std::pair<std::string, std::string>> cards;    ///< material cards (.inp), unmutated
 };
 
 const FuzzCorpus& shipped_corpus() {
@@ -1829,11 +2045,14 @@ const FuzzCorpus& shipped_corpus() {
       std::sort(files.begin(), files.end()); // directory order is not deterministic
       for (const auto& p : files) {
         const std::string ext = p.extension().string();
-        if (ext != ".ini" && ext != ".csv") continue;
+        if (ext != ".ini" && ext != ".csv" && ext != ".inp") continue;
         std::ifstream in(p, std::ios::binary);
         std::ostringstream text;
         text << in.rdbuf();
-        (ext == ".ini" ? c.ini : c.csv).emplace_back(p.filename().string(), text.str());
+        (ext == ".ini"   ? c.ini
+         : ext == ".csv" ? c.csv
+                         : c.cards)
+            .emplace_back(p.filename().string(), text.str());
       }
     }
     return c;
@@ -2162,6 +2381,8 @@ TEST(StudyFuzz, ShippedConfigsMutated) {
     all.push_back(f.second);
   const std::string dir = (fs::path(tmp().path()) / "fuzz_ini").string();
   fs::create_directories(dir);
+  for (const auto& [name, text] : corpus.cards) // [run] material = rubber_card.inp
+    write_fast((fs::path(dir) / name).string(), text);
   const std::vector<std::string> keys = {"grid.d",
                                          "grid.R",
                                          "grid.tau",

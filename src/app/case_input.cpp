@@ -1,5 +1,9 @@
 #include "app/case_input.hpp"
 #include "app/text.hpp"
+#include "material/card.hpp"
+#include "material/prony_file.hpp"
+#include "material/pyvisco.hpp"
+#include "material/small_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -11,15 +15,18 @@
 #include <optional>
 #include <stdexcept>
 
-#include "app/material_input.hpp"
-#include "app/prony_file.hpp"
 #include "app/prony_input.hpp"
-#include "app/pyvisco_input.hpp"
-#include "app/small_file.hpp"
 #include "core/model/row_limits.hpp"
 #include "core/model/scales.hpp"
 
 namespace mdrmap::app {
+
+using material::is_pyvisco_csv;
+using material::MaterialCard;
+using material::read_material;
+using material::read_prony_file;
+using material::read_small_file;
+using material::SpectrumFile;
 namespace {
 
 /// Options that are not case parameters of the table (core/model/params.hpp): the
@@ -671,19 +678,6 @@ std::string group_usage(const std::vector<const ParamSpec*>& members, const char
     s += std::string("--") + members[i]->name + " " + members[i]->symbol;
   }
   return s;
-}
-
-std::string shown(const std::string& text) {
-  if (text.empty()) return "an empty string";
-  constexpr std::size_t kShown = 60; // a longer text is cut: the message stays one short line
-  if (text.size() > kShown) {
-    std::size_t cut = kShown; // not inside a UTF-8 character
-    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0U) == 0x80U)
-      --cut;
-    return "'" + text.substr(0, cut) + "...' (" + std::to_string(text.size()) + " characters)";
-  }
-  if (text.find_first_of(" \t\n\r\f\v',") != std::string::npos) return "'" + text + "'";
-  return text;
 }
 
 std::string shown(const OptionValue& v) {

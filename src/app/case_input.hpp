@@ -20,6 +20,7 @@
 #include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
 #include "core/solvers/dispatch.hpp"
+#include "material/text.hpp"
 
 namespace mdrmap::app {
 
@@ -91,9 +92,8 @@ std::vector<const ParamSpec*> group_members(const std::string& group);
 std::string group_usage(const std::vector<const ParamSpec*>& members, const char* sep,
                         const char* last_sep);
 
-/// The value as typed, quoted only when it would otherwise be unreadable;
-/// more than 60 characters are cut, with the length said.
-std::string shown(const std::string& text);
+/// The value as typed, quoted (material/text.hpp).
+using material::shown;
 
 /// A value as given, for a message: a text as shown(text), a number as its
 /// shortest text, pairs as W:T,W:T,..., numbers as A:B:C, a flag true or false.

@@ -174,6 +174,7 @@ study's consistent units (`force/length^2`: a modulus).
        std::string(kTableHead);
   for (const io::FieldInfo& f : io::provenance_info())
     s += row(f, "uint8 `[bytes]`", "every map");
+  s += row(io::material_card_info(), "uint8 `[bytes]`", "a study with `[run] material`");
   return s;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // The relaxation spectrum of `mdrmap simulate` (and the Python module) from
-// its text --prony G1:TAU1,G2:TAU2,... (a file: app/prony_file.hpp), the Maxwell branches of the
-// rheology (core/model/rheology.hpp) in the user's units. Every term is checked against the table's
-// branch specs (branch_modulus_spec, branch_time_spec); a message names the term as a key (G3,
-// tau3) and, for a file, its line.
+// its text --prony G1:TAU1,G2:TAU2,... (a file: material/prony_file.hpp), the Maxwell branches of
+// the rheology (core/model/rheology.hpp) in the user's units. Every term is checked against the
+// table's branch specs (branch_modulus_spec, branch_time_spec); a message names the term as a key
+// (G3, tau3) and, for a file, its line.
 #include <string>
 #include <utility>
 #include <vector>

@@ -35,7 +35,7 @@ const std::vector<OverrideGroup>& override_groups() {
       {"geometry",
        "Overrides: case geometry and loading",
        {"profile", "d", "F0", "R", "beta", "n", "A", "FN"}},
-      {"material", "Overrides: material", {"tau", "G", "aT", "temperature", "wlf"}},
+      {"material", "Overrides: material", {"tau", "G", "aT", "temperature", "wlf", "material"}},
       {"history", "Overrides: velocity history", {"v", "v1", "v1-over-v", "t-end-over-tau"}},
       {"output", "Overrides: sampling and stored output", {"samples", "timeseries"}},
       {"solver", "Overrides: solver", {"rtol", "solver"}}};
@@ -62,6 +62,9 @@ std::string override_text(const StudyOverride& ov) {
     return s + ": parabola (default, with R), cone (with beta) or power (with n and A); a cone "
                "or power law is solved by the spectrum solver (solver auto picks it)";
   if (ov.option == "wlf") return s + ", the WLF constants of the temperature";
+  if (ov.option == "material")
+    return s + ": an Abaqus card or pyvisco's CSV (relative to the working directory) that "
+               "gives G, the spectrum's terms and the WLF constants of its *TRS";
   return s;
 }
 

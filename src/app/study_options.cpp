@@ -18,6 +18,7 @@ const char* const kRunOverrides[][3] = {{"samples", "run.samples", "N"},
                                         {"v1-over-v", "grid.v1_over_v", "SPEC"},
                                         {"temperature", "grid.temperature", "SPEC"},
                                         {"wlf", "run.wlf", "C1:C2:TREF"},
+                                        {"material", "run.material", "FILE"},
                                         {"profile", "run.profile", "P"}};
 
 } // namespace

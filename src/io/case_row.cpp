@@ -320,4 +320,12 @@ const std::vector<FieldInfo>& provenance_info() {
   return f;
 }
 
+const FieldInfo& material_card_info() {
+  static const FieldInfo f{"provenance/material_card", "text",
+                           "the material card of [run] material as read, an Abaqus card or "
+                           "pyvisco's CSV (dimension material_card_byte); the map holds its "
+                           "material"};
+  return f;
+}
+
 } // namespace mdrmap::io

@@ -129,6 +129,9 @@ const char* root_attribute(const char* name);
 /// datasets (path, "text", meaning; no `units` attribute or /schema entry).
 const std::vector<FieldInfo>& provenance_info();
 
+/// /provenance/material_card: in a map of a study with [run] material only.
+const FieldInfo& material_card_info();
+
 struct CaseRow {
   std::vector<double> values;              ///< RowLayout::row_width() values
   std::int8_t status = 0;                  ///< 1 done, -1 failed

@@ -267,6 +267,8 @@ void write_header(hid_t f, const MapSpec& spec, const Provenance& prov) {
   for (const FieldInfo& t : provenance_info())
     write_text_dataset(
         f, t.path, t.path == "provenance/config_text" ? prov.config_text : prov.config_canonical);
+  if (!prov.material_card.empty()) // a study with [run] material
+    write_text_dataset(f, material_card_info().path, prov.material_card);
   g.close("closing /provenance");
 }
 

@@ -58,6 +58,7 @@ inline std::size_t failure_slots(std::size_t n_cases) {
 struct Provenance {
   std::string program_version, git_commit, created_utc, command_line, units;
   std::string config_text, config_canonical;
+  std::string material_card; ///< [run] material's text ("" without one: no dataset)
   int mpi_size = 1;
 };
 

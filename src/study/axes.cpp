@@ -6,6 +6,7 @@
 #include "study/columns.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
+#include "study/temperature_column.hpp"
 
 namespace mdrmap::study::detail {
 namespace {
@@ -167,10 +168,14 @@ Axis parse_axis(const std::string& section, const std::string& name, const std::
   const ParamSpec& range = column_spec(a.column);
   const std::string allowed = name + " must be " + range.allowed();
   if (a.spec.empty()) throw ConfigError(option, name + " is empty; give " + kAxisForms);
+  const std::string as_written = a.spec;
+  if (a.column.kind == Column::Kind::Temperature) // 25C, 40C: the unit apart
+    a.spec = without_temperature_units(option, a.spec, a.unit);
   if (starts_with(a.spec, "linspace:") || starts_with(a.spec, "logspace:"))
     parse_spaced(a, option);
   else
     parse_list(a, option, allowed);
+  a.spec = as_written;
   check_range(a, option, range);
   return a;
 }

@@ -11,6 +11,7 @@
 #include "study/columns.hpp"
 #include "study/config_detail.hpp"
 #include "study/ini.hpp"
+#include "study/temperature_column.hpp"
 
 namespace mdrmap::study::detail {
 namespace {
@@ -35,8 +36,11 @@ void read_row(const std::vector<std::string>& fields, const std::string& at,
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const Axis& a = c.axes[axis_of_column[k]];
     const ParamSpec& spec = column_spec(a.column);
-    const std::string cell = trim(fields[k]);
+    std::string cell = trim(fields[k]);
     const std::string here = at + ":" + std::to_string(k + 1) + ": ";
+    const TempUnit unit = a.column.kind == Column::Kind::Temperature // 35C: in TREF's unit
+                              ? listed_temperature_unit(c, a.option(), here, cell)
+                              : TempUnit::None;
     const Num n = to_number(cell);
     if (n.err != NumError::None)
       throw ConfigError(a.option(),
@@ -44,12 +48,13 @@ void read_row(const std::vector<std::string>& fields, const std::string& at,
                             (n.err == NumError::Empty ? std::string(" is empty")
                                                       : " value " + number_problem(cell, n.err)) +
                             "; " + a.name + " must be " + spec.allowed());
+    const double x = unit == TempUnit::None ? n.x : listed_in_wlf_unit(c, n.x, unit);
     try {
-      spec.check(n.x);
+      spec.check(x);
     } catch (const InvalidInput& e) {
       throw ConfigError(a.option(), here + a.name + " " + e.what());
     }
-    r[axis_of_column[k]] = n.x;
+    r[axis_of_column[k]] = x;
   }
 }
 

@@ -342,6 +342,7 @@ void add_default(std::vector<Axis>& axes, const ParamSpec& p, std::size_t rank) 
   d.section = "grid";
   d.spec = format_number(p.fallback);
   d.values = {p.fallback};
+  d.by_default = true;
   parse_column(p.name, d.column);
   std::size_t before = 0; // its place in column order
   while (before < axes.size() && column_rank(axes[before].column) < rank)

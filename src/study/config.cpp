@@ -203,8 +203,21 @@ std::string canonical_values(const Axis& a) {
   if (a.listed) return name + " = (listed)\n";
   std::string out = name + " =";
   for (std::size_t i = 0; i < a.values.size(); ++i)
-    out += (i == 0 ? " " : ", ") + format_number(a.values[i]);
+    out += (i == 0 ? " " : ", ") + format_number(a.values[i]) + unit_suffix(a.unit);
   return out + "\n";
+}
+
+/// A material card's text, each line behind "| " (a resume compares the
+/// text: a changed card is another study); "" without one.
+std::string canonical_card(const std::string& text) {
+  if (text.empty()) return "";
+  std::string out = "[material card]\n| ";
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') continue;
+    out += text[i];
+    if (text[i] == '\n' && i + 1 < text.size()) out += "| ";
+  }
+  return out.back() == '\n' ? out : out + "\n";
 }
 
 std::string canonical_run(const RunSettings& r) {
@@ -223,7 +236,8 @@ std::string canonical_run(const RunSettings& r) {
          (r.allow_large_shift ? "allow_large_shift = true\n" : std::string()) +
          (r.profile != Profile::Parabola
               ? std::string("profile = ") + profile_name(r.profile) + "\n"
-              : std::string()); // the parabola's config as before
+              : std::string()) + // the parabola's config as before
+         canonical_card(r.material_text);
 }
 
 std::string canonical_columns(const StudyConfig& c) {
@@ -271,7 +285,7 @@ void set_column_value(const StudyConfig& c, Case& out, const Axis& a, double x) 
       throw ConfigError(a.option(), "temperature needs [run] wlf = C1:C2:TREF");
     try {
       out.rheology.aT =
-          checked_shift(UnitWlf{*c.run.wlf, c.run.wlf_unit}, Temperature{x, {}}, a.option(),
+          checked_shift(UnitWlf{*c.run.wlf, c.run.wlf_unit}, Temperature{x, a.unit}, a.option(),
                         c.run.allow_large_shift, "[run] allow_large_shift = true");
     } catch (const InvalidInput& e) {
       const std::string what = e.what(); // the large shift's message says its WLF

@@ -13,7 +13,7 @@
 //   G1 = 2                  ; optional: a relaxation spectrum's terms Gk, tauk
 //   tau1 = 0.01             ;   (k = 1..N, N <= 32, both of each term)
 //   aT = 1e-3               ; optional: the shift factor, or instead
-//   temperature = 20, 40    ;   a temperature, with [run] wlf
+//   temperature = 20, 40    ;   a temperature, with [run] wlf (or 20C, 40C; 293.15K, ...)
 //
 //   [history]               ; segments k = 1..K after stationary sliding at v
 //   w1_over_v   = 0         ; velocity: wk, or wk_over_v (times v)
@@ -92,9 +92,12 @@ struct Axis {
   std::vector<double> values;
   bool logarithmic = false; ///< from logspace (plots use log axes)
   bool listed = false;      ///< case list: the values are a CSV column
+  bool by_default = false;  ///< not given: the table's default (G = 1)
   Column column;
-  /// "grid.R", "history.T1_over_tau", "run.G": the option that sets it.
-  std::string option() const { return section + "." + name; }
+  TempUnit unit = TempUnit::None; ///< temperature: the values' unit (25C: C; bare: TREF's)
+  std::string given_by;           ///< "run.material": a value of the card, not a key of its own
+  /// "grid.R", "history.T1_over_tau", "run.G" (or given_by): the option that sets it.
+  std::string option() const { return given_by.empty() ? section + "." + name : given_by; }
 };
 
 /// A study's case as written: one value per column (StudyConfig::axes), in
@@ -112,6 +115,9 @@ struct RunSettings {
   TempUnit wlf_unit = TempUnit::None;  ///< TREF's (and the temperature column's) unit
   bool allow_large_shift = false;      ///< take |log10 aT| > 12 of a temperature
   Profile profile = Profile::Parabola; ///< the indenter of every case; its parameters are columns
+  std::string material;      ///< [run] material: the card's path, resolved ("" without one)
+  std::string material_text; ///< the card's text (the map's /provenance/material_card)
+  bool card_wlf = false;     ///< wlf is the card's *TRS (no [run] wlf of its own)
 };
 
 struct StudyConfig {

@@ -79,8 +79,9 @@ void grid_keys(std::vector<ConfigKey>& out) {
       "optional: terms k = 1.." + last + ", each with Gk and tauk; with them G is required";
   out.push_back(column_key("grid", "Gk", "G1", term, " (term k)"));
   out.push_back(column_key("grid", "tauk", "tau1", term, " (term k)"));
-  out.push_back(
-      column_key("grid", "temperature", "temperature", "optional, instead of aT; needs [run] wlf"));
+  out.push_back(column_key("grid", "temperature", "temperature",
+                           "optional, instead of aT; needs [run] wlf (or a card's *TRS)",
+                           "; with an optional unit, one for all values (25C, 35C)"));
   out.push_back(column_key("grid", "v1", "v1", "the seed's one step: instead of [history]",
                            " (the seed's v1: history.w1)"));
   out.push_back(column_key("grid", "v1_over_v", "v1_over_v",
@@ -123,15 +124,23 @@ std::vector<ConfigKey> run_keys() {
        std::string("default ") + (d.timeseries ? "true" : "false"),
        "store every sample of every case in /timeseries (at most 64 GiB)"},
       {"run", "wlf", "C1:C2:TREF", "", "C1 > 0, C2 > 0; TREF with an optional unit (25C, 298.15K)",
-       "required with a temperature column, else not given",
+       "required with a temperature column (unless a material card's *TRS gives it), else not "
+       "given",
        "the WLF constants that give aT at a temperature column: log10 aT = -C1 (T - TREF) / "
-       "(C2 + T - TREF); the column's values are in TREF's unit"},
+       "(C2 + T - TREF); bare values of the column are in TREF's unit, values with another "
+       "unit converted to it"},
       {"run", "allow_large_shift", "true | false", "", "true or false (also yes/no, 1/0)",
        std::string("default ") + (d.allow_large_shift ? "true" : "false"),
        "take a temperature's WLF shift of more than 12 decades (refused otherwise: most often a "
        "C/K mix-up)"},
       {"run", "profile", profiles, "", profiles, std::string("default ") + profile_name(d.profile),
        "the indenter of every case: a parabola (column R), a cone (beta) or a power law (n, A)"},
+      {"run", "material", "FILE", "",
+       "an Abaqus card or pyvisco's CSV, relative to the config's "
+       "directory",
+       "optional, instead of [grid] G, Gk, tauk (and [run] wlf where it has *TRS)",
+       "the material from a file: G, the spectrum's terms (columns of one value) and the WLF "
+       "constants of its *TRS; the map records its text (/provenance/material_card)"},
       {"run", "t_end_over_tau", "X", "number", "a finite number > 0",
        "the seed's form: default 6 with [grid] v1 or v1_over_v",
        "the seed's window: history.T1_over_tau under its old name"},

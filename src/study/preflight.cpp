@@ -307,6 +307,7 @@ StudyPlan preflight(MPI_Comm comm, const StudyRequest& req) {
       else
         check_space(req.output,
                     io::map_file_bytes(plan.spec, cfg.source_text.size() + plan.canon.size() +
+                                                      cfg.run.material_text.size() +
                                                       req.command_line.size()));
     }
   });

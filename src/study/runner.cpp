@@ -177,6 +177,7 @@ void create_map(MPI_Comm comm, const StudyRequest& req, const detail::StudyPlan&
                "length/time; G force/length^2; F0, FN, Fx force = G * length^2; mu dimensionless";
   prov.config_text = req.config.source_text;
   prov.config_canonical = plan.canon;
+  prov.material_card = req.config.run.material_text;
   prov.mpi_size = size;
   const std::string tmp =
       bcast_from_root(comm, req.output + ".tmp-" + std::to_string(static_cast<long>(::getpid())));

@@ -1,6 +1,7 @@
 // The study schema: which sections and keys a study config has, what each
 // key's value means, and assembling a StudyConfig from an INI file or a
 // command-line override (parse_config, load_config, apply_override).
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -13,6 +14,8 @@
 #include "study/config_detail.hpp"
 #include "study/config_keys.hpp"
 #include "study/ini.hpp"
+#include "study/material_columns.hpp"
+#include "study/temperature_column.hpp"
 
 namespace mdrmap::study {
 
@@ -204,6 +207,7 @@ void set_run_key(RunSettings& r, const std::string& key, const std::string& text
   else if (key == "timeseries")
     r.timeseries = run_timeseries(option, text);
   else if (key == "wlf") {
+    refuse_wlf_beside_card(r);
     const UnitWlf w = run_wlf(option, text);
     r.wlf = w.wlf;
     r.wlf_unit = w.unit;
@@ -240,6 +244,7 @@ bool is_run_column(const std::string& key) {
 
 /// Puts a column in, replacing one that sets the same thing (an override).
 void put_column(StudyConfig& c, Axis a) {
+  refuse_beside_card(c, a);
   for (auto it = c.axes.begin(); it != c.axes.end(); ++it)
     if (column_rank(it->column) == column_rank(a.column)) {
       if (it->listed)
@@ -254,6 +259,7 @@ void put_column(StudyConfig& c, Axis a) {
 /// Adds a column from the config file: one that sets what another sets (a
 /// key of the file, or a case list's column) is an error.
 void add_column(StudyConfig& c, Axis a) {
+  refuse_beside_card(c, a);
   for (const Axis& b : c.axes)
     if (column_rank(b.column) == column_rank(a.column))
       throw ConfigError(a.option(),
@@ -274,8 +280,9 @@ void check_temperature(const StudyConfig& c) {
   if (temperature && !c.run.wlf)
     throw ConfigError(temperature->option(),
                       "temperature needs the WLF constants that shift the times at it: "
-                      "[run] wlf = C1:C2:TREF (log10 aT = -C1 (T - TREF) / (C2 + T - TREF))");
-  if (!temperature && c.run.wlf)
+                      "[run] wlf = C1:C2:TREF (log10 aT = -C1 (T - TREF) / (C2 + T - TREF)) or a "
+                      "[run] material card with *TRS");
+  if (!temperature && c.run.wlf && !c.run.card_wlf) // a card's *TRS: none is asked of it
     throw ConfigError("run.wlf", "wlf applies to a temperature column only: give [grid] "
                                  "temperature (or a case list's column), or drop wlf");
 }
@@ -298,6 +305,7 @@ void complete_columns(StudyConfig& c) {
                                                    : std::string(),
                 c.run.profile);
   check_temperature(c);
+  temperatures_in_wlf_unit(c);
   if (c.kind != StudyConfig::Kind::Cases) return;
   for (const Axis& a : c.axes)
     if (!a.listed && a.values.size() != 1)
@@ -338,6 +346,9 @@ struct FileValues {
       columns.push_back(parse_axis(section, key, value));
     else if (section == "cases")
       c.cases_file = resolve_cases_file(value, base_dir);
+    else if (key == "material")
+      for (Axis& a : read_material_columns(c, value, base_dir))
+        columns.push_back(std::move(a));
     else if (is_run_column(key))
       columns.push_back(run_column(key, value));
     else
@@ -370,6 +381,12 @@ void set_override(StudyConfig& n, const std::string& key, const std::string& val
     put_column(n, parse_axis(section, name, value));
   } else if (section == "run" && is_run_column(name)) {
     put_column(n, run_column(name, value));
+  } else if (section == "run" && name == "material") {
+    n.axes.erase(std::remove_if(n.axes.begin(), n.axes.end(),
+                                [](const Axis& a) { return !a.given_by.empty(); }),
+                 n.axes.end());
+    for (Axis& a : read_material_columns(n, value, ""))
+      put_column(n, std::move(a));
   } else if (section == "cases") {
     if (n.kind != StudyConfig::Kind::Cases)
       throw ConfigError(key, "the study is a [grid]; a case list cannot be set");

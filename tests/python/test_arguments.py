@@ -54,7 +54,7 @@ def test_temperature_is_the_keyword_and_T_its_old_spelling():
     s = mdrmap.stationary(**CASE, v=1, temperature=310, wlf=(8.86, 101.6, 298))
     assert s == mdrmap.stationary(**CASE, v=1, T=310, wlf=(8.86, 101.6, 298))
     with pytest.raises(mdrmap.InvalidInput, match=r"^temperature: must be > TREF - C2") as e:
-        mdrmap.simulate(**SPECTRUM, temperature=100, wlf=(8.86, 101.6, 298))
+        mdrmap.simulate(**SPECTRUM, temperature=190, wlf=(8.86, 101.6, 298))
     assert e.value.option == "T" and e.value.keyword == "temperature"
     with pytest.raises(mdrmap.InvalidInput, match="may be given only once"):
         mdrmap.simulate(**SPECTRUM, temperature=310, T=310, wlf=(8.86, 101.6, 298))
@@ -114,6 +114,12 @@ def test_temperatures_have_units():
         mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"))
     assert e.value.keyword == "temperature" and "12 decades" in e.value.message
     mdrmap.stationary(**kw, temperature="25C", wlf=(17.44, 51.6, "-100C"), allow_large_shift=True)
+    # a bare number whose pair reads as the other scale: 308.15 against 25C
+    # (35C read as 308.15C, log10 aT = -6.5, within the 12 decades) is refused
+    with pytest.raises(mdrmap.InvalidInput, match=r"give T its unit \(308.15K or 308.15C\)") as e:
+        mdrmap.stationary(**kw, temperature=308.15, wlf=(8.86, 101.6, "25C"))
+    assert e.value.keyword == "temperature" and "\n" not in e.value.message
+    assert mdrmap.stationary(**kw, temperature="308.15K", wlf=(8.86, 101.6, "25C")) == c
 
 
 def test_material_card_is_the_spectrum(tmp_path):

@@ -160,6 +160,10 @@ ROWS = [
     ("wlf TREF below 0K", {"T": "20C", "wlf": "17.44:51.6:-5K"}, [], "wlf"),
     ("T more than 12 decades from TREF", {"T": "25C", "wlf": "17.44:51.6:-100C"}, [], "T"),
     ("T 25 against TREF 298.15K", {"T": "25", "wlf": "8.86:101.6:298.15K"}, [], "T"),
+    # a bare number whose pair reads as the other scale: a shift the 12 decades miss
+    ("T 308.15 against TREF 25C", {"T": "308.15", "wlf": "8.86:101.6:25C"}, [], "T"),
+    ("T 35C against TREF 298.15", {"T": "35C", "wlf": "8.86:101.6:298.15"}, [], "T"),
+    ("T 308.15 against TREF 25, both bare", {"T": "308.15", "wlf": "8.86:101.6:25"}, [], "T"),
     ("allow-large-shift without T", {"aT": "2", "allow-large-shift": "true"}, [],
      "allow-large-shift"),
     ("allow-large-shift not a flag",

@@ -93,8 +93,11 @@ def test_files(tmp_path):
     (lambda: mdrmap.Material(prony=[(1, 1)]), "G", "must be given with a spectrum"),
     (lambda: mdrmap.Material(G=1, prony=[(0, 1)]), "prony", "term 1 '0:1': G1 must be"),
     (lambda: mdrmap.Material(G=1, tau=1, temperature=20), "temperature", "needs --wlf"),
-    (lambda: mdrmap.Material(G=1, tau=1, temperature=100, wlf=(8.86, 101.6, 298)),
+    (lambda: mdrmap.Material(G=1, tau=1, temperature=190, wlf=(8.86, 101.6, 298)),
      "temperature", "must be > TREF - C2"),
+    # a bare temperature whose pair reads as the other scale (issue 33)
+    (lambda: mdrmap.Material(G=1, tau=1, temperature=308.15, wlf=(8.86, 101.6, "25C")),
+     "temperature", "give T its unit (308.15K or 308.15C)"),
     (lambda: mdrmap.Material(G=1, tau=1, aT=0), "aT", "must be a finite number > 0"),
     (lambda: mdrmap.Material(G=np.bool_(True), tau=1), "G", "must be a number, got True"),
     (lambda: mdrmap.Material.from_file("/no/such/file.inp"), "material", "/no/such/file.inp"),

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -15,17 +16,6 @@ std::string shown(const std::string& text) {
   return "'" + (text.size() > 60 ? text.substr(0, 60) + "...'" : text + "'");
 }
 
-/// The unit letter ending `text` (C or K after a digit or a point), removed.
-TempUnit take_unit(std::string& text) {
-  if (text.size() < 2) return TempUnit::None;
-  const char last = text.back(), before = text[text.size() - 2];
-  if ((last != 'C' && last != 'K') ||
-      !(std::isdigit(static_cast<unsigned char>(before)) || before == '.'))
-    return TempUnit::None;
-  text.pop_back();
-  return last == 'C' ? TempUnit::Celsius : TempUnit::Kelvin;
-}
-
 /// Refuses a temperature below absolute zero in its unit.
 void check_absolute(const std::string& option, const std::string& what, double x, TempUnit u) {
   if (u == TempUnit::Kelvin && x < 0.0)
@@ -36,7 +26,24 @@ void check_absolute(const std::string& option, const std::string& what, double x
                                    format_number(x) + "C");
 }
 
+/// A difference of temperatures with 6 significant digits (283.15, not 283.14999999999998).
+std::string degrees(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 } // namespace
+
+TempUnit take_unit(std::string& text) {
+  if (text.size() < 2) return TempUnit::None;
+  const char last = text.back(), before = text[text.size() - 2];
+  if ((last != 'C' && last != 'K') ||
+      !(std::isdigit(static_cast<unsigned char>(before)) || before == '.'))
+    return TempUnit::None;
+  text.pop_back();
+  return last == 'C' ? TempUnit::Celsius : TempUnit::Kelvin;
+}
 
 const char* unit_suffix(TempUnit u) {
   return u == TempUnit::Celsius ? "C" : u == TempUnit::Kelvin ? "K" : "";
@@ -74,8 +81,31 @@ Temperature in_wlf_unit(const Temperature& T, const UnitWlf& w) {
                      w.unit};
 }
 
+void check_scales(const UnitWlf& w, const Temperature& T, const std::string& option) {
+  if (T.unit != TempUnit::None && w.unit != TempUnit::None) return; // converted exactly
+  const double dT = T.value - w.wlf.Tref;
+  const double other = std::fmin(std::fabs(dT - kZeroCelsius), std::fabs(dT + kZeroCelsius));
+  if (!(std::fabs(dT) > kScaleMixDegrees && other < kScaleNearDegrees)) return;
+  const std::string t = degrees(T.value), tref = degrees(w.wlf.Tref);
+  const std::string apart = degrees(std::fabs(dT)) + " degrees apart, but " + degrees(other) +
+                            " if one is in K and the other in C (a Kelvin/Celsius mix-up?); ";
+  if (T.unit == TempUnit::None && w.unit == TempUnit::None)
+    throw InvalidInput(option, "T = " + t + " and TREF = " + tref + " are bare numbers: " + apart +
+                                   "give T and TREF their units (C or K; a bare TREF, as a "
+                                   "card's, is read in T's)");
+  const bool T_bare = T.unit == TempUnit::None;
+  const TempUnit u = T_bare ? w.unit : T.unit;
+  throw InvalidInput(option, (T_bare ? "T = " + t : "TREF = " + tref) +
+                                 " is a bare number, read in " + unit_suffix(u) + " beside " +
+                                 (T_bare ? "TREF = " + tref : "T = " + t) + unit_suffix(u) + ": " +
+                                 apart + "give " + (T_bare ? "T" : "TREF") + " its unit (" +
+                                 (T_bare ? t : tref) + "K or " + (T_bare ? t : tref) + "C)" +
+                                 (T_bare ? "" : ", or T in TREF's scale (a card's TREF is bare)"));
+}
+
 double checked_shift(const UnitWlf& w, const Temperature& T, const std::string& option,
                      bool allow_large, const std::string& allow) {
+  check_scales(w, T, option);
   const Temperature t = in_wlf_unit(T, w);
   const double aT = wlf_shift(w.wlf, t.value, option);
   const double decades = std::log10(aT);

@@ -17,17 +17,18 @@
 #include "core/model/rheology.hpp"
 #include "core/model/temperature.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 
 struct MaterialCard {
   double G = 0.0;                 ///< long-term shear modulus
   std::vector<Branch> branches;   ///< absolute shear moduli g_i G0 and times tau_i
   std::optional<UnitWlf> wlf;     ///< *TRS, DEFINITION=WLF
   std::vector<std::string> notes; ///< what was read but does not enter (nonzero k_i)
+  std::string text;               ///< the file's text as read (what a study's map records)
 };
 
 /// Reads `path` (a regular file of at most 1 MiB). Throws
 /// InvalidInput("material") with "FILE:LINE: " where a line is at fault.
 MaterialCard read_material(const std::string& path);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -8,9 +8,9 @@
 // solid's tension modulus: G0 = E_0 / 3).
 #include <string>
 
-#include "app/material_input.hpp"
+#include "material/card.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 
 /// Whether `text` is a pyvisco CSV: its first line names tau_i and alpha_i.
 bool is_pyvisco_csv(const std::string& text);
@@ -19,4 +19,4 @@ bool is_pyvisco_csv(const std::string& text);
 /// Throws InvalidInput("material") with "FILE:LINE: " where a line is at fault.
 MaterialCard read_pyvisco(const std::string& path, const std::string& text);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -16,7 +16,7 @@
 
 #include "core/model/rheology.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 
 /// What a spectrum file gives.
 struct SpectrumFile {
@@ -29,4 +29,4 @@ struct SpectrumFile {
 /// Throws InvalidInput("prony-file") with "FILE:LINE: " where a line is at fault.
 SpectrumFile read_prony_file(const std::string& path, double nu);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -1,16 +1,15 @@
-#include "app/pyvisco_input.hpp"
+#include "material/pyvisco.hpp"
 
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
 
-#include "app/case_input.hpp"
-#include "app/text.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "material/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 namespace {
 
 const std::string kOption = "material";
@@ -103,4 +102,4 @@ MaterialCard read_pyvisco(const std::string& path, const std::string& text) {
   return m;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -1,17 +1,16 @@
-#include "app/prony_file.hpp"
+#include "material/prony_file.hpp"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
-#include "app/case_input.hpp"
-#include "app/small_file.hpp"
-#include "app/text.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "material/small_file.hpp"
+#include "material/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 namespace {
 
 const std::string kOption = "prony-file";
@@ -224,4 +223,4 @@ SpectrumFile read_prony_file(const std::string& path, double nu) {
   return out;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -1,4 +1,4 @@
-#include "app/small_file.hpp"
+#include "material/small_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 
 #include "core/model/case.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 namespace {
 
 /// What kind of file `st` is, for a refusal.
@@ -55,4 +55,4 @@ std::string read_small_file(const std::string& option, const std::string& path,
   }
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

@@ -1,4 +1,4 @@
-#include "app/material_input.hpp"
+#include "material/card.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,14 +6,13 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "app/case_input.hpp"
-#include "app/pyvisco_input.hpp"
-#include "app/small_file.hpp"
-#include "app/text.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "material/pyvisco.hpp"
+#include "material/small_file.hpp"
+#include "material/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 namespace {
 
 const std::string kOption = "material";
@@ -171,7 +170,11 @@ Block read_block(const std::string& path, const std::string& text) {
 
 MaterialCard read_material(const std::string& path) {
   const std::string text = read_small_file(kOption, path, "a material card is a few lines");
-  if (is_pyvisco_csv(text)) return read_pyvisco(path, text);
+  if (is_pyvisco_csv(text)) {
+    MaterialCard m = read_pyvisco(path, text);
+    m.text = text;
+    return m;
+  }
   const Block b = read_block(path, text);
   double sum_g = 0.0;
   for (double g : b.g)
@@ -182,6 +185,7 @@ MaterialCard read_material(const std::string& path) {
   const double G_E = b.E / (4.0 * (1.0 - b.nu * b.nu)); // DESIGN section 9
   const double G0 = b.instantaneous ? G_E : G_E / (1.0 - sum_g);
   MaterialCard m;
+  m.text = text;
   m.G = G0 * (1.0 - sum_g);
   for (std::size_t i = 0; i < b.g.size(); ++i)
     m.branches.push_back(Branch{b.g[i] * G0, b.tau[i]});
@@ -196,4 +200,4 @@ MaterialCard read_material(const std::string& path) {
   return m;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material

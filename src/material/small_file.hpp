@@ -3,7 +3,7 @@
 // regular file of at most 1 MiB, read without waiting on a FIFO or a device.
 #include <string>
 
-namespace mdrmap::app {
+namespace mdrmap::material {
 
 inline constexpr std::size_t kMaxInputFile = 1U << 20; ///< bytes of an input file (1 MiB)
 
@@ -14,4 +14,4 @@ inline constexpr std::size_t kMaxInputFile = 1U << 20; ///< bytes of an input fi
 std::string read_small_file(const std::string& option, const std::string& path,
                             const std::string& holds);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::material
