@@ -221,6 +221,58 @@ TEST(Fit, SpectrumModulusScaleAndShift) {
   }
 }
 
+// A spectrum from a material card (an Abaqus block: g_i normalised by the
+// instantaneous modulus E = 15, nu = 0.5) fits as the --G and --prony it
+// amounts to: its modulus scale and the shift are recovered under load from
+// 3x off, and the fit through --material gives the very numbers of the fit
+// through the explicit options (the card's moduli, read, as 17-digit texts).
+TEST(Fit, ACardsSpectrumIsFreeAsItsExplicitOptions) {
+  Files f;
+  const std::string card =
+      f.write("rubber.inp", "*Material, name=R\n*Elastic, moduli=INSTANTANEOUS\n"
+                            "15., 0.5\n*Viscoelastic, time=PRONY\n"
+                            "0.2, 0.1, 0.5\n0.6, 0., 20.\n");
+  OptionTexts truth = {{"material", card}, {"tau", "0"},  {"F0", "0.01"},
+                       {"R", "0.05"},      {"aT", "0.3"}, {"rtol", "1e-4"}};
+  const std::vector<std::string> data = {
+      make_record(f, "a", kSceneA, truth, {"mu", "d"}, 0.01, 21),
+      make_record(f, "b", kSceneB, truth, {"mu", "d"}, 0.01, 22)};
+  FitSpec spec;
+  spec.texts = truth;
+  spec.texts["aT"] = "0.9";
+  spec.data = data;
+  spec.free = {"Gscale,aT"};
+  const auto r = fit_from(spec);
+  ASSERT_TRUE(r.undetermined.empty());
+  for (const auto& [i, x] : {std::pair<int, double>{0, 1.0}, {1, 0.3}}) {
+    const auto& q = r.parameters[static_cast<std::size_t>(i)];
+    SCOPED_TRACE(q.name + ": " + num(q.value) + " [" + num(q.ci95_lo) + ", " + num(q.ci95_hi) +
+                 "]");
+    // (a 95% interval misses the truth one time in 20: this seed's Gscale
+    // lies 2.1 standard errors off; the check is the 99.9% interval, 3.29
+    // standard errors, which an honest one misses one time in 1000)
+    const double half = 0.5 * (q.ci95_hi - q.ci95_lo);
+    EXPECT_LE(std::abs(q.value - x), half * 3.29 / 1.96);
+    EXPECT_LT(q.ci95_hi - q.ci95_lo, 0.2 * x);
+  }
+  OptionTexts read = truth;
+  read["history-file"] = data.front();
+  const auto in = mdrmap::app::read_case_input(read);
+  FitSpec explicit_spec = spec;
+  explicit_spec.texts.erase("material");
+  explicit_spec.texts["G"] = num(in.c.rheology.G);
+  std::string terms;
+  for (const auto& b : in.c.rheology.branches)
+    terms += (terms.empty() ? "" : ",") + num(b.G) + ":" + num(b.tau);
+  explicit_spec.texts["prony"] = terms;
+  const auto e = fit_from(explicit_spec);
+  ASSERT_EQ(e.parameters.size(), r.parameters.size());
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    EXPECT_EQ(r.parameters[i].value, e.parameters[i].value) << r.parameters[i].name;
+    EXPECT_EQ(r.parameters[i].ci95_hi, e.parameters[i].ci95_hi) << r.parameters[i].name;
+  }
+}
+
 TEST(Fit, UnderLoadF0AndGAreReportedUndetermined) {
   // mu and d under load depend on F0 and G through F0 / G only (the Hertz
   // radius a0): F0 and G together are a flat direction, reported as such.

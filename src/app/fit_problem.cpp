@@ -144,8 +144,8 @@ fit::FreeParameter table_parameter(const ParamSpec& q, const OptionTexts& texts,
 fit::FreeParameter term_parameter(const std::string& name, std::size_t term, int field,
                                   const OptionTexts& texts) {
   if (!texts.count("prony"))
-    throw InvalidInput("free", name + ": a spectrum's terms are free only when given with "
-                                      "--prony G1:TAU1,...");
+    throw InvalidInput("free", name + ": the case has no spectrum (--prony, --prony-file or "
+                                      "--material)");
   const auto terms = items(texts.at("prony"));
   if (term > terms.size())
     throw InvalidInput("free", name + ": --prony has " + std::to_string(terms.size()) + " term(s)");
@@ -154,6 +154,32 @@ fit::FreeParameter term_parameter(const std::string& name, std::size_t term, int
   p.start =
       std::strtod(items(terms[term - 1], ':').at(static_cast<std::size_t>(field)).c_str(), nullptr);
   return p;
+}
+
+/// A spectrum from a file (--material: a card or pyvisco's CSV;
+/// --prony-file) as the options it amounts to: --G, --prony and the card's
+/// WLF as --wlf, read and checked as simulate reads them (with the first
+/// record as the history), so that its terms and Gscale can be free like
+/// those of a --prony spectrum.
+OptionTexts explicit_spectrum(const OptionTexts& texts, const std::string& record) {
+  if (!texts.count("material") && !texts.count("prony-file")) return texts;
+  OptionTexts t = texts;
+  t["history-file"] = record;
+  const CaseInput in = as_data([&] { return read_case_input(t); });
+  t = texts;
+  for (const char* gone : {"material", "prony-file", "nu"})
+    t.erase(gone);
+  t["G"] = full(in.c.rheology.G);
+  std::string terms;
+  for (const Branch& b : in.c.rheology.branches)
+    terms += (terms.empty() ? "" : ",") + full(b.G) + ":" + full(b.tau);
+  t["prony"] = terms;
+  if (in.temperature && !texts.count("wlf")) {
+    const Wlf& w = in.temperature->wlf;
+    t["wlf"] =
+        full(w.C1) + ":" + full(w.C2) + ":" + full(w.Tref) + unit_suffix(in.temperature->unit);
+  }
+  return t;
 }
 
 /// The free parameter `name` (as typed: `raw`) with its start.
@@ -173,15 +199,12 @@ fit::FreeParameter free_parameter(const std::string& name, const std::string& ra
     return p;
   }
   if (name == kScale) {
-    if (texts.count("material") || texts.count("prony-file"))
-      throw InvalidInput("free", std::string(kScale) + " scales --G and --prony's moduli; a "
-                                                       "spectrum from a file cannot be scaled");
     p.start = 1.0;
     return p;
   }
   throw InvalidInput("free", shown(raw) + " is not a parameter that can be fitted; free ones are "
                                           "the case's R (or beta, n, A), d or F0, G, tau, aT or "
-                                          "T, a --prony spectrum's Gk, tauk, and Gscale (every "
+                                          "T, a spectrum's Gk, tauk, and Gscale (every "
                                           "modulus times it)");
 }
 
@@ -201,9 +224,10 @@ std::string prony_with(const std::string& text, std::size_t k, int field, double
 
 } // namespace
 
-FitProblem::FitProblem(const FitSpec& spec) : texts_(spec.texts) {
+FitProblem::FitProblem(const FitSpec& spec) {
   if (spec.data.empty())
     throw InvalidInput("data", "is required: at least one lab record (--data FILE)");
+  texts_ = explicit_spectrum(spec.texts, spec.data.front());
   CaseInput start;
   for (const auto& path : spec.data) {
     FitScene s;
