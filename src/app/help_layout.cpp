@@ -1,8 +1,9 @@
 #include "app/help_layout.hpp"
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr std::size_t kWidth = 79;

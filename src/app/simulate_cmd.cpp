@@ -5,12 +5,12 @@
 
 #include <boost/program_options.hpp>
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
-#include "app/simulation.hpp"
+#include "case/simulation.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/solvers/result.hpp"
@@ -18,12 +18,13 @@
 namespace po = boost::program_options;
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr const char* kCommand = "simulate";
 
 /// Every option, in the order of the help text: those of a case
-/// (app/case_input.hpp, with the old spellings it takes), then --output.
+/// (case/case_input.hpp, with the old spellings it takes), then --output.
 std::vector<std::string> option_names() {
   std::vector<std::string> names = case_option_spellings();
   names.emplace_back("output");
