@@ -27,8 +27,8 @@
 #include <utility>
 #include <vector>
 
-#include "case/case_input.hpp"
 #include "app/csv_output.hpp"
+#include "case/case_input.hpp"
 #include "case/prony_input.hpp"
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/events.hpp"
@@ -1194,7 +1194,8 @@ TEST(cli, SpectrumFileEqualsTheOption) {
   const fs::path f = dir.path() / "spectrum.csv";
   write_file(f, "# a spectrum\r\n G , tau \r\n\r\n1,0.01\r\n  # between terms\n2.5 , 1\n0.5,1e4");
   const auto a = mdrmap::cases::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
-  const auto b = mdrmap::cases::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1,0.5:1e4"}}));
+  const auto b =
+      mdrmap::cases::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1,0.5:1e4"}}));
   ASSERT_EQ(a.c.rheology.branches.size(), 3U);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(a.c.rheology.branches[k].G, b.c.rheology.branches[k].G);
@@ -1221,7 +1222,9 @@ TEST(cli, SpectrumFileColumnsByName) {
     write_file(p, text);
     return p.string();
   };
-  const auto read = [](OptionTexts t) { return mdrmap::cases::read_case_input(spectrum_texts(t)).c; };
+  const auto read = [](OptionTexts t) {
+    return mdrmap::cases::read_case_input(spectrum_texts(t)).c;
+  };
   const auto same_terms = [](const mdrmap::Case& a, const std::vector<mdrmap::Branch>& b) {
     ASSERT_EQ(a.rheology.branches.size(), b.size());
     for (std::size_t k = 0; k < b.size(); ++k) {
@@ -1562,7 +1565,8 @@ TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {
             std::string::npos)
       << line;
   // aT = 1 is not printed; an explicit aT is, without T and wlf
-  const auto shifted = mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}, {"aT", "1e-3"}}));
+  const auto shifted =
+      mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}, {"aT", "1e-3"}}));
   const std::string s = mdrmap::app::case_line(shifted.c, shifted.temperature);
   EXPECT_NE(s.find(" G=1 aT=0.001 v=1 history="), std::string::npos) << s;
 }

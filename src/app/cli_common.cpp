@@ -6,8 +6,8 @@
 
 #include <boost/program_options.hpp>
 
-#include "case/case_input.hpp"
 #include "app/exit_codes.hpp"
+#include "case/case_input.hpp"
 
 namespace po = boost::program_options;
 

@@ -58,7 +58,7 @@ boost::program_options::variables_map option_texts(const std::vector<std::string
 
 /// The texts of those of `names` that were given (their spellings as keys).
 cases::OptionTexts given_texts(const boost::program_options::variables_map& vm,
-                        const std::vector<std::string>& names);
+                               const std::vector<std::string>& names);
 
 /// The text of --output: "" (stdout) when not given. Throws
 /// InvalidInput("output") when it was given empty.

@@ -12,12 +12,12 @@
 
 #include <boost/program_options.hpp>
 
-#include "case/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/exit_codes.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
+#include "case/case_input.hpp"
 #include "case/prony_input.hpp"
 #include "case/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"

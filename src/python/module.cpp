@@ -23,6 +23,7 @@
 
 #include "case/case_input.hpp"
 #include "case/fit_problem.hpp"
+#include "case/option_help.hpp"
 #include "case/simulation.hpp"
 #include "case/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"
@@ -422,6 +423,20 @@ py::list parameter_table() {
   return out;
 }
 
+/// The help of the case options outside the table (case/option_help.hpp),
+/// {name: {placeholder, text, default}} in the command line's words.
+py::dict option_help_table() {
+  py::dict out;
+  for (const cases::OptionHelp& h : cases::case_option_help()) {
+    py::dict d;
+    d["placeholder"] = h.placeholder;
+    d["text"] = h.text;
+    d["default"] = h.fallback.empty() ? py::object(py::none()) : py::object(py::str(h.fallback));
+    out[py::str(h.name)] = std::move(d);
+  }
+  return out;
+}
+
 void translate(std::exception_ptr p) {
   try {
     if (p) std::rethrow_exception(p);
@@ -459,6 +474,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("material_file_option", &mdrmap::cases::material_file_option, py::arg("path"),
         "The option a material file goes under: material (a card) or prony-file.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
+  m.def("option_help", &option_help_table,
+        "The help of the case options outside the table, {name: {placeholder, text, default}}.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");
 }
