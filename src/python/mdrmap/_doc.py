@@ -93,5 +93,5 @@ def keyword_list(items, width=79):
 
 
 def docstring(head, items, tail):
-    return f"{head}\n\nKeyword arguments (generated from the parameter table and the " \
-           f"command line's help):\n{keyword_list(items)}\n\n{tail}"
+    return f"{head}\n\nKeyword arguments (from the parameter table and the command line's " \
+           f"help):\n{keyword_list(items)}\n\n{tail}"
