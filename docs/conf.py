@@ -14,3 +14,6 @@ html_theme = "furo"
 html_title = "mdrmap"
 # Code blocks without a language (CSV, INI excerpts, output) are not highlighted.
 highlight_language = "none"
+# Smart quotes, but no dashes: "--prony" in a table or in prose is an option,
+# never an en dash.
+smartquotes_action = "qe"

@@ -27,9 +27,9 @@
 #include <utility>
 #include <vector>
 
-#include "app/case_input.hpp"
 #include "app/csv_output.hpp"
-#include "app/prony_input.hpp"
+#include "case/case_input.hpp"
+#include "case/prony_input.hpp"
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/events.hpp"
 #include "core/metrics/stationary.hpp"
@@ -1119,7 +1119,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
 
 // --- Relaxation spectra and the temperature shift (issue 19) -------------------
 
-using mdrmap::app::OptionTexts;
+using mdrmap::cases::OptionTexts;
 
 OptionTexts spectrum_texts(OptionTexts extra) {
   OptionTexts t{{"d", "0.1"}, {"R", "10"}, {"tau", "0"}, {"G", "1"}, {"v", "1"}, {"v1", "2"}};
@@ -1132,7 +1132,7 @@ OptionTexts spectrum_texts(OptionTexts extra) {
 }
 
 TEST(cli, SpectrumInputIsReadIntoTheRheology) {
-  const auto in = mdrmap::app::read_case_input(
+  const auto in = mdrmap::cases::read_case_input(
       spectrum_texts({{"prony", "1:0.01, 2.5:1,0.5:1e4"}, {"G", "0.1"}}));
   const mdrmap::Rheology& r = in.c.rheology;
   ASSERT_EQ(r.branches.size(), 3U);
@@ -1150,9 +1150,9 @@ TEST(cli, SpectrumInputIsReadIntoTheRheology) {
   std::string text;
   for (int k = 1; k <= 32; ++k)
     text += (k > 1 ? "," : "") + std::to_string(k) + ":" + std::to_string(0.1 / k);
-  const auto b = mdrmap::app::parse_prony(text);
+  const auto b = mdrmap::cases::parse_prony(text);
   ASSERT_EQ(b.size(), 32U);
-  const auto again = mdrmap::app::parse_prony(mdrmap::app::format_prony(b));
+  const auto again = mdrmap::cases::parse_prony(mdrmap::cases::format_prony(b));
   for (std::size_t k = 0; k < b.size(); ++k) {
     EXPECT_EQ(again[k].G, b[k].G);
     EXPECT_EQ(again[k].tau, b[k].tau);
@@ -1193,8 +1193,9 @@ TEST(cli, SpectrumFileEqualsTheOption) {
   TempDir dir;
   const fs::path f = dir.path() / "spectrum.csv";
   write_file(f, "# a spectrum\r\n G , tau \r\n\r\n1,0.01\r\n  # between terms\n2.5 , 1\n0.5,1e4");
-  const auto a = mdrmap::app::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
-  const auto b = mdrmap::app::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1,0.5:1e4"}}));
+  const auto a = mdrmap::cases::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
+  const auto b =
+      mdrmap::cases::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1,0.5:1e4"}}));
   ASSERT_EQ(a.c.rheology.branches.size(), 3U);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(a.c.rheology.branches[k].G, b.c.rheology.branches[k].G);
@@ -1203,7 +1204,7 @@ TEST(cli, SpectrumFileEqualsTheOption) {
   // a fault names the file and its line
   write_file(f, "G,tau\n1,2\n\n# comment\n3,0\n");
   try {
-    mdrmap::app::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
+    mdrmap::cases::read_case_input(spectrum_texts({{"prony-file", f.string()}}));
     FAIL() << "a zero time was taken";
   } catch (const mdrmap::InvalidInput& e) {
     EXPECT_EQ(e.option(), "prony-file");
@@ -1221,7 +1222,9 @@ TEST(cli, SpectrumFileColumnsByName) {
     write_file(p, text);
     return p.string();
   };
-  const auto read = [](OptionTexts t) { return mdrmap::app::read_case_input(spectrum_texts(t)).c; };
+  const auto read = [](OptionTexts t) {
+    return mdrmap::cases::read_case_input(spectrum_texts(t)).c;
+  };
   const auto same_terms = [](const mdrmap::Case& a, const std::vector<mdrmap::Branch>& b) {
     ASSERT_EQ(a.rheology.branches.size(), b.size());
     for (std::size_t k = 0; k < b.size(); ++k) {
@@ -1320,8 +1323,8 @@ TEST(cli, PronyFileIsASmallRegularFile) {
 
   const fs::path bom = dir.path() / "bom.csv";
   write_file(bom, "\xEF\xBB\xBFG,tau\r\n1,0.01\r\n2.5,1\r\n");
-  const auto a = mdrmap::app::read_case_input(spectrum_texts({{"prony-file", bom.string()}}));
-  const auto b = mdrmap::app::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1"}}));
+  const auto a = mdrmap::cases::read_case_input(spectrum_texts({{"prony-file", bom.string()}}));
+  const auto b = mdrmap::cases::read_case_input(spectrum_texts({{"prony", "1:0.01,2.5:1"}}));
   ASSERT_EQ(a.c.rheology.branches.size(), 2U);
   for (std::size_t k = 0; k < 2; ++k) {
     EXPECT_EQ(a.c.rheology.branches[k].G, b.c.rheology.branches[k].G);
@@ -1330,7 +1333,7 @@ TEST(cli, PronyFileIsASmallRegularFile) {
 }
 
 TEST(cli, TemperatureGivesTheWlfShift) {
-  const auto in = mdrmap::app::read_case_input(
+  const auto in = mdrmap::cases::read_case_input(
       spectrum_texts({{"tau", "1"}, {"T", "40"}, {"wlf", "17.44:51.6:-10"}}));
   ASSERT_TRUE(in.temperature);
   EXPECT_EQ(in.temperature->T, 40.0);
@@ -1340,7 +1343,7 @@ TEST(cli, TemperatureGivesTheWlfShift) {
   const double aT = std::pow(10.0, -17.44 * 50.0 / (51.6 + 50.0));
   EXPECT_NEAR(in.c.rheology.aT, aT, 1e-15 * aT);
   // at TREF no shift
-  const auto ref = mdrmap::app::read_case_input(
+  const auto ref = mdrmap::cases::read_case_input(
       spectrum_texts({{"tau", "1"}, {"T", "-10"}, {"wlf", "17.44:51.6:-10"}}));
   EXPECT_EQ(ref.c.rheology.aT, 1.0);
   // the default window is six shifted times
@@ -1354,7 +1357,7 @@ TEST(cli, TemperatureGivesTheWlfShift) {
 TEST(cli, BareTemperatureOfTheOtherScaleIsRefused) {
   const auto message = [](const std::string& T, const std::string& wlf) {
     try {
-      mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}));
+      mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}));
     } catch (const mdrmap::InvalidInput& e) {
       EXPECT_EQ(e.option(), "T") << e.what();
       return std::string(e.what());
@@ -1374,7 +1377,7 @@ TEST(cli, BareTemperatureOfTheOtherScaleIsRefused) {
   // with its unit the temperature is converted: 308.15K is 35C
   for (const char* T : {"308.15K", "35C", "35"}) {
     SCOPED_TRACE(T);
-    const auto in = mdrmap::app::read_case_input(
+    const auto in = mdrmap::cases::read_case_input(
         spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", "8.86:101.6:25C"}}));
     EXPECT_NEAR(std::log10(in.c.rheology.aT), -8.86 * 10.0 / 111.6, 1e-12);
   }
@@ -1398,7 +1401,7 @@ TEST(cli, MaterialCardGivesTheSpectrum) {
                            "*TRS, DEFINITION=WLF\n25., 8.86, 101.6\n";
   const auto read = [](OptionTexts t) {
     t["G"] = kDrop;
-    return mdrmap::app::read_case_input(spectrum_texts(t));
+    return mdrmap::cases::read_case_input(spectrum_texts(t));
   };
   const auto inst = read({{"material", file("i.inp", "** card\n*Material, name=R\n*Elastic, "
                                                      "moduli=INSTANTANEOUS\n15." +
@@ -1450,7 +1453,7 @@ TEST(cli, MaterialCardGivesTheSpectrum) {
     try {
       OptionTexts t = spectrum_texts(b.texts);
       if (!b.texts.count("G")) t.erase("G");
-      mdrmap::app::read_case_input(t);
+      mdrmap::cases::read_case_input(t);
       ADD_FAILURE() << "taken";
     } catch (const mdrmap::InvalidInput& e) {
       EXPECT_EQ(e.option(), b.option) << e.what();
@@ -1475,7 +1478,7 @@ TEST(cli, MaterialReadsPyviscoCsv) {
                 "2,10,0.5,12,6\r\n3,1000,0,12,0\r\n");
   OptionTexts t = spectrum_texts({{"material", f.string()}});
   t.erase("G");
-  const mdrmap::Case c = mdrmap::app::read_case_input(t).c;
+  const mdrmap::Case c = mdrmap::cases::read_case_input(t).c;
   ASSERT_EQ(c.rheology.branches.size(), 2U); // the term alpha = 0 dropped
   EXPECT_DOUBLE_EQ(c.rheology.G, 1.0);       // G0 = 12 / 3 = 4, G = 4 (1 - 0.75)
   EXPECT_DOUBLE_EQ(c.rheology.branches[0].G, 1.0);
@@ -1483,7 +1486,7 @@ TEST(cli, MaterialReadsPyviscoCsv) {
   EXPECT_EQ(c.rheology.branches[1].tau, 10.0);
   write_file(f, "tau_i,alpha_i,G_0\ns,-,Pa\n0.1,0.6,10\n1,x,10\n");
   try {
-    mdrmap::app::read_case_input(t);
+    mdrmap::cases::read_case_input(t);
     ADD_FAILURE() << "taken";
   } catch (const mdrmap::InvalidInput& e) {
     EXPECT_EQ(e.option(), "material");
@@ -1499,7 +1502,7 @@ TEST(cli, MaterialReadsPyviscoCsv) {
 // --allow-large-shift; the case line prints T and TREF with their unit.
 TEST(cli, TemperaturesHaveUnits) {
   const auto aT_of = [](const std::string& T, const std::string& wlf) {
-    return mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}))
+    return mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}, {"T", T}, {"wlf", wlf}}))
         .c.rheology.aT;
   };
   const double expected = std::pow(10.0, -8.86 * 10.0 / (101.6 + 10.0));
@@ -1514,7 +1517,7 @@ TEST(cli, TemperaturesHaveUnits) {
     SCOPED_TRACE(T + " " + wlf);
     EXPECT_NEAR(aT_of(T, wlf), expected, 1e-12 * expected);
   }
-  const auto in = mdrmap::app::read_case_input(
+  const auto in = mdrmap::cases::read_case_input(
       spectrum_texts({{"tau", "1"}, {"T", "35C"}, {"wlf", "8.86:101.6:298.15K"}}));
   const std::string line = mdrmap::app::case_line(in.c, in.temperature);
   EXPECT_TRUE(std::regex_match(line, case_line_regex(false))) << line;
@@ -1526,7 +1529,7 @@ TEST(cli, TemperaturesHaveUnits) {
   // 25C against TREF -100 (C2 = 51.6, C1 = 17.44): log10 aT = -12.3, refused unless allowed
   const OptionTexts large{{"tau", "1"}, {"T", "25C"}, {"wlf", "17.44:51.6:-100"}};
   try {
-    mdrmap::app::read_case_input(spectrum_texts(large));
+    mdrmap::cases::read_case_input(spectrum_texts(large));
     ADD_FAILURE() << "a shift of 12.3 decades was taken";
   } catch (const mdrmap::InvalidInput& e) {
     EXPECT_EQ(e.option(), "T");
@@ -1536,7 +1539,7 @@ TEST(cli, TemperaturesHaveUnits) {
   }
   OptionTexts allowed = large;
   allowed["allow-large-shift"] = "true";
-  EXPECT_NEAR(std::log10(mdrmap::app::read_case_input(spectrum_texts(allowed)).c.rheology.aT),
+  EXPECT_NEAR(std::log10(mdrmap::cases::read_case_input(spectrum_texts(allowed)).c.rheology.aT),
               -17.44 * 125.0 / (51.6 + 125.0), 1e-12);
   // the flag on the command line
   const Outcome r = run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "1", "--v", "1",
@@ -1546,13 +1549,13 @@ TEST(cli, TemperaturesHaveUnits) {
 }
 
 TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {
-  const auto kelvin = mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}}));
+  const auto kelvin = mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}}));
   const std::string plain = mdrmap::app::case_line(kelvin.c, kelvin.temperature);
   EXPECT_TRUE(std::regex_match(plain, case_line_regex(false))) << plain;
   for (const char* word : {"prony=", "aT=", " T=", "wlf="})
     EXPECT_EQ(plain.find(word), std::string::npos) << plain;
 
-  const auto spec = mdrmap::app::read_case_input(
+  const auto spec = mdrmap::cases::read_case_input(
       spectrum_texts({{"prony", "1:0.5,3:20"}, {"T", "30"}, {"wlf", "8.86:101.6:20"}}));
   const std::string line = mdrmap::app::case_line(spec.c, spec.temperature);
   EXPECT_TRUE(std::regex_match(line, case_line_regex(false))) << line;
@@ -1562,7 +1565,8 @@ TEST(cli, CaseLinePrintsTheSpectrumAndTheShiftOnlyWhereGiven) {
             std::string::npos)
       << line;
   // aT = 1 is not printed; an explicit aT is, without T and wlf
-  const auto shifted = mdrmap::app::read_case_input(spectrum_texts({{"tau", "1"}, {"aT", "1e-3"}}));
+  const auto shifted =
+      mdrmap::cases::read_case_input(spectrum_texts({{"tau", "1"}, {"aT", "1e-3"}}));
   const std::string s = mdrmap::app::case_line(shifted.c, shifted.temperature);
   EXPECT_NE(s.find(" G=1 aT=0.001 v=1 history="), std::string::npos) << s;
 }

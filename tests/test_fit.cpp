@@ -1,6 +1,6 @@
 // mdrmap fit (issue 33, item 4): synthetic lab records made by the solver at
 // a known truth with seeded noise; the fit (fit/least_squares.hpp over
-// app/fit_problem.hpp) must recover the truth inside its 95% intervals from
+// case/fit_problem.hpp) must recover the truth inside its 95% intervals from
 // starts 25% and 3x off, at fixed depth and under load, for R with aT and for
 // d with G; a direction the records do not fix is reported, not given an
 // interval; `mdrmap fit` writes the JSON and refuses bad input with one line,
@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "app/case_input.hpp"
-#include "app/fit_problem.hpp"
-#include "app/lab_record.hpp"
+#include "case/case_input.hpp"
+#include "case/fit_problem.hpp"
+#include "case/lab_record.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "fit/least_squares.hpp"
 
@@ -37,9 +37,9 @@
 namespace {
 
 namespace fs = std::filesystem;
-using mdrmap::app::FitProblem;
-using mdrmap::app::FitSpec;
-using mdrmap::app::OptionTexts;
+using mdrmap::cases::FitProblem;
+using mdrmap::cases::FitSpec;
+using mdrmap::cases::OptionTexts;
 
 class Files {
 public:
@@ -101,9 +101,9 @@ std::string make_record(const Files& f, const std::string& name, const Scene& sc
     hist += num(t[i]) + "," + num(v[i]) + "\n";
   OptionTexts texts = truth;
   texts["history-file"] = f.write(name + ".hist.csv", hist);
-  const auto in = mdrmap::app::read_case_input(texts);
+  const auto in = mdrmap::cases::read_case_input(texts);
   const auto res = mdrmap::run_case(in.c, in.solver, 1e-7);
-  const auto rows = mdrmap::app::record_rows(in.c);
+  const auto rows = mdrmap::cases::record_rows(in.c);
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;
   std::string text = "t,v";
@@ -131,7 +131,7 @@ std::string make_record(const Files& f, const std::string& name, const Scene& sc
 
 mdrmap::fit::Result fit_from(const FitSpec& spec) {
   const FitProblem p(spec);
-  mdrmap::app::SerialEvaluator ev(p);
+  mdrmap::cases::SerialEvaluator ev(p);
   return mdrmap::fit::fit(p.parameters(), ev, p.options());
 }
 

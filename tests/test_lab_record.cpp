@@ -1,4 +1,4 @@
-// Lab records as histories (issue 33): app/lab_record reads a record into a
+// Lab records as histories (issue 33): case/lab_record reads a record into a
 // case (history and explicit output instants, Sampling::at); every solver
 // samples at those instants what it samples at the same instants of uniform
 // sampling; `mdrmap simulate --history-file` writes the record's rows and
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_input.hpp"
-#include "app/lab_record.hpp"
+#include "case/case_input.hpp"
+#include "case/lab_record.hpp"
 #include "core/model/case.hpp"
 #include "core/solvers/dispatch.hpp"
 
@@ -77,12 +77,12 @@ Case depth_case() {
 
 TEST(LabRecord, ColumnsInAnyOrderCommentsAndEqualVelocitiesMerged) {
   Files f;
-  const mdrmap::app::LabRecord r = mdrmap::app::read_lab_record(f.write("r.csv", kStepHold));
+  const mdrmap::cases::LabRecord r = mdrmap::cases::read_lab_record(f.write("r.csv", kStepHold));
   ASSERT_EQ(r.t.size(), 13U);
   EXPECT_EQ(r.t.front(), 10.0);
   EXPECT_EQ(r.v[4], 0.5);
   Case c = depth_case();
-  mdrmap::app::apply_lab_record(r, c);
+  mdrmap::cases::apply_lab_record(r, c);
   EXPECT_EQ(c.history.v0, 1.0);
   ASSERT_EQ(c.history.size(), 3U);
   const double w[] = {1.0, 0.5, 0.0}, T[] = {2.0, 3.0, 2.0};
@@ -95,9 +95,9 @@ TEST(LabRecord, ColumnsInAnyOrderCommentsAndEqualVelocitiesMerged) {
   }
   EXPECT_EQ(c.total_samples(), 15U);
   EXPECT_EQ(c.first_sample(2), 10U);
-  const std::vector<std::size_t> rows = mdrmap::app::record_rows(c);
+  const std::vector<std::size_t> rows = mdrmap::cases::record_rows(c);
   EXPECT_EQ(rows, (std::vector<std::size_t>{0, 1, 2, 3, 5, 6, 7, 8, 10, 11, 12, 13, 14}));
-  const std::vector<double> slip = mdrmap::app::record_slip(r);
+  const std::vector<double> slip = mdrmap::cases::record_slip(r);
   EXPECT_EQ(slip[4], 2.0);
   EXPECT_EQ(slip.back(), 3.5);
   mdrmap::validate(c);

@@ -1,4 +1,4 @@
-// Typed option values (app/option_value.hpp), what the Python module hands
+// Typed option values (case/option_value.hpp), what the Python module hands
 // the case reader: a number given as a number is that double, pairs are the
 // history's segments or the spectrum's terms, three numbers the WLF
 // constants; the case, the refusals and their messages are those of the
@@ -11,18 +11,18 @@
 #include <map>
 #include <string>
 
-#include "app/case_input.hpp"
-#include "app/option_value.hpp"
+#include "case/case_input.hpp"
+#include "case/option_value.hpp"
 
 namespace {
 
 using mdrmap::InvalidInput;
 using mdrmap::Part;
-using mdrmap::app::OptionTexts;
-using mdrmap::app::OptionValue;
-using mdrmap::app::OptionValues;
-using mdrmap::app::read_case_input;
-using mdrmap::app::read_case_part;
+using mdrmap::cases::OptionTexts;
+using mdrmap::cases::OptionValue;
+using mdrmap::cases::OptionValues;
+using mdrmap::cases::read_case_input;
+using mdrmap::cases::read_case_part;
 
 /// The option and message read_case_input throws for `v` ("" / "" if none).
 template <class In> std::pair<std::string, std::string> refusal(const In& v) {

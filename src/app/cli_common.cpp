@@ -6,12 +6,13 @@
 
 #include <boost/program_options.hpp>
 
-#include "app/case_input.hpp"
 #include "app/exit_codes.hpp"
+#include "case/case_input.hpp"
 
 namespace po = boost::program_options;
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 
 // --- Messages ------------------------------------------------------------------
 

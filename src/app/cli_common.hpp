@@ -10,7 +10,7 @@
 
 #include <boost/program_options/variables_map.hpp>
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 
@@ -57,8 +57,8 @@ boost::program_options::variables_map option_texts(const std::vector<std::string
                                                    const std::string& example);
 
 /// The texts of those of `names` that were given (their spellings as keys).
-OptionTexts given_texts(const boost::program_options::variables_map& vm,
-                        const std::vector<std::string>& names);
+cases::OptionTexts given_texts(const boost::program_options::variables_map& vm,
+                               const std::vector<std::string>& names);
 
 /// The text of --output: "" (stdout) when not given. Throws
 /// InvalidInput("output") when it was given empty.

@@ -4,12 +4,13 @@
 #include <cstdio>
 #include <cstring>
 
-#include "app/lab_record.hpp"
-#include "app/prony_input.hpp"
+#include "case/lab_record.hpp"
+#include "case/prony_input.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 const char* spacing_name(Spacing s) {

@@ -22,7 +22,7 @@
 //   t,segment,FN,Fx,mu,a2                 (under load t,segment,FN,Fx,mu,a2,d,a1)
 //   <samples rows per segment, segment after segment>
 //
-// With a lab record (--history-file, app/lab_record.hpp) the rows are the
+// With a lab record (--history-file, case/lab_record.hpp) the rows are the
 // record's, one per row at its time, and two columns follow: v (the row's
 // load-point velocity) and slip (the load-point slip since t = 0); the
 // `# case` line then says sampling=record in place of the spacing and the
@@ -52,8 +52,8 @@
 #include <optional>
 #include <string>
 
-#include "app/lab_record.hpp"
-#include "app/simulation.hpp"
+#include "case/lab_record.hpp"
+#include "case/simulation.hpp"
 #include "core/model/case.hpp"
 
 namespace mdrmap::app {
@@ -71,7 +71,7 @@ inline constexpr const char* kCsvHeaderLoad = "t,segment,FN,Fx,mu,a2,d,a1";
 
 /// The `# case` line of a case (without newline); `temperature` as the
 /// input gave it (CaseInput::temperature).
-std::string case_line(const Case& c, const std::optional<TemperatureInput>& temperature);
+std::string case_line(const Case& c, const std::optional<cases::TemperatureInput>& temperature);
 
 /// The `# scales` line of a case (without newline): its Scales, which the
 /// tools measure by (as the map's /scales).
@@ -81,8 +81,8 @@ std::string scales_line(const Case& c);
 /// (with `record`, the case's lab record: one row per row of the record,
 /// with v and slip). Does not flush or check for I/O errors; the caller does
 /// (ferror / fclose).
-void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
-                        const std::optional<TemperatureInput>& temperature = std::nullopt,
-                        const LabRecord* record = nullptr);
+void write_simulate_csv(std::FILE* out, const cases::SimulateRecord& rec, const Series& series,
+                        const std::optional<cases::TemperatureInput>& temperature = std::nullopt,
+                        const cases::LabRecord* record = nullptr);
 
 } // namespace mdrmap::app

@@ -13,18 +13,19 @@
 
 #include <boost/program_options.hpp>
 
-#include "app/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/exit_codes.hpp"
 #include "app/fit_mpi.hpp"
 #include "app/fit_plot.hpp"
-#include "app/fit_problem.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
+#include "case/case_input.hpp"
+#include "case/fit_problem.hpp"
 #include "core/model/params.hpp"
 #include "fit/least_squares.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr const char* kCommand = "fit";

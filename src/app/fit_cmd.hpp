@@ -1,5 +1,5 @@
 #pragma once
-// `mdrmap fit`: fits case parameters to lab records (app/fit_problem.hpp,
+// `mdrmap fit`: fits case parameters to lab records (case/fit_problem.hpp,
 // fit/least_squares.hpp); over MPI the ranks share the model evaluations.
 #include <string>
 #include <vector>

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 /// A point's result on the wire: a flag (1 residuals, 0 refused, -1 an

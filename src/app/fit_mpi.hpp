@@ -5,13 +5,13 @@
 // until rank 0 says stop. The communicator is a parameter.
 #include <mpi.h>
 
-#include "app/fit_problem.hpp"
+#include "case/fit_problem.hpp"
 
 namespace mdrmap::app {
 
 class MpiEvaluator : public fit::Evaluator {
 public:
-  MpiEvaluator(const FitProblem& p, MPI_Comm comm) : p_(p), comm_(comm) {}
+  MpiEvaluator(const cases::FitProblem& p, MPI_Comm comm) : p_(p), comm_(comm) {}
   /// Rank 0: the residuals of each point, computed across the ranks.
   std::vector<std::vector<double>>
   evaluate(const std::vector<std::vector<double>>& points) override;
@@ -25,7 +25,7 @@ private:
   std::vector<std::vector<double>> spread(const std::vector<std::vector<double>>& points,
                                           bool& stopped);
 
-  const FitProblem& p_;
+  const cases::FitProblem& p_;
   MPI_Comm comm_;
 };
 

@@ -1,8 +1,10 @@
 #include "app/help_layout.hpp"
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
+#include "case/option_help.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr std::size_t kWidth = 79;
@@ -137,15 +139,18 @@ std::string case_usage(bool history) {
   return s + "\n           " + alternatives + ")";
 }
 
+HelpEntry option_entry(const std::string& name, const std::string& extra) {
+  const OptionHelp& h = option_help(name);
+  const std::string label = "--" + h.name + (h.placeholder.empty() ? "" : " " + h.placeholder);
+  return {label, h.full(extra), h.tail};
+}
+
 HelpEntry profile_entry(bool solvers) {
-  return {"--profile P",
-          "the indenter: parabola (f = r^2/2R, --R), cone (--beta, the angle of its surface to "
-          "the plane) or power (f = A r^n, --n --A); MDR image g(x) = kappa_n A |x|^n. " +
-              std::string(solvers ? "The cone and power profiles are solved by the spectrum "
-                                    "solver (auto picks it); the other solvers take the parabola "
-                                    "only. Their stationary states: mdrmap stationary. "
-                                  : "") +
-              "Default: parabola"};
+  return option_entry("profile", solvers ? "The cone and power profiles are solved by the "
+                                           "spectrum solver (auto picks it); the other solvers "
+                                           "take the parabola only. Their stationary states: "
+                                           "mdrmap stationary."
+                                         : "");
 }
 
 HelpEntry output_entry() {
@@ -157,44 +162,11 @@ HelpEntry output_entry() {
 }
 
 std::vector<HelpEntry> rheology_entries() {
-  const ParamSpec &g = branch_modulus_spec(), &t = branch_time_spec();
-  const std::string n = std::to_string(kMaxBranches);
-  return {
-      {"--material FILE",
-       "the material from an Abaqus card: *ELASTIC E, nu (MODULI=LONG TERM, the default, or "
-       "INSTANTANEOUS; G = E / (4 (1 - nu^2))), *VISCOELASTIC, TIME=PRONY rows g_i, k_i, tau_i "
-       "normalised by the instantaneous modulus G0 (G_i = g_i G0, G = G0 (1 - sum g_i); nonzero "
-       "bulk terms k_i are noted and ignored) and *TRS, DEFINITION=WLF Tref, C1, C2 (the WLF "
-       "constants of --T). Or pyvisco's Prony CSV (tau_i, alpha_i normalised by E_0 = 3 G0 or "
-       "G_0). Instead of --G, --prony, --prony-file and --wlf"},
-      {"--prony G1:TAU1,G2:TAU2,...",
-       "the Maxwell branches of a relaxation spectrum (Prony series): branch k is a spring of "
-       "modulus Gk (" +
-           std::string(dim_name(g.dim)) + "), " + g.allowed() +
-           ", in series with a dashpot of relaxation time tauk (" + dim_name(t.dim) + "), " +
-           t.allowed() + "; at most " + n +
-           " terms, absolute values in the units of --G and --tau. With a spectrum --G "
-           "(required) is the long-term (rubbery) modulus and --tau the parallel dashpot's time "
-           "(0: none); G(t) = G + sum Gk exp(-t / (aT tauk))"},
-      {"--prony-file FILE",
-       "the same terms from a CSV file whose header names its columns, in any order: tau and "
-       "one of G (shear moduli), E (Young's moduli, G = E / (4 (1 - nu^2))) or g (moduli "
-       "normalised by the instantaneous modulus, given by a line '# G0 = VALUE' or '# E0 = "
-       "VALUE'; then G = G0 (1 - sum g) and --G is not given). At most " +
-           n +
-           " terms; blank lines and other lines starting with # are skipped, a UTF-8 BOM is "
-           "read. A regular file of at most 1 MiB, lines of at most 4096 characters (a FIFO or a "
-           "device is refused). Give --prony or --prony-file, not both"},
-      {"--nu NU", "Poisson's ratio of a spectrum file's Young's moduli (column E or E0), -1 < NU "
-                  "<= 0.5. Default: 0.5 (G = E / 3)"},
-      {"--T TEMP", "temperature: with --wlf, gives the shift factor aT by the WLF equation "
-                   "(instead of --aT), a finite number > TREF - C2 with an optional unit, 25C "
-                   "or 298.15K (converted to TREF's unit; a bare number is in the other's unit)"},
-      {"--wlf C1:C2:TREF", "WLF constants of --T: log10 aT = -C1 (T - TREF) / (C2 + T - TREF), "
-                           "C1 > 0, C2 > 0 (a temperature difference), TREF the reference "
-                           "temperature (aT = 1) with an optional unit, e.g. 8.86:101.6:25C"},
-      {"--allow-large-shift", "take a shift of --T more than 12 decades from 1 (|log10 aT| > "
-                              "12), which is refused otherwise: most often a C/K mix-up"}};
+  std::vector<HelpEntry> e;
+  for (const char* name :
+       {"material", "prony", "prony-file", "nu", "T", "wlf", "allow-large-shift"})
+    e.push_back(option_entry(name));
+  return e;
 }
 
 } // namespace mdrmap::app

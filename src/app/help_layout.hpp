@@ -46,6 +46,10 @@ std::vector<HelpEntry> parameter_entries(Part part);
 /// alternatives "(--R R | --profile cone --beta DEG | ...)".
 std::string case_usage(bool history);
 
+/// The entry of a case option outside the table (case/option_help.hpp):
+/// "--NAME PLACEHOLDER", its text, `extra` (a sentence), its default, its tail.
+HelpEntry option_entry(const std::string& name, const std::string& extra = "");
+
 /// --profile, for simulate and stationary: the indenter profiles and their
 /// parameters; `solvers` adds which solvers take which profile.
 HelpEntry profile_entry(bool solvers);

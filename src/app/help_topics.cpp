@@ -13,6 +13,7 @@
 #include "mdrmap/version.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 struct Topic {

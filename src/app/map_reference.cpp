@@ -3,6 +3,7 @@
 // (study/case_columns.hpp), the rows of a case and the time series
 // (io::RowLayout, at fixed depth and under load), the other datasets and the
 // root attributes (io/case_row.hpp).
+#include <cctype>
 #include <string>
 #include <vector>
 
@@ -16,9 +17,23 @@
 namespace mdrmap::app {
 namespace {
 
+/// A table cell: '|' escaped, each option ("--profile") as code, which a
+/// browser neither breaks at its hyphens nor typesets as a dash.
 std::string cell(std::string s) {
   for (std::size_t i = s.find('|'); i != std::string::npos; i = s.find('|', i + 2))
     s.replace(i, 1, "\\|");
+  for (std::size_t i = s.find("--"); i != std::string::npos; i = s.find("--", i)) {
+    std::size_t end = i + 2;
+    while (end < s.size() && (std::isalnum(static_cast<unsigned char>(s[end])) || s[end] == '-'))
+      ++end;
+    if (end == i + 2) {
+      i = end;
+      continue;
+    }
+    s.insert(end, "`");
+    s.insert(i, "`");
+    i = end + 2;
+  }
   return s;
 }
 

@@ -5,12 +5,12 @@
 
 #include <boost/program_options.hpp>
 
-#include "app/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
-#include "app/simulation.hpp"
+#include "case/case_input.hpp"
+#include "case/simulation.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/solvers/result.hpp"
@@ -18,12 +18,13 @@
 namespace po = boost::program_options;
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr const char* kCommand = "simulate";
 
 /// Every option, in the order of the help text: those of a case
-/// (app/case_input.hpp, with the old spellings it takes), then --output.
+/// (case/case_input.hpp, with the old spellings it takes), then --output.
 std::vector<std::string> option_names() {
   std::vector<std::string> names = case_option_spellings();
   names.emplace_back("output");
@@ -60,58 +61,21 @@ int run(const SimulateArgs& a) {
 // --- Help ----------------------------------------------------------------------
 
 std::vector<HelpEntry> history_entries() {
-  const ParamSpec &w = segment_velocity_spec(), &T = segment_duration_spec();
   std::vector<HelpEntry> e = parameter_entries(Part::History);
-  e.push_back({"--v1 V1", "one step: the sliding velocity from t = 0 on (" +
-                              std::string(dim_name(w.dim)) + "), " + w.allowed() +
-                              "; 0 stops the indenter, V1 > V0 is a speed-up"});
-  e.push_back({"--t-end T", "with --v1: how long the step is followed (" +
-                                std::string(dim_name(T.dim)) + "), " + T.allowed() +
-                                ". Default: 6 tau (with a spectrum: 6 times the longest shifted "
-                                "time aT max(tau, tauk)); for a purely elastic foundation, 6 "
-                                "a1/min(V0,V1) (6 a1/V0 if V1 = 0), a0 in place of a1 under --F0"});
-  e.push_back({"--history W1:T1,W2:T2,...",
-               "segments one after another from t = 0: sliding velocity Wk (" +
-                   std::string(dim_name(w.dim)) + "), " + w.allowed() + ", 0 is a hold; " +
-                   "duration Tk (" + dim_name(T.dim) + "), " + T.allowed() + "; at most " +
-                   std::to_string(kMaxSegments) +
-                   " segments. --v1 V1 --t-end T is --history V1:T; give one of the two forms, "
-                   "not both"});
-  e.push_back({"--history-file FILE",
-               "a lab record as the history: CSV with a header naming the columns t (time) and "
-               "v (load-point velocity), in any order, other columns ignored; '#' comments and "
-               "blank lines allowed; t strictly increasing, v >= 0. V0 is the first row's v, "
-               "t = 0 the first row's time; a row's v holds until the next row's time, the last "
-               "row ends the record. The output rows are the record's rows, with columns v and "
-               "slip. Not with --v, --v1, --t-end, --history or the sampling options"});
+  for (const char* name : {"v1", "t-end", "history", "history-file"})
+    e.push_back(option_entry(name));
   return e;
 }
 
 std::vector<HelpEntry> output_entries() {
   std::vector<HelpEntry> e = parameter_entries(Part::Sampling);
-  e.push_back({"--spacing S",
-               "linear or log: where the N instants of a segment k (start t_k, duration T_k) lie. "
-               "Default: linear",
-               "                   linear  t_k + j T_k/(N-1), j = 0..N-1\n"
-               "                   log     t_k, then t_k + T_k 10^(-D (N-1-j)/(N-2)),\n"
-               "                           j = 1..N-1 (D = --log-decades): a long hold and\n"
-               "                           the transient at its start both resolved\n"});
+  e.push_back(option_entry("spacing"));
   e.push_back(output_entry());
   return e;
 }
 
 std::vector<HelpEntry> solver_entries() {
-  return {{"--rtol E", std::string("target accuracy: bound on the case error (see the output), ") +
-                           kRtolAllowed + ". Default: 1e-4"},
-          {"--solver S", "auto, exact, mdr, baseline or spectrum. Default: auto",
-           "                   exact     continuum (dx -> 0) solution, semi-analytic\n"
-           "                   mdr       discrete MDR element simulation, error control\n"
-           "                   baseline  the paper's brute-force method, for reference\n"
-           "                   spectrum  element row of any rheology (--prony), exact\n"
-           "                             exponential updates, error control\n"
-           "                   auto      the cheapest solver that meets rtol (exact at\n"
-           "                             fixed depth, the load solver under --F0,\n"
-           "                             spectrum with --prony or a cone or power profile)\n"}};
+  return {option_entry("rtol"), option_entry("solver")};
 }
 
 /// The options of simulate, in groups: the short help gives their labels,

@@ -1,5 +1,5 @@
 #include "app/stationary_cmd.hpp"
-#include "app/text.hpp"
+#include "case/text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,14 +12,14 @@
 
 #include <boost/program_options.hpp>
 
-#include "app/case_input.hpp"
 #include "app/cli_common.hpp"
 #include "app/csv_output.hpp"
 #include "app/exit_codes.hpp"
 #include "app/help_layout.hpp"
 #include "app/output_file.hpp"
-#include "app/prony_input.hpp"
-#include "app/stationary_input.hpp"
+#include "case/case_input.hpp"
+#include "case/prony_input.hpp"
+#include "case/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
@@ -28,6 +28,7 @@
 namespace po = boost::program_options;
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 constexpr const char* kCommand = "stationary";

@@ -2,7 +2,7 @@
 // `mdrmap stationary`: the stationary sliding states of one case (any
 // indenter profile, any rheology, at fixed depth or under load) at one or
 // more velocities, printed as CSV. The case is read as `mdrmap simulate`
-// reads it (app/case_input.hpp), without its history and sampling; the
+// reads it (case/case_input.hpp), without its history and sampling; the
 // states are core/metrics/stationary.hpp's.
 #include <string>
 #include <vector>

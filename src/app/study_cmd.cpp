@@ -24,6 +24,7 @@
 #include "study/runner.hpp"
 
 namespace mdrmap::app {
+using namespace mdrmap::cases; // the case library (src/case)
 namespace {
 
 namespace po = boost::program_options;

@@ -1,9 +1,9 @@
 // The extension module mdrmap._core: the C++ half of the Python package
 // `mdrmap` (src/python/mdrmap/__init__.py is the other). It takes the
 // options' values as Python gives them, numbers as doubles (never as texts;
-// app/option_value.hpp), and builds and checks the case with the command
-// line's checks and messages (app/case_input.hpp) and runs it as `mdrmap simulate` does
-// (app/simulation.hpp), without the GIL, looking at Ctrl-C and reporting progress now and then
+// case/option_value.hpp), and builds and checks the case with the command
+// line's checks and messages (case/case_input.hpp) and runs it as `mdrmap simulate` does
+// (case/simulation.hpp), without the GIL, looking at Ctrl-C and reporting progress now and then
 // (python/call.hpp); the time series are handed over as
 // numpy arrays that own the result's vectors (no copy). InvalidInput becomes
 // mdrmap.InvalidInput.
@@ -21,10 +21,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "app/case_input.hpp"
-#include "app/fit_problem.hpp"
-#include "app/simulation.hpp"
-#include "app/stationary_input.hpp"
+#include "case/case_input.hpp"
+#include "case/fit_problem.hpp"
+#include "case/option_help.hpp"
+#include "case/simulation.hpp"
+#include "case/stationary_input.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
@@ -75,26 +76,26 @@ void make_invalid_input_class(py::module_& m) {
 /// number: that double), a bool (a flag), a tuple of floats (wlf, v-list) or
 /// a list of pairs of floats (history, prony). The package has checked the
 /// types against the keyword; anything else here is its error.
-app::OptionValue to_value(const std::string& option, const py::handle& value) {
+cases::OptionValue to_value(const std::string& option, const py::handle& value) {
   if (py::isinstance<py::str>(value))
-    return app::OptionValue::of_text(py::cast<std::string>(value));
-  if (py::isinstance<py::bool_>(value)) return app::OptionValue::of_flag(py::cast<bool>(value));
+    return cases::OptionValue::of_text(py::cast<std::string>(value));
+  if (py::isinstance<py::bool_>(value)) return cases::OptionValue::of_flag(py::cast<bool>(value));
   if (py::isinstance<py::float_>(value))
-    return app::OptionValue::of_number(py::cast<double>(value));
+    return cases::OptionValue::of_number(py::cast<double>(value));
   if (py::isinstance<py::list>(value)) {
     std::vector<std::pair<double, double>> pairs;
     for (const py::handle item : value)
       pairs.push_back(py::cast<std::pair<double, double>>(item));
-    return app::OptionValue::of_pairs(std::move(pairs));
+    return cases::OptionValue::of_pairs(std::move(pairs));
   }
   if (py::isinstance<py::tuple>(value))
-    return app::OptionValue::of_numbers(py::cast<std::vector<double>>(value));
+    return cases::OptionValue::of_numbers(py::cast<std::vector<double>>(value));
   throw std::logic_error("mdrmap._core: the value of " + option + " is a " +
                          py::cast<std::string>(py::str(value.get_type())));
 }
 
-app::OptionValues to_values(const py::dict& options) {
-  app::OptionValues values;
+cases::OptionValues to_values(const py::dict& options) {
+  cases::OptionValues values;
   for (const auto& [key, value] : options) {
     const std::string option = py::cast<std::string>(key);
     values.emplace(option, to_value(option, value));
@@ -107,19 +108,19 @@ template <class T> py::array_t<T> view(const std::vector<T>& v, const py::capsul
   return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data(), owner);
 }
 
-py::dict fields(const std::vector<app::Field>& f) {
+py::dict fields(const std::vector<cases::Field>& f) {
   py::dict d;
   for (const auto& [name, value] : f)
     d[name] = value;
   return d;
 }
 
-py::list events(const app::SimulateRecord& rec) {
+py::list events(const cases::SimulateRecord& rec) {
   py::list out;
   for (std::size_t k = 0; k < rec.events.size(); ++k) {
     py::dict e;
     e["k"] = k;
-    for (const auto& [name, value] : app::event_fields(rec.events[k]))
+    for (const auto& [name, value] : cases::event_fields(rec.events[k]))
       e[name] = value;
     if (const char* why = rec.events[k].d_c_undefined) e["D_c_undefined"] = why; // (as the CSV)
     out.append(std::move(e));
@@ -128,7 +129,7 @@ py::list events(const app::SimulateRecord& rec) {
 }
 
 /// The `# mdrmap ...` line and the reference line of the CSV, as a dict.
-py::dict info(const app::SimulateRecord& rec) {
+py::dict info(const cases::SimulateRecord& rec) {
   const RunInfo& in = rec.info;
   py::dict d;
   d["version"] = rec.version;
@@ -188,10 +189,10 @@ py::dict case_dict(const Case& c) {
 
 /// The series as numpy arrays (t, segment, FN, Fx, mu, a2; d, a1 under
 /// load) that are views of its vectors: the capsule takes `sim` over.
-void series_views(py::dict& out, std::unique_ptr<app::Simulation> sim) {
+void series_views(py::dict& out, std::unique_ptr<cases::Simulation> sim) {
   const Series& s = sim->series;
   const bool load = sim->record.c.loading.by_force();
-  py::capsule owner(sim.get(), [](void* p) { delete static_cast<app::Simulation*>(p); });
+  py::capsule owner(sim.get(), [](void* p) { delete static_cast<cases::Simulation*>(p); });
   sim.release();
   out["t"] = view(s.t, owner);
   out["segment"] = view(s.segment, owner);
@@ -218,8 +219,8 @@ py::array_t<T> picked(const std::vector<T>& v, const std::vector<std::size_t>& r
 /// A lab record's run as the CLI's CSV gives it (csv_output.cpp): one row
 /// per record row, the series' columns at the row and the row's load-point
 /// velocity v and slip since t = 0.
-void record_rows(py::dict& out, const app::Simulation& sim, const app::LabRecord& r) {
-  std::vector<std::size_t> rows = app::record_rows(sim.record.c);
+void record_rows(py::dict& out, const cases::Simulation& sim, const cases::LabRecord& r) {
+  std::vector<std::size_t> rows = cases::record_rows(sim.record.c);
   rows.resize(std::min(rows.size(), r.v.size()));
   const Series& s = sim.series;
   out["t"] = picked(s.t, rows);
@@ -233,7 +234,7 @@ void record_rows(py::dict& out, const app::Simulation& sim, const app::LabRecord
     out["a1"] = picked(s.a1, rows);
   }
   std::vector<double> v(r.v.begin(), r.v.begin() + static_cast<std::ptrdiff_t>(rows.size()));
-  std::vector<double> slip = app::record_slip(r);
+  std::vector<double> slip = cases::record_slip(r);
   slip.resize(rows.size());
   out["v"] = py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
   out["slip"] = py::array_t<double>(static_cast<py::ssize_t>(slip.size()), slip.data());
@@ -243,20 +244,20 @@ void record_rows(py::dict& out, const app::Simulation& sim, const app::LabRecord
 /// arrays and the records. A lab record's run (history-file) has one row
 /// per record row (and its v and slip), as the CLI's CSV.
 py::dict simulate(const py::dict& options, const py::object& progress) {
-  const app::OptionValues values = to_values(options);
-  auto sim = std::make_unique<app::Simulation>();
-  std::optional<app::LabRecord> record;
+  const cases::OptionValues values = to_values(options);
+  auto sim = std::make_unique<cases::Simulation>();
+  std::optional<cases::LabRecord> record;
   run_call( // (the input reads a spectrum file)
       [&](const RunControl& control) {
-        const app::CaseInput in = app::read_case_input(values);
+        const cases::CaseInput in = cases::read_case_input(values);
         record = in.record;
-        *sim = app::simulate(in, control);
+        *sim = cases::simulate(in, control);
       },
       progress);
   py::dict out;
   out["events"] = events(sim->record);
   const bool load = sim->record.c.loading.by_force();
-  out["pre"] = fields(app::state_fields(sim->series.pre, load));
+  out["pre"] = fields(cases::state_fields(sim->series.pre, load));
   out["info"] = info(sim->record);
   out["case"] = case_dict(sim->record.c);
   const Scales sc = scales(sim->record.c);
@@ -276,18 +277,18 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
 py::dict fit(const py::dict& options, const std::vector<std::string>& data,
              const std::vector<std::string>& free, const std::vector<std::string>& bounds,
              const std::string& starts, unsigned threads) {
-  app::FitSpec spec;
-  spec.texts = app::as_texts(to_values(options)); // (each number's text reads back to it)
+  cases::FitSpec spec;
+  spec.texts = cases::as_texts(to_values(options)); // (each number's text reads back to it)
   spec.data = data;
   spec.free = free;
   spec.bounds = bounds;
   spec.starts = starts;
-  std::unique_ptr<app::FitProblem> p;
+  std::unique_ptr<cases::FitProblem> p;
   fit::Result r;
   run_call(
       [&](const RunControl&) {
-        p = std::make_unique<app::FitProblem>(spec);
-        app::ThreadEvaluator ev(*p, threads);
+        p = std::make_unique<cases::FitProblem>(spec);
+        cases::ThreadEvaluator ev(*p, threads);
         r = fit::fit(p->parameters(), ev, p->options());
       },
       py::none());
@@ -322,26 +323,26 @@ py::dict fit(const py::dict& options, const std::vector<std::string>& data,
 /// them: `options` its options (the case's, and v or v-list), the result
 /// {"v": velocities, FN, Fx, mu, a2 (d, a1 under load): arrays}.
 py::dict stationary(const py::dict& options, const py::object& progress) {
-  const app::OptionValues values = to_values(options);
-  app::StationaryInput in;
+  const cases::OptionValues values = to_values(options);
+  cases::StationaryInput in;
   std::vector<State> states;
   run_call( // a spectrum file, quadratures
       [&](const RunControl& control) {
-        in = app::read_stationary_input(values);
-        states = app::stationary_states(in, control);
+        in = cases::read_stationary_input(values);
+        states = cases::stationary_states(in, control);
       },
       progress);
   const bool load = in.in.c.loading.by_force();
   py::dict out;
   out["v"] =
       py::array_t<double>(static_cast<py::ssize_t>(in.velocities.size()), in.velocities.data());
-  const std::size_t n = app::state_fields(State{}, load).size();
+  const std::size_t n = cases::state_fields(State{}, load).size();
   for (std::size_t j = 0; j < n; ++j) {
     py::array_t<double> a(static_cast<py::ssize_t>(states.size()));
     auto x = a.mutable_unchecked<1>();
     for (std::size_t k = 0; k < states.size(); ++k)
-      x(static_cast<py::ssize_t>(k)) = app::state_fields(states[k], load)[j].second;
-    out[app::state_fields(State{}, load)[j].first] = a;
+      x(static_cast<py::ssize_t>(k)) = cases::state_fields(states[k], load)[j].second;
+    out[cases::state_fields(State{}, load)[j].first] = a;
   }
   return out;
 }
@@ -356,9 +357,9 @@ py::dict read_part(const py::dict& options, const std::string& part) {
                      : part == "material" ? Part::Material
                      : part == "history"  ? Part::History
                                           : throw std::logic_error("read_part: " + part);
-  const app::OptionValues values = to_values(options);
-  app::CaseInput in;
-  run_call([&](const RunControl&) { in = app::read_case_part(values, which); }, // (files)
+  const cases::OptionValues values = to_values(options);
+  cases::CaseInput in;
+  run_call([&](const RunControl&) { in = cases::read_case_part(values, which); }, // (files)
            py::none());
   const Case& c = in.c;
   py::dict d;
@@ -372,7 +373,7 @@ py::dict read_part(const py::dict& options, const std::string& part) {
       prony.append(py::make_tuple(b.G, b.tau));
     d["prony"] = prony;
     if (in.temperature) {
-      const app::TemperatureInput& t = *in.temperature;
+      const cases::TemperatureInput& t = *in.temperature;
       d["temperature"] = t.T;
       d["wlf"] = py::make_tuple(t.wlf.C1, t.wlf.C2, t.wlf.Tref);
       d["unit"] = unit_suffix(t.unit);
@@ -416,8 +417,22 @@ py::list parameter_table() {
     d["default"] =
         p.required || p.one_of ? py::object(py::none()) : py::object(py::float_(p.fallback));
     d["sampling"] = p.part == Part::Sampling;
-    d["help"] = app::parameter_help_text(p);
+    d["help"] = cases::parameter_help_text(p);
     out.append(std::move(d));
+  }
+  return out;
+}
+
+/// The help of the case options outside the table (case/option_help.hpp),
+/// {name: {placeholder, text, default}} in the command line's words.
+py::dict option_help_table() {
+  py::dict out;
+  for (const cases::OptionHelp& h : cases::case_option_help()) {
+    py::dict d;
+    d["placeholder"] = h.placeholder;
+    d["text"] = h.text;
+    d["default"] = h.fallback.empty() ? py::object(py::none()) : py::object(py::str(h.fallback));
+    out[py::str(h.name)] = std::move(d);
   }
   return out;
 }
@@ -446,7 +461,7 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator(&translate);
   m.attr("__version__") = mdrmap::kVersion;
   m.attr("commit") = mdrmap::kGitCommit;
-  m.def("option_names", &mdrmap::app::case_option_names,
+  m.def("option_names", &mdrmap::cases::case_option_names,
         "The options of a case, as the CLI spells them, in the order of its help.");
   m.def("simulate", &simulate, py::arg("options"), py::arg("progress") = py::none(),
         "Runs one case from {option: value}; a dict of numpy arrays and records.");
@@ -456,9 +471,11 @@ PYBIND11_MODULE(_core, m) {
         "The stationary states at v or v-list of a case given as {option: value}.");
   m.def("read_part", &read_part, py::arg("options"), py::arg("part"),
         "One part (indenter, material, history) of a case from {option: value}, checked.");
-  m.def("material_file_option", &mdrmap::app::material_file_option, py::arg("path"),
+  m.def("material_file_option", &mdrmap::cases::material_file_option, py::arg("path"),
         "The option a material file goes under: material (a card) or prony-file.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
+  m.def("option_help", &option_help_table,
+        "The help of the case options outside the table, {name: {placeholder, text, default}}.");
   m.def("parameter_aliases", &alias_table,
         "The old spellings of the table's parameters, {alias: name} (FN: F0).");
 }

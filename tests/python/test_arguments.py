@@ -2,6 +2,8 @@
 velocities (the CLI's --v-list), wlf as a tuple (as prony takes pairs),
 temperature= (T= its old spelling), and help() listing every keyword of the
 parameter table and of the command line."""
+import os
+import re
 import subprocess
 
 import numpy as np
@@ -81,9 +83,36 @@ def test_help_documents_every_parameter():
     assert {"v", "d", "F0", "R", "tau", "G", "aT", "beta", "n", "A", "profile", "prony",
             "prony_file", "temperature", "wlf", "progress"} <= set(st)
     assert "(undocumented)" not in mdrmap.stationary.__doc__
-    for p in _core.parameter_table():  # the table's own words
-        doc = mdrmap.simulate.__doc__.replace("\n", " ")
-        assert " ".join(p["meaning"].split()[:4]) in " ".join(doc.split())
+    doc = " ".join(mdrmap.simulate.__doc__.split())
+    for p in _core.parameter_table():  # the table's own words, --OPTION as its keyword
+        assert python_words(" ".join(p["meaning"].split()[:4])) in doc
+
+
+def python_words(text):
+    """The CLI's words with keywords for its options: --prony-file as prony_file."""
+    def keyword(m):
+        return "temperature" if m.group(1) == "T" else m.group(1).replace("-", "_")
+    return re.sub(r"--([A-Za-z][A-Za-z0-9-]*)", keyword, text)
+
+
+def test_option_texts_come_from_the_command_line_help():
+    """One text an option (issue 34): the keywords outside the table are
+    documented in the words of the CLI's help (_core.option_help), their
+    default included; only the value's Python form is written in Python."""
+    help_ = _core.option_help()
+    assert {"prony", "history", "rtol", "solver", "spacing", "wlf", "T"} <= set(help_)
+    doc = " ".join(mdrmap.simulate.__doc__.split())
+    cli = subprocess.run([os.environ["MDRMAP_EXE"], "simulate", "--help-all"], check=True,
+                         capture_output=True, text=True).stdout
+    cli = " ".join(cli.split())
+    for name, h in help_.items():
+        words = " ".join(h["text"].split()[:6])
+        assert words in cli, name  # the CLI's help says it ...
+        assert " ".join(python_words(h["text"]).split()[:6]) in doc, name  # ... and Python
+        if h["default"] is not None:
+            assert "Default: " + h["default"] in cli, name
+    assert '[(G1, tau1), (G2, tau2), ...] (or "G1:TAU1,G2:TAU2,..."): the Maxwell' in doc
+    assert "with prony: no parallel dashpot" in doc and "--" not in doc
 
 
 def test_prony_file_columns_by_name(tmp_path):

@@ -77,7 +77,7 @@ struct Sampling {
   long samples = 201;
   Spacing spacing = Spacing::Linear;
   double decades = 4.0; ///< log spacing: the first offset after 0 is T 10^-decades
-  /// Explicit instants (a lab record's times, app/lab_record.hpp): per
+  /// Explicit instants (a lab record's times, case/lab_record.hpp): per
   /// segment, the times since its start, from 0 to its duration T strictly
   /// increasing (validate() checks). Empty: `samples` instants per segment,
   /// spaced as above.

@@ -1,8 +1,8 @@
 """mdrmap from Python: the solvers, the events and the maps.
 
     import mdrmap
-    r = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5)          # one step
-    r = mdrmap.simulate(F0=0.1, R=10, tau=1, v=1,                  # load control
+    r = mdrmap.simulate(d=0.1, R=10, tau=1, v=2, v1=0.5)     # one step
+    r = mdrmap.simulate(F0=0.1, R=10, tau=1, v=1,             # load control
                         history=[(0.1, 20), (1, 20)], samples=101)
     r.t, r.mu, r.FN, r.Fx, r.a2        # numpy arrays (r.d, r.a1 under load)
                                        # (FN: the measured normal force)
@@ -11,11 +11,11 @@
 The keyword arguments are `mdrmap simulate`'s options (mdrmap.parameters()
 lists those of the parameter table: the loading d or F0, the indenter's R,
 beta, n, A, the material's tau, G, aT, the velocity v and the sampling),
-with '_' for '-' (t_end, log_decades), and the same checks and messages: bad input raises
-InvalidInput (a ValueError) naming the option. Numbers are given as Python
-or numpy numbers, which reach the solvers as those doubles (or as the text
-the command line takes); a value of the wrong type raises InvalidType (an
-InvalidInput and a TypeError); the history as a list of
+with '_' for '-' (t_end, log_decades), and the same checks and messages:
+bad input raises InvalidInput (a ValueError) naming the option. Numbers are
+given as Python or numpy numbers, which reach the solvers as those doubles
+(or as the text the command line takes); a value of the wrong type raises
+InvalidType (an InvalidInput and a TypeError); the history as a list of
 (w, T) pairs (or "W1:T1,W2:T2"), a spectrum as prony=[(G, tau), ...], the
 WLF constants as wlf=(C1, C2, TREF) with temperature= (T= its old spelling).
 FN= is accepted as the old spelling of the prescribed load F0= (not both).
@@ -264,11 +264,11 @@ stationary.__doc__ = _doc.docstring(
 
 def parameters():
     """The parameter table, one dict per parameter in the table's order
-    (`mdrmap simulate --help-all` groups them by part): name (option), keyword, symbol, unit, range,
-    meaning, required, one_of (group or None), profile (the indenter profile
-    it belongs to, for which alone it is required, or None: every profile),
-    default (None if required or in a group), sampling (a sampling parameter)
-    and help (the CLI's text)."""
+    (`mdrmap simulate --help-all` groups them by part): name (option),
+    keyword, symbol, unit, range, meaning, required, one_of (group or
+    None), profile (the indenter profile it belongs to, for which alone it
+    is required, or None: every profile), default (None if required or in a
+    group), sampling (a sampling parameter) and help (the CLI's text)."""
     out = []
     for p in _TABLE:
         q = dict(p)

@@ -1,57 +1,25 @@
 """The docstrings of mdrmap.simulate and mdrmap.stationary, generated from
-the parameter table (_core.parameter_table: meaning, unit, range, default)
-and the command line's option list (_core.option_names), so that they list
-every keyword the calls take (tests/python/test_arguments.py checks it)."""
+the parameter table (_core.parameter_table: meaning, unit, range, default),
+the help of the other options (_core.option_help: the command line's texts,
+in Python's words) and the command line's option list (_core.option_names),
+so that they list every keyword the calls take
+(tests/python/test_arguments.py checks it)."""
+import re
 import textwrap
 
-# the options that are not parameters of the table, as the keywords take them
-OTHER = {
-    "profile": 'the indenter: "parabola" (the default; R), "cone" (beta) or '
-               '"power" (n, A)',
-    "prony": "a relaxation spectrum, the Maxwell branches beside G: [(G1, tau1), "
-             '(G2, tau2), ...] (or "G1:TAU1,G2:TAU2,..."), at most 32 terms; with a '
-             "spectrum G (required) is the rubbery modulus and tau the parallel dashpot's time "
-             "(0: none)",
-    "prony-file": "the spectrum from a CSV file (a str or a path): a header naming "
-                  "the columns, tau and one of G (shear moduli), E (Young's moduli) or g "
-                  "(normalised by a line '# G0 = VALUE', then G = G0 (1 - sum g)), then "
-                  "one term per line; not with prony",
+from . import _core
+
+# the value of an option where Python takes another than the command line's
+# text (which it also takes): "VALUE: " before the option's text
+PYTHON_VALUE = {
+    "prony": '[(G1, tau1), (G2, tau2), ...] (or "G1:TAU1,G2:TAU2,...")',
+    "prony-file": "a file (a str or a path)",
     "material": "a mdrmap.Material (its keywords: G, tau, prony, aT, temperature, ...), "
-                "or the material from an Abaqus card (a str or a path): *ELASTIC E, nu, "
-                "*VISCOELASTIC, TIME=PRONY g_i, k_i, tau_i and *TRS, DEFINITION=WLF "
-                "Tref, C1, C2; instead of G, prony, prony_file and wlf",
-    "nu": "Poisson's ratio of a spectrum file's Young's moduli (column E): "
-          "G = E / (4 (1 - nu^2)), -1 < nu <= 0.5, default 0.5",
-    "T": "the temperature: with wlf, gives the shift factor aT by the WLF equation "
-         "(instead of aT); a finite number > TREF - C2, with an optional unit "
-         '("25C", "298.15K"; converted to TREF\'s unit; a bare number is in the '
-         "other's unit). A shift of more than 12 decades is refused unless "
-         "allow_large_shift=True. T= is accepted as its old spelling",
-    "allow-large-shift": "True: take a temperature's WLF shift of more than 12 "
-                         "decades from 1 (refused otherwise: most often a C/K mix-up)",
-    "wlf": "the WLF constants of temperature, (C1, C2, TREF) (or "
-           '"C1:C2:TREF"): log10 aT = -C1 (T - TREF) / (C2 + T - TREF), C1 > 0, '
-           "C2 > 0, TREF the reference temperature (aT = 1), with an optional unit "
-           '(8.86, 101.6, "25C")',
-    "v1": "one step: the sliding velocity from t = 0 on (length/time), >= 0; "
-          "0 stops the indenter",
-    "t-end": "with v1: how long the step is followed (time), > 0; default 6 tau "
-             "(with a spectrum 6 aT max(tau, tauk))",
-    "history": "a mdrmap.History, or segments one after another from t = 0: "
-               "[(w1, T1), (w2, T2), ...] "
-               '(or "W1:T1,W2:T2,..."), velocity wk >= 0 (0: a hold) for the '
-               "duration Tk > 0; give v1 or history",
-    "history-file": "a lab record (a str or a path): CSV with a header naming the "
-                    "columns t and v (the load-point velocity), other columns ignored; "
-                    "v0 is the first row's v, t = 0 the first row's time, a segment "
-                    "starts at each change of v and the samples are at the rows' "
-                    "times (each segment's end too, the instant of the next one's "
-                    "start); not with v, v1, t_end, history or the sampling",
-    "spacing": '"linear" (the default) or "log" (log_decades): where the samples '
-               "of a segment lie",
-    "rtol": "target accuracy: bound on the case error, in (0, 0.1]; default 1e-4",
-    "solver": '"auto" (the default: the cheapest that meets rtol), "exact", "mdr", '
-              '"baseline" or "spectrum"',
+                "or a file (a str or a path)",
+    "wlf": '(C1, C2, TREF) (or "C1:C2:TREF")',
+    "allow-large-shift": "True",
+    "history": 'a mdrmap.History, or [(w1, T1), (w2, T2), ...] (or "W1:T1,W2:T2,...")',
+    "history-file": "a file (a str or a path)",
 }
 # the parts of a case as objects (mdrmap.parts), keywords beside the options
 PARTS = [("indenter", "a mdrmap.Indenter: the profile and its parameters (instead of profile, "
@@ -70,6 +38,27 @@ def keyword(option):
     return KEYWORD.get(option, option.replace("-", "_"))
 
 
+def _python_words(text):
+    """The command line's text with keywords for its options (--T: temperature)."""
+    return re.sub(r"--([A-Za-z][A-Za-z0-9-]*)", lambda m: keyword(m.group(1)), text)
+
+
+def _option_text(option):
+    """The text of an option outside the table, from the command line's
+    (_core.option_help), in Python's words."""
+    h = _core.option_help().get(option)
+    if h is None:
+        return UNDOCUMENTED
+    text = _python_words(h["text"])
+    if option in PYTHON_VALUE:
+        text = f"{PYTHON_VALUE[option]}: {text}"
+    if h["default"] is not None:
+        text += f". Default: {_python_words(h['default'])}"
+    if option in KEYWORD:  # temperature for T
+        text += f"; {option}= is accepted as its old spelling"
+    return text
+
+
 def _table_text(p, table, aliases):
     if p["required"]:
         need = "required"
@@ -78,7 +67,7 @@ def _table_text(p, table, aliases):
                                             if q["one_of"] == p["one_of"])
     else:
         need = f"default {p['default']:g}"
-    text = f"{p['meaning']} ({p['unit']}; {p['range']}; {need})"
+    text = f"{_python_words(p['meaning'])} ({p['unit']}; {p['range']}; {need})"
     old = [a for a, name in aliases.items() if name == p["name"]]
     return text + "".join(f"; {a}= is accepted as its old spelling" for a in old)
 
@@ -91,7 +80,7 @@ def entries(options, table, aliases):
         if o in params:
             out.append((keyword(o), _table_text(params[o], table, aliases)))
         else:
-            out.append((keyword(o), OTHER.get(o, UNDOCUMENTED)))
+            out.append((keyword(o), _option_text(o)))
     return out
 
 
@@ -104,5 +93,5 @@ def keyword_list(items, width=79):
 
 
 def docstring(head, items, tail):
-    return f"{head}\n\nKeyword arguments (generated from the parameter table):\n" \
-           f"{keyword_list(items)}\n\n{tail}"
+    return f"{head}\n\nKeyword arguments (from the parameter table and the command line's " \
+           f"help):\n{keyword_list(items)}\n\n{tail}"

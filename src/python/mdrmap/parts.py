@@ -125,9 +125,9 @@ class Material(_Part):
 class Indenter(_Part):
     """The rigid indenter.
 
-    Indenter(R=10)                     the parabola f(r) = r^2 / 2R (the default profile)
-    Indenter("cone", beta=10)          a cone, beta degrees between its surface and the plane
-    Indenter("power", n=3, A=0.5)      a power law f(r) = A r^n
+    Indenter(R=10)                  the parabola f(r) = r^2 / 2R (the default)
+    Indenter("cone", beta=10)       a cone, beta degrees between surface and plane
+    Indenter("power", n=3, A=0.5)   a power law f(r) = A r^n
 
     Attributes: profile and its parameters (R; beta; n, A).
     """

@@ -1,4 +1,4 @@
-#include "app/lab_record.hpp"
+#include "case/lab_record.hpp"
 
 #include <sys/stat.h>
 
@@ -9,10 +9,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "app/case_input.hpp"
-#include "app/text.hpp"
+#include "case/case_input.hpp"
+#include "case/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 namespace {
 
 const char* const kOption = "history-file";
@@ -185,4 +185,4 @@ std::vector<double> record_slip(const LabRecord& r) {
   return slip;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -1,4 +1,4 @@
-#include "app/stationary_input.hpp"
+#include "case/stationary_input.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "app/csv_output.hpp"
-#include "app/text.hpp"
+#include "case/text.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 std::string velocity_count_text() {
   return "at most " + std::to_string(kMaxVelocities) + " velocities";
@@ -201,4 +200,4 @@ std::vector<State> stationary_states(const StationaryInput& a, const RunControl&
   return states;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -1,6 +1,6 @@
 #pragma once
 // The problem of `mdrmap fit` (and of mdrmap.fit in Python): lab records
-// (app/lab_record.hpp) with measured columns, the case options as for
+// (case/lab_record.hpp) with measured columns, the case options as for
 // simulate without its history (each record is one scene's history), the
 // free parameters and their bounds. Checks it all once, up front, with one
 // InvalidInput naming the option (or the file and line) at fault; then
@@ -23,11 +23,11 @@
 #include <utility>
 #include <vector>
 
-#include "app/case_input.hpp"
-#include "app/lab_record.hpp"
+#include "case/case_input.hpp"
+#include "case/lab_record.hpp"
 #include "fit/least_squares.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 inline constexpr double kStepPerRtol = 100.0;
 
@@ -113,4 +113,4 @@ private:
   unsigned threads_;
 };
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

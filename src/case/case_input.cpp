@@ -1,5 +1,5 @@
-#include "app/case_input.hpp"
-#include "app/text.hpp"
+#include "case/case_input.hpp"
+#include "case/text.hpp"
 #include "material/card.hpp"
 #include "material/prony_file.hpp"
 #include "material/pyvisco.hpp"
@@ -15,11 +15,11 @@
 #include <optional>
 #include <stdexcept>
 
-#include "app/prony_input.hpp"
+#include "case/prony_input.hpp"
 #include "core/model/row_limits.hpp"
 #include "core/model/scales.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 using material::is_pyvisco_csv;
 using material::MaterialCard;
@@ -705,4 +705,4 @@ std::string describe(const ParamSpec& p) {
   return std::string(p.meaning) + " (" + dim_name(p.dim) + "), " + p.allowed();
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

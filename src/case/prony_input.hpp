@@ -10,7 +10,7 @@
 
 #include "core/model/rheology.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 /// "G1:TAU1,G2:TAU2,...": 1 to kMaxBranches terms, each a modulus and a time,
 /// both finite and > 0. Throws InvalidInput("prony").
@@ -24,4 +24,4 @@ std::vector<Branch> prony_of_pairs(const std::vector<std::pair<double, double>>&
 /// line prints; parse_prony reads it back to the same branches).
 std::string format_prony(const std::vector<Branch>& branches);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

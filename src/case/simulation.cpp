@@ -1,4 +1,4 @@
-#include "app/simulation.hpp"
+#include "case/simulation.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include "core/solvers/dispatch.hpp"
 #include "mdrmap/version.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 namespace {
 
 constexpr double kExactReferenceRtol = 1e-12;
@@ -97,4 +97,4 @@ std::vector<Field> state_fields(const State& s, bool load) {
   return f;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -1,17 +1,17 @@
 #pragma once
 // The input of `mdrmap stationary` (and of mdrmap.stationary in Python): the
-// case as simulate reads it (app/case_input.hpp) without its history and
+// case as simulate reads it (case/case_input.hpp) without its history and
 // sampling, and its velocities from --v, --v-list or --v-range, with the
 // command line's checks and messages; and the states at those velocities
 // (core/metrics/stationary.hpp).
 #include <string>
 #include <vector>
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 #include "core/model/state.hpp"
 #include "core/solvers/run_control.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 /// Velocities of one run at most: every state is computed before any is written.
 inline constexpr long kMaxVelocities = 1'000'000;
@@ -41,4 +41,4 @@ StationaryInput read_stationary_input(OptionValues values);
 std::vector<State> stationary_states(const StationaryInput& a,
                                      const RunControl& control = RunControl{});
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -1,9 +1,9 @@
-#include "app/option_value.hpp"
+#include "case/option_value.hpp"
 
 #include <charconv>
 #include <system_error>
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 std::string shortest(double x) {
   char buf[32];
@@ -40,4 +40,4 @@ std::map<std::string, std::string> as_texts(const OptionValues& values) {
   return out;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

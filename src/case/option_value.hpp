@@ -4,13 +4,13 @@
 // itself: a number, a list of pairs (history W:T, prony G:TAU), a list of
 // numbers (wlf C1, C2, TREF; stationary's v-list), a flag. A number given as
 // a number reaches the case as that double, never through a text; the
-// checks and messages are those of the text's number (app/case_input.hpp).
+// checks and messages are those of the text's number (case/case_input.hpp).
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 struct OptionValue {
   enum class Kind { Text, Number, Pairs, Numbers, Flag };
@@ -74,4 +74,4 @@ std::map<std::string, std::string> as_texts(const OptionValues& values);
 /// message quotes it: 0.1, not 0.10000000000000001).
 std::string shortest(double x);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

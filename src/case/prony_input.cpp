@@ -1,5 +1,5 @@
-#include "app/prony_input.hpp"
-#include "app/text.hpp"
+#include "case/prony_input.hpp"
+#include "case/text.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,11 +11,11 @@
 #include <cstring>
 #include <sstream>
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 namespace {
 
 /// One value of term k (1-based): `spec` is the branch's modulus or time;
@@ -106,4 +106,4 @@ std::string format_prony(const std::vector<Branch>& branches) {
   return s;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -19,7 +19,7 @@
 
 #include "core/model/case.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 /// The rows of a lab record, as read.
 struct LabRecord {
@@ -56,4 +56,4 @@ std::vector<std::size_t> record_rows(const Case& c);
 /// The load-point slip since t = 0 at each row of the record.
 std::vector<double> record_slip(const LabRecord& r);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -1,4 +1,4 @@
-#include "app/fit_problem.hpp"
+#include "case/fit_problem.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -8,13 +8,13 @@
 #include <sstream>
 #include <thread>
 
-#include "app/text.hpp"
+#include "case/text.hpp"
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/run_control.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 namespace {
 
 constexpr long kMaxStarts = 25;
@@ -428,4 +428,4 @@ ThreadEvaluator::evaluate(const std::vector<std::vector<double>>& points) {
   return out;
 }
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

@@ -10,14 +10,14 @@
 #include <utility>
 #include <vector>
 
-#include "app/case_input.hpp"
+#include "case/case_input.hpp"
 #include "core/metrics/events.hpp"
 #include "core/model/case.hpp"
 #include "core/model/state.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/run_control.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 /// Everything the comment lines report besides the series itself.
 struct SimulateRecord {
@@ -57,4 +57,4 @@ std::vector<Field> event_fields(const EventMetrics& e);
 /// The fields of the `# pre` line: FN, Fx, mu, a2; under load also d, a1.
 std::vector<Field> state_fields(const State& s, bool load);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases

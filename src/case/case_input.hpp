@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/lab_record.hpp"
-#include "app/option_value.hpp"
+#include "case/lab_record.hpp"
+#include "case/option_value.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
@@ -22,7 +22,7 @@
 #include "core/solvers/dispatch.hpp"
 #include "material/text.hpp"
 
-namespace mdrmap::app {
+namespace mdrmap::cases {
 
 inline constexpr double kDefaultRtol = 1e-4;
 
@@ -62,7 +62,7 @@ std::vector<std::string> case_option_spellings();
 /// parameter are refused (option ""). Throws InvalidInput.
 CaseInput read_case_input(const OptionTexts& texts);
 
-/// read_case_input of typed values (app/option_value.hpp): a number given as
+/// read_case_input of typed values (case/option_value.hpp): a number given as
 /// a number is that double (a count must be whole), pairs are the history's
 /// segments or the spectrum's terms, three numbers the WLF constants, a flag
 /// allow-large-shift; a text is read as the command line reads it. The
@@ -106,4 +106,4 @@ std::string parameter_help_text(const ParamSpec& p);
 /// What the table says about a parameter: "meaning (unit), allowed range".
 std::string describe(const ParamSpec& p);
 
-} // namespace mdrmap::app
+} // namespace mdrmap::cases
