@@ -257,7 +257,7 @@ TEST(Fit, ACardsSpectrumIsFreeAsItsExplicitOptions) {
   }
   OptionTexts read = truth;
   read["history-file"] = data.front();
-  const auto in = mdrmap::app::read_case_input(read);
+  const auto in = mdrmap::cases::read_case_input(read);
   FitSpec explicit_spec = spec;
   explicit_spec.texts.erase("material");
   explicit_spec.texts["G"] = num(in.c.rheology.G);
