@@ -93,6 +93,9 @@ def pages(srcdir):
     docs = os.path.join(srcdir, "docs")
     found = [os.path.join(srcdir, "README.md"), os.path.join(srcdir, "jobs", "README.md")]
     found += sorted(os.path.join(docs, p) for p in os.listdir(docs) if p.endswith(".md"))
+    design = os.path.join(docs, "design")  # the design notes' pages
+    if os.path.isdir(design):
+        found += sorted(os.path.join(design, p) for p in os.listdir(design) if p.endswith(".md"))
     return [p for p in found if os.path.isfile(p)]
 
 
