@@ -1496,6 +1496,41 @@ TEST(cli, MaterialReadsPyviscoCsv) {
   }
 }
 
+// Issue 33, "Done when" 1: one material as an Abaqus card (g_i normalised by
+// the instantaneous E = 15, nu = 0.5), as pyvisco's CSV (alpha_i, E_0), as a
+// Prony file of normalised g with its G0, and as --G and --prony with the
+// G the card gives (5 (1 - 0.8) = 0.99999999999999978): the same case line
+// and the same rows, bit for bit.
+TEST(cli, CardPyviscoPronyFileAndOptionsGiveIdenticalOutput) {
+  TempDir dir;
+  const auto file = [&](const char* name, const std::string& text) {
+    write_file(dir.path() / name, text);
+    return (dir.path() / name).string();
+  };
+  const std::vector<std::string> base = {"simulate", "--d",       "0.1", "--R",    "10",
+                                         "--tau",    "0",         "--v", "1",      "--v1",
+                                         "0.1",      "--samples", "5",   "--rtol", "1e-4"};
+  const std::vector<std::vector<std::string>> forms = {
+      {"--material", file("c.inp", "*Material, name=R\n*Elastic, moduli=INSTANTANEOUS\n15., "
+                                   "0.5\n*Viscoelastic, time=PRONY\n0.2, 0., 0.5\n0.6, 0., 20.\n")},
+      {"--material", file("p.csv", "tau_i,alpha_i,E_0\ns,-,MPa\n0.5,0.2,15\n20,0.6,15\n")},
+      {"--prony-file", file("g.csv", "# G0 = 5\ng,tau\n0.2,0.5\n0.6,20\n")},
+      {"--G", "0.99999999999999978", "--prony", "1:0.5,3:20"}};
+  // the output less its first line (the solver's wall time)
+  const auto rows = [](const std::string& out) { return out.substr(out.find('\n') + 1); };
+  std::string first;
+  for (const auto& form : forms) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), form.begin(), form.end());
+    const Outcome r = run_mdrmap(args);
+    ASSERT_EQ(r.code, 0) << form[0] << ": " << r.err;
+    EXPECT_NE(r.out.find("G=0.99999999999999978 v=1 prony=1:0.5,3:20 "), std::string::npos)
+        << form[0] << ": " << r.out;
+    if (first.empty()) first = rows(r.out);
+    EXPECT_EQ(rows(r.out), first) << form[0];
+  }
+}
+
 // Issue 33: temperatures with units. C and K are converted into TREF's unit
 // (C2 is a difference); a bare number is in the other's unit (today's
 // meaning); a shift of more than 12 decades is refused naming --T unless
