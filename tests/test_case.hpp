@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "core/model/case.hpp"
-#include "core/solvers/mdr.hpp"
+#include "core/solvers/spectrum.hpp"
 
 namespace mdrmap::testing {
 
@@ -60,27 +62,20 @@ inline double observed_order(const std::vector<double>& cells, const std::vector
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-/// Prints the errors of an mdr read-out over `cells` and asserts what it
-/// promises: the paper's raw sums first order, the linear gap second order,
-/// the default piecewise read-out at rounding (errors <= `rounding`).
-inline void expect_readout_order(MdrSubgrid mode, const std::vector<double>& cells,
-                                 const std::vector<double>& err, double rounding) {
-  const char* name = mode == MdrSubgrid::None     ? "raw sums"
-                     : mode == MdrSubgrid::Linear ? "linear gap"
-                                                  : "piecewise";
-  std::printf("[ info ] %-10s errors:", name);
-  for (double e : err)
-    std::printf(" %.2e", e);
-  if (mode == MdrSubgrid::Piecewise) {
-    std::printf("  (rounding)\n");
-    for (double e : err)
-      EXPECT_LE(e, rounding);
-    return;
+/// The element row (row) at rtol, or nothing where it abandons the case: its
+/// error contract is a result within rtol or CaseAbandoned. An abandoned case
+/// is printed with `what` and counted in `abandoned`.
+inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
+                                                 const std::string& what, int& abandoned) {
+  SpectrumOptions o;
+  o.rtol = rtol;
+  try {
+    return run_spectrum(c, o);
+  } catch (const CaseAbandoned& e) {
+    ++abandoned;
+    std::printf("[ info ] abandoned at rtol %.0e: %s (%s)\n", rtol, what.c_str(), e.what());
+    return std::nullopt;
   }
-  const double order = observed_order(cells, err);
-  std::printf("  order %.2f\n", order);
-  EXPECT_GT(order, mode == MdrSubgrid::None ? 0.8 : 1.7);
-  EXPECT_LT(order, mode == MdrSubgrid::None ? 1.3 : 2.6);
 }
 
 } // namespace mdrmap::testing

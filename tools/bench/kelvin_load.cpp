@@ -74,8 +74,10 @@ int main(int argc, char** argv) {
   int reps = 5;
   double rtol = 1e-4;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (std::strcmp(argv[i], "--reps") == 0) reps = std::atoi(argv[i + 1]);
-    else if (std::strcmp(argv[i], "--rtol") == 0) rtol = std::atof(argv[i + 1]);
+    if (std::strcmp(argv[i], "--reps") == 0)
+      reps = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--rtol") == 0)
+      rtol = std::atof(argv[i + 1]);
     else {
       std::fprintf(stderr, "usage: mdrmap_bench_kelvin_load [--reps N] [--rtol E]\n");
       return 2;
@@ -103,8 +105,9 @@ int main(int argc, char** argv) {
     ratios.push_back(r / l);
     std::printf("%-44s %12.3f %12.3f %8.2f\n", nc.name.c_str(), 1e3 * l, 1e3 * r, r / l);
   }
-  std::printf("cases %zu: median ratio row/kelvin_load %.2f, ratio of the sums %.2f (%.1f / %.1f ms)\n",
-              ratios.size(), mdrmap::bench::median(ratios), sum_row / sum_load, 1e3 * sum_row,
-              1e3 * sum_load);
+  std::printf(
+      "cases %zu: median ratio row/kelvin_load %.2f, ratio of the sums %.2f (%.1f / %.1f ms)\n",
+      ratios.size(), mdrmap::bench::median(ratios), sum_row / sum_load, 1e3 * sum_row,
+      1e3 * sum_load);
   return 0;
 }

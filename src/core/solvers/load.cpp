@@ -201,8 +201,9 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
   // (a window of kMaxElements elements is 320 MB of row; at zeta0 = 1e12 after
   // sliding at zeta0 = 1 it would need 4e7 and a step refreshes all of them)
   if (!(2.0 * A / dx <= kMaxElements))
-    throw CaseAbandoned("kelvin_load: the element window would hold " + format_number(2.0 * A / dx) +
-                        " elements (more than " + format_number(kMaxElements) +
+    throw CaseAbandoned("kelvin_load: the element window would hold " +
+                        format_number(2.0 * A / dx) + " elements (more than " +
+                        format_number(kMaxElements) +
                         "): the velocities of the history differ too much for this solver");
   LoadRow row(c, dx, A, s.phase, control);
   row.set_pieces(s.piece_floor, kPieceCells * dx);
@@ -368,9 +369,10 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
     met = est <= opt.rtol;
     if (attempt >= kAttempts - 1 && met) break;
     if (attempt >= kAttempts - 1)
-      throw CaseAbandoned("kelvin_load: the error estimate " + format_number(est) + " stays above rtol " +
-                          format_number(opt.rtol) + " after " + std::to_string(attempt + 1) +
-                          " resolutions (a_ref/dx up to " + format_number(s.cells) + ")");
+      throw CaseAbandoned("kelvin_load: the error estimate " + format_number(est) +
+                          " stays above rtol " + format_number(opt.rtol) + " after " +
+                          std::to_string(attempt + 1) + " resolutions (a_ref/dx up to " +
+                          format_number(s.cells) + ")");
     const double f = std::clamp(std::sqrt(est / (kSafety * opt.rtol)), 1.5, 4.0);
     s.cells = std::ceil(s.cells * f);
     s.time_tol /= f * f;

@@ -431,8 +431,8 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   const LoadGeometry geo = load_geometry(c);
   const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
   if (!(a_win / dx < 4.0 * kMaxCells))
-    throw CaseAbandoned("row: the window under load would hold " +
-                        format_number(2.0 * a_win / dx) + " elements (at most 8e5)");
+    throw CaseAbandoned("row: the window under load would hold " + format_number(2.0 * a_win / dx) +
+                        " elements (at most 8e5)");
   spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
   row.set_layer_width(geo.a_ref / fine);
