@@ -62,6 +62,15 @@ inline double observed_order(const std::vector<double>& cells, const std::vector
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+/// Whether every sample (F_N, F_x, mu, a2) and the state before t = 0 are finite.
+inline bool all_finite(const Series& x) {
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (!std::isfinite(x.FN[k]) || !std::isfinite(x.Fx[k]) || !std::isfinite(x.mu[k]) ||
+        !std::isfinite(x.a2[k]))
+      return false;
+  return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
+}
+
 /// The element row (row) at rtol, or nothing where it abandons the case: its
 /// error contract is a result within rtol or CaseAbandoned. An abandoned case
 /// is printed with `what` and counted in `abandoned`.
@@ -75,6 +84,20 @@ inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
     ++abandoned;
     std::printf("[ info ] abandoned at rtol %.0e: %s (%s)\n", rtol, what.c_str(), e.what());
     return std::nullopt;
+  }
+}
+
+/// The row on an elastic case (tau = 0, no branches) of the parabola at fixed
+/// depth: finite, Hertz (F_N = 16/3 G sqrt(R) d^1.5) and mu = 0 at every
+/// sample, whatever the history.
+inline void expect_row_hertz_throughout(const Case& c) {
+  const RunResult r = run_spectrum(c, SpectrumOptions{});
+  const double hertz =
+      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+  for (std::size_t k = 0; k < r.series.size(); ++k) {
+    ASSERT_TRUE(std::isfinite(r.series.FN[k]) && std::isfinite(r.series.mu[k])) << k;
+    EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
+    EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);
   }
 }
 

@@ -37,14 +37,6 @@ double zeta1(const Case& c) {
   return zeta(c, v1_of(c));
 }
 
-bool all_finite(const Series& x) {
-  for (std::size_t k = 0; k < x.size(); ++k)
-    if (!std::isfinite(x.FN[k]) || !std::isfinite(x.Fx[k]) || !std::isfinite(x.mu[k]) ||
-        !std::isfinite(x.a2[k]))
-      return false;
-  return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
-}
-
 // One step v -> v1 = ratio v with zeta = v tau / a1 (R = 1, tau = 1, G = 1),
 // default window, 201 samples.
 Case scene(double zeta, double ratio, double d_over_r = 1e-3) {
@@ -103,7 +95,7 @@ TEST(RowKelvinCaseSet, MeetsTolerancesOnTheHardSet) {
       const double rtol = rtols[k];
       const auto r = testing::row_or_abandoned(c, rtol, nc.name, abandoned[k]);
       if (!r) continue;
-      ASSERT_TRUE(all_finite(r->series));
+      ASSERT_TRUE(testing::all_finite(r->series));
       const double err = case_error(r->series, ref.series, c).max();
       EXPECT_LE(err, rtol) << "rtol " << rtol << " cells " << r->info.cells_per_a1;
       EXPECT_GE(3.0 * r->info.error_estimate, err - 1e-13) << "rtol " << rtol;
@@ -158,7 +150,7 @@ TEST(RowKelvinMemory, IndependentOfTravelAndVelocityRatio) {
   long elements = -1;
   for (const Case& c : {scene(1e8, 1.0), scene(1e-6, 1.0), scene(1e3, 1e-8), scene(1.0, 100.0)}) {
     const auto r = run_spectrum(c, o);
-    ASSERT_TRUE(all_finite(r.series));
+    ASSERT_TRUE(testing::all_finite(r.series));
     if (elements < 0) elements = r.info.elements;
     EXPECT_EQ(r.info.elements, elements);
     EXPECT_LE(r.info.elements, 2 * 200 + 16); // the window [-a1, a1] and its edge cells
@@ -212,7 +204,7 @@ TEST(RowKelvinHardCases, NoNaNNoBlowUp) {
         ++cases;
         const auto r = testing::row_or_abandoned(c, 1e-3, what, abandoned);
         if (!r) continue;
-        ASSERT_TRUE(all_finite(r->series)) << what;
+        ASSERT_TRUE(testing::all_finite(r->series)) << what;
         for (std::size_t k = 0; k < r->series.size(); ++k) {
           EXPECT_GT(r->series.FN[k], 0.0);
           EXPECT_GE(r->series.a2[k], -1e-3 * analytic::a1(c));
@@ -227,14 +219,7 @@ TEST(RowKelvinHardCases, NoNaNNoBlowUp) {
     // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
     const Case c = step_case(base.loading.d, base.indenter.R, 0.0, base.history.v0, v1,
                              base.rheology.G, 0.0, 11);
-    const auto r = run_spectrum(c, SpectrumOptions{});
-    ASSERT_TRUE(all_finite(r.series));
-    const double hertz =
-        16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
-    for (std::size_t k = 0; k < r.series.size(); ++k) {
-      EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
-      EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);
-    }
+    testing::expect_row_hertz_throughout(c);
   }
 }
 

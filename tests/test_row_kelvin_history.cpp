@@ -47,14 +47,6 @@ Series row_at(const Case& c, double cells, double phase = 0.5) {
   return run_spectrum(c, o).series;
 }
 
-bool all_finite(const Series& x) {
-  for (std::size_t k = 0; k < x.size(); ++k)
-    if (!std::isfinite(x.FN[k]) || !std::isfinite(x.Fx[k]) || !std::isfinite(x.mu[k]) ||
-        !std::isfinite(x.a2[k]))
-      return false;
-  return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
-}
-
 // Done-criterion of the history issue, for the row at N = 0: on every
 // history of the set, at rtol 1e-2, 1e-3, 1e-4, it is within rtol of the
 // continuum solution with an honest error estimate (at least a third of the
@@ -67,7 +59,7 @@ TEST(RowKelvinHistorySet, WithinRtolWithAnHonestEstimate) {
       SCOPED_TRACE(nc.name);
       const auto r = testing::row_or_abandoned(nc.c, rtol, nc.name, abandoned);
       if (!r) continue;
-      ASSERT_TRUE(all_finite(r->series));
+      ASSERT_TRUE(testing::all_finite(r->series));
       const double err = case_error(r->series, run_exact(nc.c, 1e-13).series, nc.c).max();
       EXPECT_LE(err, rtol) << "rtol " << rtol << " cells " << r->info.cells_per_a1;
       EXPECT_GE(r->info.error_estimate, err / 3.0) << "rtol " << rtol;
@@ -157,7 +149,7 @@ TEST(RowKelvinHistoryBruteForce, BaselineConvergesAtFirstOrder) {
       b.cells_per_a1 = n;
       b.estimate_error = false;
       const RunResult r = run_spectrum_baseline(c, b);
-      ASSERT_TRUE(all_finite(r.series));
+      ASSERT_TRUE(testing::all_finite(r.series));
       err.push_back(case_error(r.series, ref.series, c).max());
     }
     const double order = testing::observed_order(cells, err);
@@ -195,7 +187,7 @@ TEST(RowKelvinHistoryHardCases, NoNaNNoBlowUp) {
                                  " pattern " + std::to_string(p);
         const auto r = testing::row_or_abandoned(c, 1e-3, what, abandoned);
         if (!r) continue;
-        ASSERT_TRUE(all_finite(r->series));
+        ASSERT_TRUE(testing::all_finite(r->series));
         for (std::size_t k = 0; k < r->series.size(); ++k) {
           EXPECT_GT(r->series.FN[k], 0.0);
           EXPECT_GE(r->series.a2[k], -c.a1());
@@ -206,14 +198,7 @@ TEST(RowKelvinHistoryHardCases, NoNaNNoBlowUp) {
   std::printf("[ info ] %d of 18 hard histories abandoned at rtol 1e-3\n", abandoned);
   Case c = history(1.0, {{0.1, 2.0}, {0.0, 1.0}, {10.0, 2.0}, {0.0, 1e6}}, 11);
   c.rheology.tau = 0.0; // elastic: valid, Hertz whatever the history
-  const RunResult r = run_spectrum(c, SpectrumOptions{});
-  ASSERT_TRUE(all_finite(r.series));
-  const double hertz =
-      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
-  for (std::size_t k = 0; k < r.series.size(); ++k) {
-    EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
-    EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);
-  }
+  testing::expect_row_hertz_throughout(c);
 }
 
 } // namespace
