@@ -1619,8 +1619,8 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
       {"temperature = 20\n", "wlf = 8.86:101.6:20\nallow_large_shift = maybe\n",
        "run.allow_large_shift", "allow_large_shift must be true or false"},
       {"G1 = 1\ntau1 = 1\n", "solver = exact\n", "run.solver",
-       "solver exact solves the Kelvin foundation only, and the study has a relaxation spectrum "
-       "(G1, tau1)"},
+       "solver exact does not solve a relaxation spectrum (the study has G1, tau1); give solver "
+       "= auto, row or baseline"},
       {"G01 = 1\ntau01 = 1\n", "", "grid.G01", "unknown key"},
   };
   for (const Bad& b : bad) {
