@@ -2108,7 +2108,7 @@ TEST(cli, SimulateUnderLoadOtherSolvers) {
 /// refused in one line naming --solver and what to use, nothing written.
 TEST(cli, SimulateOldSolverNames) {
   std::vector<std::string> args = kLoadBase;
-  args.insert(args.end(), {"--v1", "0.1", "--samples", "5", "--rtol", "1e-3", "--solver"});
+  args.insert(args.end(), {"--v1", "0.1", "--samples", "5", "--solver"});
   auto with = [&](const char* solver) {
     std::vector<std::string> a = args;
     a.emplace_back(solver);

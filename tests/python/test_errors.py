@@ -108,6 +108,7 @@ ROWS = [
     ("a cone on the continuum solver",
      {"profile": "cone", "R": DROP, "beta": "10", "solver": "exact"}, [], "profile"),
     ("the retired mdr solver", {"solver": "mdr"}, [], "solver"),
+    ("an unknown solver", {"solver": "spectrum_baseline"}, [], "solver"),
     ("prony without --G", {"G": DROP, "prony": "1:1"}, [], "G"),
     ("prony-file without --G", {"G": DROP, "prony-file": "{dir}/good.csv"}, [], "G"),
     ("prony G = 0", {"prony": "0:1"}, [], "prony"),
