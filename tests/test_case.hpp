@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "core/model/case.hpp"
-#include "core/solvers/mdr.hpp"
+#include "core/solvers/spectrum.hpp"
 
 namespace mdrmap::testing {
 
@@ -60,27 +62,43 @@ inline double observed_order(const std::vector<double>& cells, const std::vector
   return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-/// Prints the errors of an mdr read-out over `cells` and asserts what it
-/// promises: the paper's raw sums first order, the linear gap second order,
-/// the default piecewise read-out at rounding (errors <= `rounding`).
-inline void expect_readout_order(MdrSubgrid mode, const std::vector<double>& cells,
-                                 const std::vector<double>& err, double rounding) {
-  const char* name = mode == MdrSubgrid::None     ? "raw sums"
-                     : mode == MdrSubgrid::Linear ? "linear gap"
-                                                  : "piecewise";
-  std::printf("[ info ] %-10s errors:", name);
-  for (double e : err)
-    std::printf(" %.2e", e);
-  if (mode == MdrSubgrid::Piecewise) {
-    std::printf("  (rounding)\n");
-    for (double e : err)
-      EXPECT_LE(e, rounding);
-    return;
+/// Whether every sample (F_N, F_x, mu, a2) and the state before t = 0 are finite.
+inline bool all_finite(const Series& x) {
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (!std::isfinite(x.FN[k]) || !std::isfinite(x.Fx[k]) || !std::isfinite(x.mu[k]) ||
+        !std::isfinite(x.a2[k]))
+      return false;
+  return std::isfinite(x.pre.FN) && std::isfinite(x.pre.Fx) && std::isfinite(x.pre.a2);
+}
+
+/// The element row (row) at rtol, or nothing where it abandons the case: its
+/// error contract is a result within rtol or CaseAbandoned. An abandoned case
+/// is printed with `what` and counted in `abandoned`.
+inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
+                                                 const std::string& what, int& abandoned) {
+  SpectrumOptions o;
+  o.rtol = rtol;
+  try {
+    return run_spectrum(c, o);
+  } catch (const CaseAbandoned& e) {
+    ++abandoned;
+    std::printf("[ info ] abandoned at rtol %.0e: %s (%s)\n", rtol, what.c_str(), e.what());
+    return std::nullopt;
   }
-  const double order = observed_order(cells, err);
-  std::printf("  order %.2f\n", order);
-  EXPECT_GT(order, mode == MdrSubgrid::None ? 0.8 : 1.7);
-  EXPECT_LT(order, mode == MdrSubgrid::None ? 1.3 : 2.6);
+}
+
+/// The row on an elastic case (tau = 0, no branches) of the parabola at fixed
+/// depth: finite, Hertz (F_N = 16/3 G sqrt(R) d^1.5) and mu = 0 at every
+/// sample, whatever the history.
+inline void expect_row_hertz_throughout(const Case& c) {
+  const RunResult r = run_spectrum(c, SpectrumOptions{});
+  const double hertz =
+      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+  for (std::size_t k = 0; k < r.series.size(); ++k) {
+    ASSERT_TRUE(std::isfinite(r.series.FN[k]) && std::isfinite(r.series.mu[k])) << k;
+    EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
+    EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);
+  }
 }
 
 } // namespace mdrmap::testing

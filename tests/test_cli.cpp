@@ -722,7 +722,7 @@ TEST(cli, SimulateEdgeScenesAreValid) {
 TEST(cli, SimulateOtherSolversAreAcceptedAndNeverCrash) {
   TempDir dir;
   const fs::path out = dir.path() / "out.csv";
-  for (const char* solver : {"mdr", "baseline"}) {
+  for (const char* solver : {"row", "baseline"}) {
     SCOPED_TRACE(solver);
     write_file(out, "keep me\n");
     const Outcome r = run_mdrmap({"simulate", "--d", "0.1", "--R", "10", "--tau", "1", "--v", "2",
@@ -743,8 +743,9 @@ TEST(cli, SimulateOtherSolversAreAcceptedAndNeverCrash) {
 }
 
 // Valid but absurd scales (found by the sanitizer build: an out-of-range
-// float-to-integer conversion that hung mdr, a NaN element count in the
-// baseline): each solver either answers without NaN or fails with one line.
+// float-to-integer conversion that hung the old Kelvin row, a NaN element
+// count in the old baseline): each solver either answers without NaN or
+// refuses with one line (the rows: outside their number range, exit 2).
 TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
   struct Row {
     std::vector<std::string> scene;
@@ -752,8 +753,8 @@ TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
     bool must_fail;
   };
   const std::vector<Row> rows = {
-      {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "mdr", true},
-      {{"--d", "1e-3", "--R", "1", "--tau", "0", "--v", "1", "--v1", "1e300"}, "mdr", true},
+      {{"--d", "1e-3", "--R", "1", "--tau", "1", "--v", "1e-300", "--v1", "1e300"}, "row", true},
+      {{"--d", "1e-3", "--R", "1", "--tau", "0", "--v", "1", "--v1", "1e300"}, "row", true},
       {{"--d", "1e-3", "--R", "1", "--tau", "1e-300", "--v", "1e-300", "--v1", "1e300"},
        "baseline",
        true},
@@ -767,10 +768,10 @@ TEST(cli, SimulateAbsurdScalesNeverHangOrProduceNaN) {
     SCOPED_TRACE(row.solver + std::string(" ") + row.scene[7] + " -> " + row.scene[9]);
     const Outcome r = run_mdrmap(args);
     if (row.must_fail) {
-      ASSERT_EQ(r.code, 1) << r.err;
+      ASSERT_EQ(r.code, 2) << r.err;
       EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-      EXPECT_TRUE(starts_with(r.err, std::string("mdrmap simulate: error: ") + row.solver + ":"))
-          << r.err;
+      EXPECT_TRUE(starts_with(r.err, "mdrmap simulate: error: --")) << r.err;
+      EXPECT_NE(r.err.find("the element row"), std::string::npos) << r.err;
     } else {
       ASSERT_EQ(r.code, 0) << r.err;
       const Parsed p = parse_output(r.out);
@@ -799,8 +800,8 @@ TEST(cli, SimulateHoldsNearTheLargestDoubleGiveFiniteRows) {
 // A case past its work budget, or one the solver cannot resolve to rtol,
 // fails with one line and exit 1 (issue 23, class 3): the fixed-step baseline
 // at a1/dx = 4000 over 160 contact widths needs ~4e11 element updates (it ran
-// for many minutes); mdr's estimate cannot go below its rounding floor (the
-// case was reported done with an estimate above rtol).
+// for many minutes); the row's estimate cannot go below its rounding floor
+// (the case was reported done with an estimate above rtol).
 TEST(cli, SimulateCasesPastTheirBudgetOrRtolFailWithOneLine) {
   const std::vector<std::string> scene = {"simulate", "--d", "1e-3", "--R",       "1", "--tau",
                                           "1",        "--v", "1",    "--samples", "5", "--history"};
@@ -811,7 +812,7 @@ TEST(cli, SimulateCasesPastTheirBudgetOrRtolFailWithOneLine) {
   const std::vector<Row> rows = {
       {{"1:5", "--solver", "baseline", "--rtol", "1e-4"},
        "baseline needs more than its work budget of 1e+09 work units (an element's sub-step"},
-      {{"0.1:0.1,0:0.1,1:0.1", "--solver", "mdr", "--rtol", "1e-15"}, "stays above rtol"},
+      {{"0.1:0.1,0:0.1,1:0.1", "--solver", "row", "--rtol", "1e-15"}, "stays above rtol"},
   };
   for (const Row& row : rows) {
     SCOPED_TRACE(row.says);
@@ -985,10 +986,8 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        {{"profile", "cone"}, {"R", kDrop}, {"beta", "10"}, {"solver", "exact"}},
        {},
        "profile"},
-      {"a power law on the mdr solver",
-       {{"profile", "power"}, {"R", kDrop}, {"n", "3"}, {"A", "1"}, {"solver", "mdr"}},
-       {},
-       "profile"},
+      {"the retired mdr solver", {{"solver", "mdr"}}, {}, "solver"},
+      {"an unknown solver", {{"solver", "spectrum_baseline"}}, {}, "solver"},
       // relaxation spectra and the temperature shift (issue 19)
       {"prony without --G", {{"G", kDrop}, {"prony", "1:1"}}, {}, "G"},
       {"prony-file without --G",
@@ -1160,8 +1159,8 @@ TEST(cli, SpectrumInputIsReadIntoTheRheology) {
 }
 
 // A spectrum runs end to end, at fixed depth and under load: auto picks the
-// spectrum solver, whose stationary start is the closed form's (mu_ss_before)
-// within rtol, and the Kelvin solvers refuse it in one line naming prony.
+// row, whose stationary start is the closed form's (mu_ss_before) within
+// rtol, and exact (Kelvin only) refuses it in one line naming prony.
 TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
   for (const char* loading : {"--d", "--F0"}) {
     SCOPED_TRACE(loading);
@@ -1172,20 +1171,18 @@ TEST(cli, SpectrumCasesRunAtDepthAndUnderLoad) {
     const Outcome r = run_mdrmap(base);
     ASSERT_EQ(r.code, 0) << r.err;
     const Parsed p = parse_output(r.out);
-    EXPECT_EQ(p.run.at("solver"), "spectrum");
+    EXPECT_EQ(p.run.at("solver"), "row");
     ASSERT_EQ(p.events.size(), 3U);
     const double mu = to_double(p.pre.at("mu")), ss = to_double(p.events[0].at("mu_ss_before"));
     EXPECT_NEAR(mu, ss, 1e-3 * ss);
-    for (const char* kelvin : {"exact", "mdr", "baseline"}) {
-      if (std::string(loading) == "--F0" && std::string(kelvin) == "exact") continue;
-      auto args = base;
-      args.insert(args.end(), {"--solver", kelvin});
-      const Outcome refused = run_mdrmap(args);
-      EXPECT_EQ(refused.code, 2) << kelvin << ": " << refused.err;
-      EXPECT_TRUE(starts_with(refused.err, "mdrmap simulate: error: --prony: solver "))
-          << refused.err;
-      EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
-    }
+    if (std::string(loading) == "--F0") continue; // (exact refuses the loading first)
+    auto args = base;
+    args.insert(args.end(), {"--solver", "exact"});
+    const Outcome refused = run_mdrmap(args);
+    EXPECT_EQ(refused.code, 2) << refused.err;
+    EXPECT_TRUE(starts_with(refused.err, "mdrmap simulate: error: --prony: solver exact "))
+        << refused.err;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
   }
 }
 
@@ -1863,7 +1860,7 @@ TEST(cli, SimulateShorthandEqualsOneSegmentHistory) {
   const Step s = transient_scene();
   const std::vector<Row> rows{{{}, 0.0},
                               {{"--t-end", "2.5", "--samples", "17"}, 2.5},
-                              {{"--solver", "mdr", "--rtol", "1e-3", "--samples", "21"}, 0.0}};
+                              {{"--solver", "row", "--rtol", "1e-3", "--samples", "21"}, 0.0}};
   for (const auto& row : rows) {
     const double T = row.t_end > 0.0 ? row.t_end : default_window(s);
     std::vector<std::string> shorthand = simulate_args(s);
@@ -2084,7 +2081,7 @@ TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
 /// solver at a 1000x tighter rtol; exact refuses the case (exit 2, --solver).
 TEST(cli, SimulateUnderLoadOtherSolvers) {
   std::vector<std::string> args = kLoadBase;
-  args.insert(args.end(), {"--v1", "0.1", "--samples", "11", "--solver", "mdr"});
+  args.insert(args.end(), {"--v1", "0.1", "--samples", "11", "--solver", "row"});
   const Outcome r = run_mdrmap(args);
   ASSERT_EQ(r.code, 0) << r.err;
   const Parsed p = parse_output(r.out);
@@ -2103,6 +2100,38 @@ TEST(cli, SimulateUnderLoadOtherSolvers) {
   EXPECT_EQ(ex.code, 2) << ex.err;
   EXPECT_EQ(std::count(ex.err.begin(), ex.err.end(), '\n'), 1) << ex.err;
   EXPECT_TRUE(starts_with(ex.err, "mdrmap simulate: error: --solver: ")) << ex.err;
+  EXPECT_EQ(read_file(out), "keep me\n");
+}
+
+/// The solvers' old names: spectrum is the row's (the same output, digit for
+/// digit but the wall time, reported as solver=row); mdr was retired and is
+/// refused in one line naming --solver and what to use, nothing written.
+TEST(cli, SimulateOldSolverNames) {
+  std::vector<std::string> args = kLoadBase;
+  args.insert(args.end(), {"--v1", "0.1", "--samples", "5", "--solver"});
+  auto with = [&](const char* solver) {
+    std::vector<std::string> a = args;
+    a.emplace_back(solver);
+    return run_mdrmap(a);
+  };
+  const Outcome row = with("row"), spectrum = with("spectrum");
+  ASSERT_EQ(row.code, 0) << row.err;
+  ASSERT_EQ(spectrum.code, 0) << spectrum.err;
+  const Parsed a = parse_output(row.out), b = parse_output(spectrum.out);
+  EXPECT_EQ(a.run.at("solver"), "row");
+  EXPECT_EQ(b.run.at("solver"), "row");
+  EXPECT_EQ(a.rows, b.rows);
+  TempDir dir;
+  const fs::path out = dir.path() / "out.csv";
+  write_file(out, "keep me\n");
+  std::vector<std::string> mdr = args;
+  mdr.insert(mdr.end(), {"mdr", "--output", out.string()});
+  const Outcome refused = run_mdrmap(mdr);
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_TRUE(
+      starts_with(refused.err, "mdrmap simulate: error: --solver: mdr was retired: use row"))
+      << refused.err;
   EXPECT_EQ(read_file(out), "keep me\n");
 }
 

@@ -221,7 +221,7 @@ TEST(ComputeCase, ResidualsAreRelativeDifferences) {
 // of range (w tau = 1e308 at a1 = 1 was stored as done with mu = 2e305).
 TEST(ComputeCase, ACaseBeyondRtolOrRangeFailsWithItsMessage) {
   const CaseRow beyond = compute_case(config(1e-15), step_layout(), step(1e-3, 1.0, 1.0, 1.0, 0.1),
-                                      SolverKind::Mdr, false);
+                                      SolverKind::Row, false);
   EXPECT_EQ(beyond.status, -1);
   EXPECT_NE(beyond.message.find("stays above rtol"), std::string::npos) << beyond.message;
   const CaseRow range = compute_case(config(1e-6), step_layout(), step(1.0, 1.0, 1.0, 1.0, 1e308),
@@ -234,7 +234,7 @@ TEST(ComputeCase, ACaseBeyondRtolOrRangeFailsWithItsMessage) {
 // case is left to the caller as pending (Interrupted), not failed.
 TEST(ComputeCase, AStopRequestInterruptsTheCase) {
   volatile std::sig_atomic_t stop = 1;
-  for (SolverKind kind : {SolverKind::Auto, SolverKind::Mdr, SolverKind::Baseline})
+  for (SolverKind kind : {SolverKind::Auto, SolverKind::Row, SolverKind::Baseline})
     EXPECT_THROW(compute_case(config(1e-3), step_layout(), step(1e-3, 1.0, 1.0, 1.0, 0.1), kind,
                               false, &stop),
                  mdrmap::Interrupted);

@@ -245,7 +245,11 @@ std::vector<BadConfig> bad_configs() {
       {"samples fractional", base({{8, "samples = 2.5"}}), "run.samples", {"t.ini:8:", "'2.5'"}},
       {"rtol too large", base({{9, "rtol = 0.5"}}), "run.rtol", {"t.ini:9:", "(0, 0.1]"}},
       {"rtol zero", base({{9, "rtol = 0"}}), "run.rtol", {"t.ini:9:"}},
-      {"unknown solver", base({}, "solver = fast\n"), "run.solver", {"t.ini:10:", "'fast'", "mdr"}},
+      {"unknown solver", base({}, "solver = fast\n"), "run.solver", {"t.ini:10:", "'fast'", "row"}},
+      {"retired solver",
+       base({}, "solver = mdr\n"),
+       "run.solver",
+       {"t.ini:10:", "mdr was retired: use row"}},
       {"bad timeseries",
        base({}, "timeseries = maybe\n"),
        "run.timeseries",
@@ -421,7 +425,7 @@ TEST(StudyConfigGood, RunSettingsAndNormalization) {
                               "t_end_over_tau = 3 ; window\r\n"
                               "samples = +401\r\n"
                               "rtol = 1e-6\r\n"
-                              "solver = mdr\r\n"
+                              "solver = spectrum\r\n"
                               "timeseries = YES\r\n"
                               "G = 0x10\r\n"
                               "spacing = LOG\r\n"
@@ -431,7 +435,7 @@ TEST(StudyConfigGood, RunSettingsAndNormalization) {
   EXPECT_EQ(c.axes[col(c, "t_end_over_tau")].values, std::vector<double>({3.0}));
   EXPECT_EQ(c.run.samples, 401);
   EXPECT_EQ(c.run.rtol, 1e-6);
-  EXPECT_EQ(c.run.solver, "mdr");
+  EXPECT_EQ(c.run.solver, "row"); // spectrum: the row's old name
   EXPECT_TRUE(c.run.timeseries);
   EXPECT_EQ(c.run.spacing, mdrmap::Spacing::Log);
   EXPECT_EQ(c.run.decades, 6.0);
@@ -1138,10 +1142,10 @@ TEST(StudyLoading, SolverMustSolveTheLoading) {
   EXPECT_EQ(in_file.second.rfind("t.ini:10: ", 0), 0u) << in_file.second;
   EXPECT_NE(in_file.second.find("exact does not solve load control"), std::string::npos)
       << in_file.second;
-  EXPECT_NE(in_file.second.find("solver must be one of auto, mdr, baseline"), std::string::npos)
+  EXPECT_NE(in_file.second.find("give solver = auto, row or baseline"), std::string::npos)
       << in_file.second;
   EXPECT_TRUE(one_line(in_file.second)) << in_file.second;
-  for (const char* ok : {"auto", "mdr", "baseline"})
+  for (const char* ok : {"auto", "row", "baseline"})
     EXPECT_TRUE(parse(force(ok)).by_force()) << ok;
 
   StudyConfig f = parse(force("auto"));
@@ -1157,7 +1161,7 @@ TEST(StudyLoading, SolverMustSolveTheLoading) {
   // a case list whose loading is a column of its CSV
   const std::string csv = tmp().write("fn_list.csv", "F0,R,tau,v,w1,T1\n1e-3,1,1,0.1,1,10\n");
   EXPECT_EQ(error_of([&] { list_config(csv, "[run]\nsolver = exact\n"); }).first, "run.solver");
-  EXPECT_TRUE(list_config(csv, "[run]\nsolver = mdr\n").by_force());
+  EXPECT_TRUE(list_config(csv, "[run]\nsolver = row\n").by_force());
 }
 
 // load_config with the command line's overrides applies them all, then checks
@@ -1615,8 +1619,8 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
       {"temperature = 20\n", "wlf = 8.86:101.6:20\nallow_large_shift = maybe\n",
        "run.allow_large_shift", "allow_large_shift must be true or false"},
       {"G1 = 1\ntau1 = 1\n", "solver = exact\n", "run.solver",
-       "solver exact solves the Kelvin foundation only, and the study has a relaxation spectrum "
-       "(G1, tau1)"},
+       "solver exact does not solve a relaxation spectrum (the study has G1, tau1); give solver "
+       "= auto, row or baseline"},
       {"G01 = 1\ntau01 = 1\n", "", "grid.G01", "unknown key"},
   };
   for (const Bad& b : bad) {
@@ -1641,15 +1645,21 @@ TEST(StudySpectrum, BadSpectraAndTemperaturesNameTheKey) {
         << message;
     EXPECT_TRUE(one_line(message)) << message;
   }
-  // under load a spectrum takes auto or spectrum; mdr (the Kelvin load solver) is refused
+  // under load a spectrum takes auto, row (spectrum: its old name) or
+  // baseline; at fixed depth exact (the Kelvin foundation only) is refused
   const std::string load_spectrum =
       "[grid]\nF0 = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1\ntau1 = 1\nv = 1\n"
       "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = ";
-  for (const char* ok : {"auto", "spectrum"})
+  for (const char* ok : {"auto", "row", "spectrum", "baseline"})
     EXPECT_TRUE(parse(load_spectrum + ok + "\n").by_force()) << ok;
-  const auto [option, message] = error_of([&] { parse(load_spectrum + "mdr\n"); });
+  const auto [option, message] = error_of([&] {
+    parse("[grid]\nd = 1e-3\nR = 1\ntau = 0\nG = 1\nG1 = 1\ntau1 = 1\nv = 1\n"
+          "[history]\nw1_over_v = 0.5\nT1 = 1\n[run]\nsolver = exact\n");
+  });
   EXPECT_EQ(option, "run.solver") << message;
-  EXPECT_NE(message.find("solver mdr solves the Kelvin foundation only"), std::string::npos)
+  EXPECT_NE(message.find("solver exact does not solve a relaxation spectrum (the study has G1, "
+                         "tau1); give solver = auto, row or baseline"),
+            std::string::npos)
       << message;
   // 32 terms are allowed, a 33rd is no column
   std::string terms;
@@ -2153,7 +2163,7 @@ const std::vector<std::string>& fuzz_tokens() {
                                   "yes",
                                   "auto",
                                   "exact",
-                                  "mdr",
+                                  "row",
                                   "baseline",
                                   "cases.csv",
                                   "failing.csv",

@@ -16,9 +16,7 @@
 #include "core/metrics/events.hpp"
 #include "core/metrics/transient.hpp"
 #include "core/model/case.hpp"
-#include "core/solvers/baseline.hpp"
 #include "core/solvers/dispatch.hpp"
-#include "core/solvers/load_baseline.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {
@@ -299,27 +297,27 @@ void expect_solver_metrics_agree(const Case& c,
   }
 }
 
-// The Kelvin row at fixed depth (--solver mdr) probes its solution as well.
-TEST(EventsFromTheSolution, MdrRowMetricsDoNotDependOnTheSamples) {
-  expect_solver_metrics_agree(event_case(false, 1.0, {{0.1, 6.0}}),
-                              [](const Case& s) { return run_case(s, SolverKind::Mdr, 1e-4); });
+// The row on the Kelvin foundation (N = 0) probes its solution as well, at
+// fixed depth and under load.
+TEST(EventsFromTheSolution, RowMetricsDoNotDependOnTheSamplesKelvinDepth) {
+  expect_row_metrics_agree(event_case(false, 1.0, {{0.1, 6.0}}));
+}
+TEST(EventsFromTheSolution, RowMetricsDoNotDependOnTheSamplesKelvinLoad) {
+  expect_row_metrics_agree(event_case(true, 1.0, {{0.1, 6.0}}));
 }
 
-// So do the fixed-step baselines (--solver baseline), at fixed depth and under
-// load: their probes are the instants of ProbeRule on their step grid (read
+// So does the fixed-step baseline (--solver baseline), at fixed depth and
+// under load: its probes are the instants of ProbeRule on its step grid (read
 // off the samples, the depth case's t_peak was 6 with 5 samples against 1.53
 // with 201, and D_c 0.0949 against 0.0113).
-TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesDepth) {
-  BaselineOptions o;
-  o.cells_per_a1 = 200;
-  expect_solver_metrics_agree(event_case(false, 1.0, {{0.1, 6.0}}),
-                              [&](const Case& s) { return run_baseline(s, o); });
-}
-TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesLoad) {
-  LoadBaselineOptions o;
-  o.cells_per_a0 = 100;
-  expect_solver_metrics_agree(event_case(true, 1.0, {{0.1, 6.0}}),
-                              [&](const Case& s) { return run_load_baseline(s, o); });
+TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesKelvin) {
+  SpectrumBaselineOptions o;
+  o.cells_per_a1 = 100;
+  for (bool load : {false, true}) {
+    SCOPED_TRACE(load ? "load" : "depth");
+    expect_solver_metrics_agree(event_case(load, 1.0, {{0.1, 6.0}}),
+                                [&](const Case& s) { return run_spectrum_baseline(s, o); });
+  }
 }
 
 /// A three-term spectrum without a dashpot (tau_k 0.1, 1, 10), a drop.

@@ -17,7 +17,6 @@
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/solvers/dispatch.hpp"
-#include "core/solvers/mdr.hpp"
 
 namespace mdrmap {
 namespace {
@@ -145,7 +144,7 @@ TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
     EXPECT_EQ(refused_option(r.c), r.option);
   }
   // the Kelvin parabola asked of the spectrum solver: the same limits
-  EXPECT_THROW(run_case(depth_case({{1e155, 1e-170}}), SolverKind::Spectrum, 1e-3), InvalidInput);
+  EXPECT_THROW(run_case(depth_case({{1e155, 1e-170}}), SolverKind::Row, 1e-3), InvalidInput);
 }
 
 // At the edges of that range the row runs, finite: the SLS sliding at
@@ -228,9 +227,10 @@ struct SolverRow {
 
 const std::vector<SolverRow>& solver_rows() {
   static const std::vector<SolverRow> rows = {{SolverKind::Exact, false, "exact", 1e-3},
-                                              {SolverKind::Mdr, false, "mdr", 1e-3},
+                                              {SolverKind::Row, false, "row", 1e-3},
+                                              {SolverKind::Row, true, "row", 1e-3},
                                               {SolverKind::Baseline, false, "baseline", 1e-2},
-                                              {SolverKind::Auto, true, "load", 1e-3}};
+                                              {SolverKind::Auto, true, "kelvin_load", 1e-3}};
   return rows;
 }
 
@@ -263,33 +263,33 @@ TEST(Extremes, EverySolverStopsOnAStopRequest) {
   }
 }
 
-// The mdr solver's estimate cannot go below its rounding floor (64 eps): at
-// rtol 1e-15 the case fails with the estimate instead of being reported done.
-TEST(Extremes, MdrFailsACaseItCannotResolveToRtol) {
+// The row's estimate cannot go below its rounding floor: at rtol 1e-15 the
+// case fails with the estimate instead of being reported done.
+TEST(Extremes, RowFailsACaseItCannotResolveToRtol) {
   const Case& c = budget_case(false);
   try {
-    run_case(c, SolverKind::Mdr, 1e-15);
+    run_case(c, SolverKind::Row, 1e-15);
     ADD_FAILURE() << "no CaseAbandoned";
   } catch (const CaseAbandoned& e) {
     EXPECT_NE(std::string(e.what()).find("stays above rtol 1.0000000000000001e-15"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_LE(run_case(c, SolverKind::Mdr, 1e-6).info.error_estimate, 1e-6);
+  EXPECT_LE(run_case(c, SolverKind::Row, 1e-6).info.error_estimate, 1e-6);
 }
 
 // The fixed-step baseline reports its estimate like every solver and, like
 // them, fails a case whose estimate is above rtol (issue 32: under load it
-// was reported done with an estimate of 0.0178 at rtol 1e-3); where it meets
-// rtol it answers.
+// was reported done with an estimate of 0.0178 at rtol 1e-3; its a1/dx 50 at
+// rtol 0.1 gives 0.11 here); where it meets rtol it answers.
 TEST(Extremes, BaselineFailsACaseWhoseEstimateIsAboveRtol) {
   Case under_load = depth_case({{0.1, 3.0}, {3.0, 3.0}}, 0.0, 10.0, 1.0, 1.0, 5);
   under_load.loading.F0 = 0.05;
   try {
-    const RunResult r = run_case(under_load, SolverKind::Baseline, 1e-3);
-    ADD_FAILURE() << "done with the estimate " << r.info.error_estimate << " at rtol 1e-3";
+    const RunResult r = run_case(under_load, SolverKind::Baseline, 0.1);
+    ADD_FAILURE() << "done with the estimate " << r.info.error_estimate << " at rtol 0.1";
   } catch (const CaseAbandoned& e) {
-    EXPECT_NE(std::string(e.what()).find("is above rtol 0.001"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is above rtol 0.1"), std::string::npos) << e.what();
   }
   // at depth its resolution follows rtol: a1/dx 70 at rtol 1e-2 gave 0.056
   const Case at_depth = depth_case({{0.1, 3.0}, {3.0, 3.0}}, 0.1, 10.0, 1.0, 1.0, 5);

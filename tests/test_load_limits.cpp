@@ -18,8 +18,8 @@
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/load_stationary.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/load_baseline.hpp"
 #include "core/solvers/run_control.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {
 namespace {
@@ -100,18 +100,18 @@ TEST(LoadBudget, PastItsBudgetTheCaseIsAbandoned) {
   o.control = &ample;
   EXPECT_NO_THROW(run_load(c, o));
   EXPECT_GT(ample.spent(), 1e3);
-  LoadBaselineOptions b;
+  SpectrumBaselineOptions b;
   RunControl tiny;
   tiny.max_work = 1e4;
   b.control = &tiny;
-  EXPECT_THROW(run_load_baseline(c, b), CaseAbandoned);
+  EXPECT_THROW(run_spectrum_baseline(c, b), CaseAbandoned);
   volatile std::sig_atomic_t flag = 1;
   RunControl stop;
   stop.stop = &flag;
   o.control = &stop;
   EXPECT_THROW(run_load(c, o), Interrupted);
   b.control = &stop;
-  EXPECT_THROW(run_load_baseline(c, b), Interrupted);
+  EXPECT_THROW(run_spectrum_baseline(c, b), Interrupted);
 }
 
 // A case whose estimate cannot be brought under rtol fails with the

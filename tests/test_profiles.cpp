@@ -27,7 +27,6 @@
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/exact.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/mdr.hpp"
 
 namespace {
 
@@ -366,10 +365,10 @@ TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
   EXPECT_EQ(refused(par), "n");
 }
 
-TEST(ProfileModel, OnlyTheSpectrumSolverTakesOtherProfiles) {
+TEST(ProfileModel, OnlyTheRowsTakeOtherProfiles) {
   const Case c = cone_case(10.0, 0.1, 1.0, 1.0);
   for (const mdrmap::SolverKind k : mdrmap::kSolverKinds) {
-    const bool takes = k == mdrmap::SolverKind::Auto || k == mdrmap::SolverKind::Spectrum;
+    const bool takes = k != mdrmap::SolverKind::Exact; // auto, row, baseline
     EXPECT_EQ(mdrmap::solver_handles(k, mdrmap::model_needs(c)), takes) << mdrmap::solver_name(k);
     if (takes) continue;
     try {
@@ -377,12 +376,11 @@ TEST(ProfileModel, OnlyTheSpectrumSolverTakesOtherProfiles) {
       ADD_FAILURE() << "not refused: " << mdrmap::solver_name(k);
     } catch (const mdrmap::InvalidInput& e) {
       EXPECT_EQ(e.option(), "profile");
-      EXPECT_NE(std::string(e.what()).find("spectrum"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("auto, row or baseline"), std::string::npos);
     }
   }
   // the guards at the solvers' own entries
   EXPECT_THROW(mdrmap::run_exact(c, 1e-3), mdrmap::InvalidInput);
-  EXPECT_THROW(mdrmap::run_mdr(c, mdrmap::MdrOptions{}), mdrmap::InvalidInput);
   EXPECT_TRUE(mdrmap::solver_handles(mdrmap::SolverKind::Exact,
                                      mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
 }
@@ -408,7 +406,7 @@ TEST(ProfileTransient, PowerTwoIsTheParabola) {
       ref = mdrmap::run_exact(nc.c, 1e-12);
     }
     const mdrmap::RunResult r = mdrmap::run_case(p, mdrmap::SolverKind::Auto, 1e-3);
-    ASSERT_EQ(r.info.solver, "spectrum");
+    ASSERT_EQ(r.info.solver, "row");
     const double err = mdrmap::case_error(r.series, ref.series, nc.c).max();
     EXPECT_LE(err, 1e-3) << nc.name;
     EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name;
@@ -466,7 +464,7 @@ TEST(ProfileTransient, ConeRiseAcrossTheTipIsStationaryAtOnce) {
       c.history.v0 = 0.3 * a1; // v tau = 0.3 a1: the rear face in contact
       c.history.segments = {mdrmap::Segment{3.0 * a1, 2.0}, mdrmap::Segment{30.0 * a1, 1.0}};
       const mdrmap::RunResult r = mdrmap::run_case(c, mdrmap::SolverKind::Auto, rtol);
-      ASSERT_EQ(r.info.solver, "spectrum");
+      ASSERT_EQ(r.info.solver, "row");
       EXPECT_GT(r.series.pre.a2, 0.5 * a1); // in contact behind the tip before the rise
       for (std::size_t k = 0; k < r.series.size(); ++k) {
         const double L = c.history.segments[static_cast<std::size_t>(r.series.segment[k])].w;

@@ -24,8 +24,8 @@
 #   4. plots $OUT_DIR/work_precision.png and load_work_precision.png
 #      (tools/pyrun tools/plot_bench.py);
 #   5. profiles with valgrind --tool=callgrind (skipped with --no-profile or
-#      --quick, or when valgrind is not installed): mdrmap_bench --profile mdr
-#      and --profile auto, top functions in $OUT_DIR/profile_{mdr,auto}.txt.
+#      --quick, or when valgrind is not installed): mdrmap_bench --profile row
+#      and --profile auto, top functions in $OUT_DIR/profile_{row,auto}.txt.
 #
 # --quick      smoke run of a few seconds (short ladders, one call per scene)
 # --no-profile skip step 5
@@ -164,7 +164,7 @@ tools/pyrun tools/plot_bench.py --load "$OUT_DIR/load.csv" -o "$OUT_DIR/load_wor
 if ((profile)); then
   if command -v valgrind >/dev/null 2>&1 && command -v callgrind_annotate >/dev/null 2>&1; then
     # passes over the case set: enough that program start-up is a small share
-    for what in mdr:3 auto:30; do
+    for what in row:3 auto:30; do
       repeat=${what#*:} what=${what%:*}
       raw="$OUT_DIR/callgrind.$what.out"
       log "valgrind --tool=callgrind $BENCH --profile $what --repeat $repeat"

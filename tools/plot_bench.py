@@ -33,9 +33,7 @@ import sys
 STYLE = {  # family: (label, colour, marker)
     "exact": ("exact (continuum), rtol ladder", "tab:blue", "o"),
     "auto": ("simulate default (auto, rtol 1e-4)", "black", "*"),
-    "mdr": ("mdr, rtol ladder (log-linear edge)", "tab:green", "s"),
-    "mdr-linear": ("mdr, fixed a1/dx, linear edge", "tab:orange", "^"),
-    "mdr-none": ("mdr, fixed a1/dx, raw sums (paper)", "tab:red", "D"),
+    "row": ("row (N = 0), rtol ladder", "tab:green", "s"),
     "baseline": ("fixed-step baseline, a1/dx ladder", "tab:purple", "X"),
 }
 ZERO_FLOOR = 1e-17  # where exact zeros are drawn
@@ -163,7 +161,7 @@ def plot_load(args, plt):
         ax.grid(True, which="minor", alpha=0.08)
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8.5, frameon=False)
-    title = ("mdrmap load control: load solver vs fixed-step load baseline "
+    title = ("mdrmap load control: kelvin_load vs the fixed-step baseline "
              "(baseline points: cost ratio at equal error)")
     if args.title:
         title += "\n" + args.title

@@ -106,15 +106,18 @@ std::vector<OptionHelp> history_sampling_solver() {
       {"rtol", "E",
        std::string("target accuracy: bound on the case error (see the output), ") + kRtolAllowed,
        "1e-4", ""},
-      {"solver", "S", "auto, exact, mdr, baseline or spectrum", "auto",
-       "                   exact     continuum (dx -> 0) solution, semi-analytic\n"
-       "                   mdr       discrete MDR element simulation, error control\n"
-       "                   baseline  the paper's brute-force method, for reference\n"
-       "                   spectrum  element row of any rheology (--prony), exact\n"
-       "                             exponential updates, error control\n"
-       "                   auto      the cheapest solver that meets rtol (exact at\n"
-       "                             fixed depth, the load solver under --F0,\n"
-       "                             spectrum with --prony or a cone or power profile)\n"}};
+      {"solver", "S", "auto, exact, row or baseline", "auto",
+       "                   auto      the cheapest solver that meets rtol: exact\n"
+       "                             for the Kelvin parabola at fixed depth, its\n"
+       "                             load solver (kelvin_load) under --F0, row\n"
+       "                             otherwise (--prony, a cone or power profile)\n"
+       "                   exact     continuum (dx -> 0) solution, semi-analytic:\n"
+       "                             the Kelvin parabola at fixed depth\n"
+       "                   row       element row of every case (any rheology,\n"
+       "                             profile, depth or load), exact exponential\n"
+       "                             updates, error control (spectrum: old name)\n"
+       "                   baseline  fixed-step brute-force row of every case, the\n"
+       "                             independent check; a1/dx = 5/rtol (<= 4000)\n"}};
 }
 
 } // namespace

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
@@ -160,22 +162,20 @@ void check_grid_corners(const StudyConfig& c, const WhereFn& where) {
   }
 }
 
-/// Refuses a named solver that does not solve the study's spectrum (auto
-/// picks among those that do: run_case refuses a case none handles).
-void check_solver_takes_spectrum(const StudyConfig& c, SolverKind kind) {
-  std::string terms;
-  for (const Axis& a : c.axes)
-    if (a.column.spectrum()) terms += (terms.empty() ? "" : ", ") + a.name;
-  if (terms.empty() || solver_handles(kind, ModelNeeds{c.by_force(), true})) return;
-  throw ConfigError("run.solver", std::string("solver ") + solver_name(kind) +
-                                      " solves the Kelvin foundation only, and the study has a "
-                                      "relaxation spectrum (" +
-                                      terms + "); give solver = auto or spectrum");
+/// The solvers that take a study's loading and spectrum, "a, b or c".
+std::string solvers_taking(const ModelNeeds& needs) {
+  std::vector<std::string> names;
+  for (const SolverKind k : kSolverKinds)
+    if (solver_handles(k, needs)) names.emplace_back(solver_name(k));
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  return out;
 }
 
-/// Refuses a solver that does not solve the study's loading (the core says
-/// which do), or a named one that does not solve its spectrum. Throws
-/// ConfigError("run.solver") without location.
+/// Refuses a solver that does not solve the study's loading or its spectrum
+/// (the core says which do; auto picks among those that do: run_case refuses
+/// a case none handles). Throws ConfigError("run.solver") without location.
 void check_solver(const StudyConfig& c) {
   SolverKind kind = SolverKind::Auto;
   try {
@@ -183,19 +183,18 @@ void check_solver(const StudyConfig& c) {
   } catch (const InvalidInput& e) {
     throw ConfigError("run.solver", std::string("solver ") + e.what());
   }
-  const bool force = c.by_force();
-  if (solver_handles(kind, force)) {
-    check_solver_takes_spectrum(c, kind);
-    return;
-  }
-  std::string takes;
-  for (const SolverKind k : kSolverKinds)
-    if (solver_handles(k, force)) takes += std::string(takes.empty() ? "" : ", ") + solver_name(k);
-  throw ConfigError("run.solver",
-                    std::string("solver ") + solver_name(kind) + " does not solve " +
-                        (force ? "load control (the study prescribes the normal load F0)"
-                               : "depth control (the study prescribes the depth d)") +
-                        "; solver must be one of " + takes);
+  std::string terms;
+  for (const Axis& a : c.axes)
+    if (a.column.spectrum()) terms += (terms.empty() ? "" : ", ") + a.name;
+  const ModelNeeds needs{c.by_force(), !terms.empty()};
+  if (solver_handles(kind, needs)) return;
+  const std::string why =
+      !solver_handles(kind, ModelNeeds{c.by_force(), false})
+          ? (c.by_force() ? "load control (the study prescribes the normal load F0)"
+                          : "depth control (the study prescribes the depth d)")
+          : "a relaxation spectrum (the study has " + terms + ")";
+  throw ConfigError("run.solver", std::string("solver ") + solver_name(kind) + " does not solve " +
+                                      why + "; give solver = " + solvers_taking(needs));
 }
 
 std::string canonical_values(const Axis& a) {

@@ -170,22 +170,41 @@ void check_space(const std::string& out, std::uint64_t bytes) {
   }
 }
 
+// A [run] line "solver = NAME" of an earlier mdrmap under today's name: the
+// spectrum solver is row; a study of the retired mdr cannot resume (its cases
+// would be finished by another solver).
+std::string current_solver_line(const std::string& line, const std::string& map) {
+  if (line.compare(0, 9, "solver = ") != 0) return line;
+  const std::string name = line.substr(9, line.find_last_not_of("\r\n") - 8);
+  if (name == "spectrum") return "solver = row" + line.substr(9 + name.size());
+  if (name == "mdr")
+    throw InvalidInput("resume", "'" + map +
+                                     "' was written with solver mdr, which was retired; its "
+                                     "cases cannot be finished by another solver: write a new "
+                                     "map (solver = row or auto)");
+  return line;
+}
+
 // The canonical text of a map of an earlier mdrmap under today's names: a
 // [columns] line of an old spelling ("FN = ...", the prescribed load before
-// it was named F0) as the table's name, so that the map resumes as the same
-// study (its /cases and /grid keep the names it was written with).
-std::string with_current_names(const std::string& stored) {
+// it was named F0) as the table's name, and the [run] solver's old name, so
+// that the map resumes as the same study (its /cases and /grid keep the names
+// it was written with).
+std::string with_current_names(const std::string& stored, const std::string& map) {
   std::string out;
-  bool columns = false;
+  bool columns = false, run = false;
   std::size_t start = 0;
   while (start < stored.size()) {
     std::size_t end = stored.find('\n', start);
     end = end == std::string::npos ? stored.size() : end + 1;
     std::string line = stored.substr(start, end - start);
     start = end;
-    if (!line.empty() && line[0] == '[')
+    if (!line.empty() && line[0] == '[') {
       columns = line.compare(0, 9, "[columns]") == 0;
-    else if (columns) {
+      run = line.compare(0, 5, "[run]") == 0;
+    } else if (run) {
+      line = current_solver_line(line, map);
+    } else if (columns) {
       const std::string key = line.substr(0, line.find(" ="));
       line = canonical_parameter_name(key) + line.substr(key.size());
     }
@@ -207,7 +226,7 @@ void check_resume_matches(const StudyRequest& req, const std::string& canon) {
   } catch (const io::H5Error&) {
     throw InvalidInput("resume", "'" + req.output + "' has no readable study definition");
   }
-  stored = with_current_names(stored);
+  stored = with_current_names(stored, req.output);
   if (stored != canon)
     throw InvalidInput("config", "differs from the study stored in '" + req.output + "' (" +
                                      first_difference(stored, canon) +

@@ -152,7 +152,8 @@ double run_rtol(const std::string& option, const std::string& text) {
 std::string run_solver(const std::string& option, const std::string& text) {
   try {
     return solver_name(parse_solver(text));
-  } catch (const InvalidInput&) {
+  } catch (const InvalidInput& e) {
+    if (text == "mdr") throw ConfigError(option, std::string("solver ") + e.what()); // retired
     std::string names;
     for (const SolverKind k : kSolverKinds)
       names += (names.empty() ? "" : ", ") + std::string(solver_name(k));

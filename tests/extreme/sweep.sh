@@ -10,8 +10,8 @@
 #   exit 1  one stderr line ("mdrmap simulate: error: ...") (the case failed).
 # A timeout is a failure (the case ran unbounded). Some cases also name the
 # outcome they must have (e.g. 2:history). Then a few exit-0 cases are run with
-# --solver mdr (which adds the error against a reference: the continuum solver
-# at 1e-12 at fixed depth, the load solver at rtol/1000 under load) and must be
+# --solver row (which adds the error against a reference: the continuum solver
+# at 1e-12 at fixed depth, kelvin_load at rtol/1000 under load) and must be
 # within rtol with an error estimate of at least a third of the error.
 #
 # Environment: SWEEP_TIMEOUT (seconds per case, default 60).
@@ -89,7 +89,7 @@ for c in "${CASES[@]}"; do
   fi
 done
 
-# Accuracy: exit-0 cases with --solver mdr, within rtol, estimate >= error / 3.
+# Accuracy: exit-0 cases with --solver row, within rtol, estimate >= error / 3.
 SPOT=(
   "$DEPTH --tau 1 --history 0:1e12,1:1 --samples 11 --rtol 1e-3"
   "$DEPTH --tau 1 --history 1e-12:1,1:1 --samples 11 --rtol 1e-3"
@@ -99,7 +99,7 @@ SPOT=(
 )
 for args in "${SPOT[@]}"; do
   # shellcheck disable=SC2086
-  timeout -k 5 "$TIMEOUT" "$MDRMAP" simulate $args --solver mdr >"$out" 2>"$err"
+  timeout -k 5 "$TIMEOUT" "$MDRMAP" simulate $args --solver row >"$out" 2>"$err"
   code=$?
   verdict=$(awk -v code="$code" '
     /error_estimate=/ { for (i = 1; i <= NF; i++) if ($i ~ /^(error_estimate|rtol)=/) { split($i, kv, "="); v[kv[1]] = kv[2] } }
@@ -109,7 +109,7 @@ for args in "${SPOT[@]}"; do
       ok = (err <= v["rtol"] && v["error_estimate"] >= err / 3)
       printf "%s error %.3g estimate %.3g rtol %s\n", ok ? "ok" : "FAIL", err, v["error_estimate"], v["rtol"]
     }' "$out")
-  echo "spot-check mdr: $verdict: $args"
+  echo "spot-check row: $verdict: $args"
   if [[ $verdict != ok* ]]; then
     failures=$((failures + 1))
     count[violations]=$((${count[violations]:-0} + 1))

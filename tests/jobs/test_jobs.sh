@@ -8,7 +8,7 @@
 #     complete map and its config copy; run again: resumed, nothing pending,
 #     exit 0, results unchanged. Refusals: a file that is not a map, a map of
 #     another study, a missing config (exit 2, file untouched).
-#  3. Interruptions of a ~3 s study (32000 cases), signalled as the scheduler would, each
+#  3. Interruptions of a ~3 s study (4480 cases), signalled as the scheduler would, each
 #     leaving a valid, resumable map with progress made:
 #     study.sbatch: SIGUSR1 to the script alone (--signal=B:USR1) outside
 #       Slurm (exit 3, "not requeued"); then under a fake Slurm (stub srun and
@@ -159,7 +159,7 @@ v1_over_v = 0.01, 2
 [run]
 samples = 21
 EOF
-cp "$(dirname "$SELF")/big.ini" big.ini # 32000 cases, about 3 s at 2 ranks, to be interrupted
+cp "$(dirname "$SELF")/big.ini" big.ini # 4480 cases, about 3 s at 2 ranks, to be interrupted
 
 # start NAME SCRIPT [VAR=VALUE...]: starts the job script in the background in
 # its own process group (a job), log NAME.log; sets $job

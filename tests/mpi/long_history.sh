@@ -18,7 +18,7 @@ K=10000
   for ((k = 1; k <= K; k++)); do
     printf 'w%d_over_v = %s\nT%d_over_tau = 0.01\n' "$k" "$((k % 2 ? 1 : 0))" "$k"
   done
-  printf '[run]\nsamples = 2\nsolver = mdr\nrtol = 1e-2\n'
+  printf '[run]\nsamples = 2\nsolver = auto\nrtol = 1e-2\n'
 } >"$dir/long.ini"
 out="$dir/long.h5"
 code=0

@@ -49,10 +49,10 @@ while time.monotonic() < end:
 sys.exit(1)
 PY
 
-grid() { # grid N_D N_TAU: N_D * N_TAU * 100 cases of the mdr solver (~0.3 ms each)
+grid() { # grid N_D N_TAU: N_D * N_TAU * 100 cases of the element row (~1.8 ms each)
   printf '[grid]\nd = logspace:1e-4:1e-2:%s\nR = 1\ntau = linspace:0.5:2:%s\n' "$1" "$2"
   printf 'v = logspace:1e-3:1e3:10\nv1_over_v = logspace:1e-4:0.9:10\n'
-  printf '[run]\nsamples = 101\nsolver = mdr\nrtol = 1e-3\n'
+  printf '[run]\nsamples = 101\nsolver = row\nrtol = 1e-3\n'
 }
 
 declare -A peak create

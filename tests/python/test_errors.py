@@ -107,8 +107,8 @@ ROWS = [
     ("--R with power", {"profile": "power", "n": "2", "A": "1"}, [], "R"),
     ("a cone on the continuum solver",
      {"profile": "cone", "R": DROP, "beta": "10", "solver": "exact"}, [], "profile"),
-    ("a power law on the mdr solver",
-     {"profile": "power", "R": DROP, "n": "3", "A": "1", "solver": "mdr"}, [], "profile"),
+    ("the retired mdr solver", {"solver": "mdr"}, [], "solver"),
+    ("an unknown solver", {"solver": "spectrum_baseline"}, [], "solver"),
     ("prony without --G", {"G": DROP, "prony": "1:1"}, [], "G"),
     ("prony-file without --G", {"G": DROP, "prony-file": "{dir}/good.csv"}, [], "G"),
     ("prony G = 0", {"prony": "0:1"}, [], "prony"),
@@ -365,7 +365,7 @@ def test_a_solver_refusing_the_loading_is_bad_input(exe):
 def test_a_case_past_its_budget_is_a_runtime_error():
     with pytest.raises(RuntimeError, match="rtol"):
         mdrmap.simulate(d=1e-3, R=1, tau=1, v=1, history="0.1:0.1,0:0.1,1:0.1", samples=5,
-                        solver="mdr", rtol=1e-15)
+                        solver="row", rtol=1e-15)
 
 
 def test_a_spectrum_file_that_is_a_fifo_is_refused_at_once(tmp_path):

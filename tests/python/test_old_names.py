@@ -173,3 +173,52 @@ def test_tools_read_an_old_csv_case_line(exe, srcdir, tmp_path):
         run = _runs.read_csv(str(path), np)
         assert run.case["F0"] == 0.1 and "FN" not in run.case
         assert run.load and run.col["FN"].shape == (5,)
+
+
+TWO_CASES = "[grid]\nd = 1e-3\nR = 1\ntau = 1\nv = 1, 2\nv1_over_v = 0.5\n" \
+            "[run]\nsamples = 5\nrtol = 1e-3\nsolver = {solver}\n"
+
+
+def old_solver_map(exe, tmp_path, old):
+    """A map of the row whose stored study names the solver `old`, as an
+    earlier mdrmap wrote it, its second case pending."""
+    ini = tmp_path / "row.ini"
+    ini.write_text(TWO_CASES.format(solver="row"))
+    out = tmp_path / f"{old}.h5"
+    study(exe, ini, out)
+    with H5PY.File(out, "r+") as f:
+        text = bytes(f["provenance/config_canonical"][()]).decode()
+        assert "solver = row\n" in text
+        del f["provenance/config_canonical"]
+        f["provenance/config_canonical"] = np.frombuffer(
+            text.replace("solver = row\n", f"solver = {old}\n").encode(), np.uint8)
+        status = f["results/status"][()]
+        status[1] = 0
+        f["results/status"][...] = status
+    return ini, out
+
+
+def test_a_map_of_the_spectrum_solver_resumes_as_row(exe, tmp_path):
+    """spectrum, the row's old name: its map resumes under either name."""
+    ini, out = old_solver_map(exe, tmp_path, "spectrum")
+    old_ini = tmp_path / "spectrum.ini"
+    old_ini.write_text(TWO_CASES.format(solver="spectrum"))
+    for config in (ini, old_ini):
+        study(exe, config, out, "--resume")
+        with H5PY.File(out, "r") as f:
+            assert list(f["results/status"][()]) == [1, 1]
+
+
+def test_a_map_of_the_retired_mdr_is_refused_in_one_line(exe, tmp_path):
+    """mdr was retired: --resume of its map refuses in one line, the map untouched."""
+    ini, out = old_solver_map(exe, tmp_path, "mdr")
+    before = out.read_bytes()
+    p = study(exe, ini, out, "--resume", check=False)
+    assert p.returncode == 2, p.stderr
+    assert p.stderr.count("\n") == 1, p.stderr
+    assert "was written with solver mdr, which was retired" in p.stderr
+    assert out.read_bytes() == before
+    old_ini = tmp_path / "mdr.ini"
+    old_ini.write_text(TWO_CASES.format(solver="mdr"))
+    p = study(exe, old_ini, out, "--resume", check=False)
+    assert p.returncode == 2 and "mdr was retired: use row" in p.stderr, p.stderr

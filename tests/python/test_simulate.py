@@ -112,10 +112,11 @@ def test_case_sets_equal_the_cli_bit_for_bit(exe, which):
 @pytest.mark.parametrize("kw", [
     dict(d=0.1, R=10, tau=1, v=2, v1=0.5),  # the default window, 201 samples
     dict(d=0.1, R=10, tau=0, v=2, v1=0, samples=7),
-    dict(d=0.1, R=10, tau=1, v=2, v1=0.5, t_end=3, samples=9, solver="mdr", rtol=1e-3),
+    dict(d=0.1, R=10, tau=1, v=2, v1=0.5, t_end=3, samples=9, solver="row", rtol=1e-3),
     dict(d=0.1, R=10, tau=1, v=1, history=[(1, 2), (0, 1000), (1, 5)], samples=31,
          spacing="log", log_decades=6, G=2.5),
-    dict(F0=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="mdr"),
+    dict(F0=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="row"),
+    dict(F0=0.1, R=10, tau=1, v=1, history=[(0.1, 20), (1, 20)], samples=11, solver="spectrum"),
 ])
 def test_examples_of_the_help_equal_the_cli(exe, kw):
     check_equal(exe, kw)

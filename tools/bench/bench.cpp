@@ -42,10 +42,10 @@
 
 #include "cases/case_set.hpp"
 #include "core/metrics/error_metric.hpp"
-#include "core/solvers/baseline.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "core/solvers/exact.hpp"
-#include "core/solvers/mdr.hpp"
+#include "core/solvers/spectrum.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 #include "mdrmap/version.hpp"
 #include "stats.hpp"
 
@@ -72,7 +72,7 @@ Options:
   --command TEXT       the command line to quote in bench.md
   --profile SETTING    run one setting over the case set without references
                        or output, for a profiler (valgrind --tool=callgrind,
-                       perf record): mdr (rtol 1e-3), auto (simulate default,
+                       perf record): row (rtol 1e-3), auto (simulate default,
                        rtol 1e-4), exact (rtol 1e-10), baseline (a1/dx = 500,
                        on the baseline subset)
   --repeat N           passes over the case set in --profile mode (default 1)
@@ -93,8 +93,8 @@ struct BenchCase {
 constexpr double kBaselineTopCells = 500.0;     // the costliest baseline rung
 constexpr double kBaselineUpdateBudget = 2.0e8; // element updates allowed at that rung
 
-// Element updates of run_baseline at `cells` = a1/dx with default options
-// (BaselineOptions: spin-up 4 a1, dt = dx / max(v, v1), each segment cut into
+// Element updates of the baseline at `cells` = a1/dx with default options
+// (SpectrumBaselineOptions: spin-up 4 a1, dt = dx / max(v, v1), each segment cut into
 // whole steps): elements over the whole travel path, each visited at every step.
 double baseline_updates(const Case& c, double cells) {
   const double a1 = c.a1(), dx = a1 / cells, v = c.history.v0;
@@ -133,7 +133,7 @@ std::vector<BenchCase> make_cases(bool with_reference) {
 using Runner = std::function<RunResult(const Case&)>;
 
 struct Setting {
-  std::string solver; ///< family: exact, auto, mdr, mdr-linear, mdr-none, baseline
+  std::string solver; ///< family: exact, auto, row, baseline
   std::string label;  ///< e.g. "rtol=1e-04", "a1/dx=500"
   double param = 0;   ///< rtol or a1/dx
   double rtol = 0;    ///< tolerance promised (0: none, fixed resolution)
@@ -159,30 +159,20 @@ Setting auto_setting(double rtol) {
           false,  [rtol](const Case& c) { return run_case(c, SolverKind::Auto, rtol); }};
 }
 
-Setting mdr_setting(double rtol) {
-  return {"mdr", "rtol=" + fmt("%.0e", rtol), rtol, rtol, false, [rtol](const Case& c) {
-            MdrOptions o;
+Setting row_setting(double rtol) {
+  return {"row", "rtol=" + fmt("%.0e", rtol), rtol, rtol, false, [rtol](const Case& c) {
+            SpectrumOptions o;
             o.rtol = rtol;
-            return run_mdr(c, o);
-          }};
-}
-
-Setting mdr_fixed_setting(MdrSubgrid mode, double cells) {
-  const char* family = mode == MdrSubgrid::Linear ? "mdr-linear" : "mdr-none";
-  return {family, "a1/dx=" + fmt("%g", cells), cells, 0.0, false, [mode, cells](const Case& c) {
-            MdrOptions o;
-            o.cells_per_a1 = cells;
-            o.subgrid = mode; // error estimate on (the default): its companion run is timed too
-            return run_mdr(c, o);
+            return run_spectrum(c, o);
           }};
 }
 
 Setting baseline_setting(double cells) {
   return {"baseline", "a1/dx=" + fmt("%g", cells), cells, 0.0, true, [cells](const Case& c) {
-            BaselineOptions o; // the method alone: no half-resolution companion
+            SpectrumBaselineOptions o; // the method alone: no half-resolution companion
             o.cells_per_a1 = cells;
             o.estimate_error = false;
-            return run_baseline(c, o);
+            return run_spectrum_baseline(c, o);
           }};
 }
 
@@ -194,16 +184,10 @@ std::vector<Setting> make_settings(bool quick) {
   for (double r : exact_rtols)
     out.push_back(exact_setting(r));
   out.push_back(auto_setting(1e-4)); // `mdrmap simulate` at its defaults
-  const std::vector<double> mdr_rtols = quick ? std::vector<double>{1e-2, 1e-3, 1e-4}
+  const std::vector<double> row_rtols = quick ? std::vector<double>{1e-2, 1e-3, 1e-4}
                                               : std::vector<double>{1e-2, 1e-3, 1e-4, 1e-6, 1e-8};
-  for (double r : mdr_rtols)
-    out.push_back(mdr_setting(r));
-  const std::vector<double> cells =
-      quick ? std::vector<double>{50, 200} : std::vector<double>{50, 200, 800, 3200};
-  for (double n : cells)
-    out.push_back(mdr_fixed_setting(MdrSubgrid::Linear, n));
-  for (double n : cells)
-    out.push_back(mdr_fixed_setting(MdrSubgrid::None, n));
+  for (double r : row_rtols)
+    out.push_back(row_setting(r));
   const std::vector<double> bcells =
       quick ? std::vector<double>{50, 500} : std::vector<double>{50, 100, 200, 500};
   for (double n : bcells)
@@ -334,25 +318,24 @@ Case probe_case(double zeta_, double v1_over_v) {
   return step_case(d, R, tau, v, v1_over_v * v);
 }
 
-RunResult probe_mdr(const Case& c, double cells) {
-  MdrOptions o;
+RunResult probe_row(const Case& c, double cells) {
+  SpectrumOptions o;
   o.rtol = 1e-3;
   if (cells > 0) {
     o.cells_per_a1 = cells;
-    o.subgrid = MdrSubgrid::Linear;
     o.estimate_error = false;
   }
-  return run_mdr(c, o);
+  return run_spectrum(c, o);
 }
 
 // steps_per_cell < 1: a coarser time step than the baseline's dx / max(v, v1),
 // for a memory probe whose run at the proper step would take minutes.
 RunResult probe_baseline(const Case& c, double steps_per_cell = 1.0) {
-  BaselineOptions o;
+  SpectrumBaselineOptions o;
   o.cells_per_a1 = kBaselineTopCells;
   o.estimate_error = false;
   o.steps_per_cell = steps_per_cell;
-  return run_baseline(c, o);
+  return run_spectrum_baseline(c, o);
 }
 
 std::vector<Probe> make_probes() {
@@ -363,18 +346,17 @@ std::vector<Probe> make_probes() {
              b600 = probe_case(1.0, 100.0);
   std::vector<Probe> p;
   p.push_back({"idle", "no run: the process floor", {}});
-  p.push_back({"mdr-short", "mdr rtol 1e-3, zeta 1, v1/v 0.1 (travel 0.6 a1)",
-               [=] { return probe_mdr(shrt, 0); }});
+  p.push_back({"row-short", "row rtol 1e-3, zeta 1, v1/v 0.1 (travel 0.6 a1)",
+               [=] { return probe_row(shrt, 0); }});
   p.push_back(
-      {"mdr-v1v-1e-8", "mdr rtol 1e-3, zeta 1, v1/v 1e-8", [=] { return probe_mdr(slow, 0); }});
-  p.push_back({"mdr-long", "mdr rtol 1e-3, v1 tau/a1 1e8 (travel 6e8 a1)",
-               [=] { return probe_mdr(lng, 0); }});
-  p.push_back({"mdr1e5-short", "mdr a1/dx 1e5 (linear edge), zeta 1, v1/v 0.1",
-               [=] { return probe_mdr(shrt, 1e5); }});
-  p.push_back({"mdr1e5-v1v-1e-8", "mdr a1/dx 1e5 (linear edge), zeta 1, v1/v 1e-8",
-               [=] { return probe_mdr(slow, 1e5); }});
-  p.push_back({"mdr1e5-long", "mdr a1/dx 1e5 (linear edge), v1 tau/a1 1e8",
-               [=] { return probe_mdr(lng, 1e5); }});
+      {"row-v1v-1e-8", "row rtol 1e-3, zeta 1, v1/v 1e-8", [=] { return probe_row(slow, 0); }});
+  p.push_back({"row-long", "row rtol 1e-3, v1 tau/a1 1e8 (travel 6e8 a1)",
+               [=] { return probe_row(lng, 0); }});
+  p.push_back(
+      {"row1e4-short", "row a1/dx 1e4, zeta 1, v1/v 0.1", [=] { return probe_row(shrt, 1e4); }});
+  p.push_back({"row1e4-v1v-1e-8", "row a1/dx 1e4, zeta 1, v1/v 1e-8",
+               [=] { return probe_row(slow, 1e4); }});
+  p.push_back({"row1e4-long", "row a1/dx 1e4, v1 tau/a1 1e8", [=] { return probe_row(lng, 1e4); }});
   p.push_back({"baseline-short", "baseline a1/dx 500, zeta 1, v1/v 0.1 (travel 4.6 a1)",
                [=] { return probe_baseline(shrt); }});
   // memory only: at the baseline's dt = dx / v1 this run needs ~1.5e11 element
@@ -574,8 +556,8 @@ const Row* find_row(const std::vector<Row>& rows, const std::string& solver,
 int run_profile(const std::string& which, int repeat) {
   const auto cases = make_cases(false);
   Setting st;
-  if (which == "mdr")
-    st = mdr_setting(1e-3);
+  if (which == "row")
+    st = row_setting(1e-3);
   else if (which == "auto")
     st = auto_setting(1e-4);
   else if (which == "exact")
@@ -583,7 +565,7 @@ int run_profile(const std::string& which, int repeat) {
   else if (which == "baseline")
     st = baseline_setting(kBaselineTopCells);
   else {
-    std::fprintf(stderr, "mdrmap_bench: --profile takes mdr, auto, exact or baseline\n");
+    std::fprintf(stderr, "mdrmap_bench: --profile takes row, auto, exact or baseline\n");
     return 2;
   }
   const auto t0 = Clock::now();
@@ -693,7 +675,7 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   }
   const Row* base_top = find_row(rows, "baseline", top, "baseline-subset");
   const Row* auto_sub = find_row(rows, "auto", "rtol=1e-04", "baseline-subset");
-  const Row* mdr3 = find_row(rows, "mdr", "rtol=1e-03", "all");
+  const Row* row3 = find_row(rows, "row", "rtol=1e-03", "all");
   const double cost_ratio =
       (base_top && auto_sub) ? base_top->median_s / auto_sub->median_s : std::nan("");
   // per scene: measured on the subset; a cost model (measured seconds per
@@ -745,7 +727,8 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   md << "\nCommand: `" << (command.empty() ? "mdrmap_bench" : command) << "`\n\n";
 
   md << "### Case set and method\n\n";
-  md << cases.size() << " scenes of `hard_case_set()` (tests/cases/case_set.cpp), default protocol ("
+  md << cases.size()
+     << " scenes of `hard_case_set()` (tests/cases/case_set.cpp), default protocol ("
      << "t_end = 6 tau, or 6 a1 / min(v, v1) for tau = 0; 201 samples). Error: the case error of "
         "docs/design.md, \"Error metric\" (largest relative deviation of F_N, F_x, mu; a2 in units "
         "of a1) against `run_exact` at rtol 1e-12 (so the exact row at 1e-12 is the reference "
@@ -755,9 +738,9 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
      << " per scene, then the median over scenes. `min estimate/error` is the smallest ratio of "
         "the run's `error_estimate` to its true error over the scenes (honest if >= 1/3; `none`: "
         "the solver reports no estimate). `auto` is `mdrmap simulate` at its defaults "
-        "(`run_case(SolverKind::Auto, 1e-4)`). mdr at fixed a1/dx runs with the error estimate "
-        "on, so its time includes the half-resolution companion run.\n\n";
-  md << "The fixed-step baseline (`run_baseline`: elements over the whole travel path, dt = "
+        "(`run_case(SolverKind::Auto, 1e-4)`). row is the element row at N = 0 branches.\n\n";
+  md << "The fixed-step baseline (`run_spectrum_baseline`: elements over the whole travel path, dt "
+        "= "
         "dx/max(v, v1), spin-up of 4 a1 from an undeformed foundation) costs about (a1/dx)^2 (6 + "
         "6 zeta1) (4 + 6 zeta) max(1, v1/v) element updates (zeta = v tau/a1, zeta1 = v1 tau/a1; "
         "for tau = 0 the window is 6 a1/min(v, v1)); it is run on the "
@@ -792,7 +775,7 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
        << ") | " << (ok ? "yes" : "**no**") << " |\n";
   };
   rtol_target("exact", 1e-10, 1e-3, "exact: max error <= rtol, every rtol 1e-3 ... 1e-10");
-  rtol_target("mdr", 1e-4, 1e-2, "mdr: max error <= rtol, rtol 1e-2, 1e-3, 1e-4");
+  rtol_target("row", 1e-4, 1e-2, "row (N = 0): max error <= rtol, rtol 1e-2, 1e-3, 1e-4");
   // Honesty of the estimates over a group of settings.
   auto honesty_target = [&](const char* text, const std::function<bool(const Setting&)>& in) {
     int runs = 0, below = 0;
@@ -822,14 +805,14 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   };
   auto near = [](double x, double lo, double hi) { return x >= lo * 0.99 && x <= hi * 1.01; };
   honesty_target("error_estimate >= error / 3 at the target tolerances: exact (every rtol), "
-                 "auto, mdr rtol 1e-2 ... 1e-4",
+                 "auto, row rtol 1e-2 ... 1e-4",
                  [&](const Setting& st) {
                    return st.solver == "exact" || st.solver == "auto" ||
-                          (st.solver == "mdr" && near(st.rtol, 1e-4, 1e-2));
+                          (st.solver == "row" && near(st.rtol, 1e-4, 1e-2));
                  });
-  honesty_target("(beyond the targets) error_estimate >= error / 3, mdr rtol < 1e-4",
-                 [&](const Setting& st) { return st.solver == "mdr" && st.rtol < 1e-4 * 0.99; });
-  honesty_target("(beyond the targets) error_estimate >= error / 3, mdr at fixed a1/dx and the "
+  honesty_target("(beyond the targets) error_estimate >= error / 3, row rtol < 1e-4",
+                 [&](const Setting& st) { return st.solver == "row" && st.rtol < 1e-4 * 0.99; });
+  honesty_target("(beyond the targets) error_estimate >= error / 3, the "
                  "baseline (see the table below)",
                  [&](const Setting& st) { return st.rtol == 0.0; });
   md << "| simulate default (auto, rtol 1e-4) >= 1000x cheaper per scene than the baseline at "
@@ -845,21 +828,21 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
      << "x, >= 1000x on " << case_ratio_ok << " of " << case_ratio.size()
      << "; baseline median error " << e2(base_top ? base_top->median_err : NAN) << " | "
      << (cost_ratio >= 1000 ? "yes" : "**no**") << " |\n";
-  md << "| mdr rtol 1e-3: median <= 10 ms per scene | " << ms(mdr3 ? mdr3->median_s : NAN)
-     << " ms (slowest scene " << ms(mdr3 ? mdr3->max_s : NAN) << " ms) | "
-     << (mdr3 && mdr3->median_s <= 10e-3 ? "yes" : "**no**") << " |\n";
+  md << "| row rtol 1e-3: median <= 10 ms per scene | " << ms(row3 ? row3->median_s : NAN)
+     << " ms (slowest scene " << ms(row3 ? row3->max_s : NAN) << " ms) | "
+     << (row3 && row3->median_s <= 10e-3 ? "yes" : "**no**") << " |\n";
   {
-    const long r0 = probe_rss("mdr-short"), r1 = probe_rss("mdr-v1v-1e-8"),
-               r2 = probe_rss("mdr-long");
-    const long big0 = probe_rss("mdr1e5-short"), big1 = probe_rss("mdr1e5-v1v-1e-8"),
-               big2 = probe_rss("mdr1e5-long");
+    const long r0 = probe_rss("row-short"), r1 = probe_rss("row-v1v-1e-8"),
+               r2 = probe_rss("row-long");
+    const long big0 = probe_rss("row1e4-short"), big1 = probe_rss("row1e4-v1v-1e-8"),
+               big2 = probe_rss("row1e4-long");
     // "the same": within a 256 KiB page-rounding noise or 5 %
     auto same = [](long a, long b) { return std::labs(a - b) <= std::max(256L, a / 20); };
     const bool mem_ok =
         r0 > 0 && same(r0, r1) && same(r0, r2) && same(big0, big1) && same(big0, big2);
-    md << "| mdr memory per scene independent of travel and of v1/v | peak RSS KiB, rtol 1e-3: "
+    md << "| row memory per scene independent of travel and of v1/v | peak RSS KiB, rtol 1e-3: "
        << r0 << " (travel 0.6 a1), " << r1 << " (v1/v = 1e-8), " << r2
-       << " (v1 tau/a1 = 1e8); at a1/dx = 1e5: " << big0 << ", " << big1 << ", " << big2 << " | "
+       << " (v1 tau/a1 = 1e8); at a1/dx = 1e4: " << big0 << ", " << big1 << ", " << big2 << " | "
        << (mem_ok ? "yes" : "**no**") << " |\n";
   }
 
@@ -869,12 +852,12 @@ int run_bench(bool quick, const std::string& out_dir, const std::string& machine
   for (const Honesty& h : honesty)
     md << "| " << h.family << " | " << h.runs << " | " << h.below << " | " << h.without << " | "
        << ratio_str(h.min_ratio) << " | " << h.where << " |\n";
-  md << "\nError-controlled runs (exact, auto, mdr at rtol) whose estimate is below a third of "
+  md << "\nError-controlled runs (exact, auto, row at rtol) whose estimate is below a third of "
         "the true error:";
   bool any = false;
   for (std::size_t s = 0; s < settings.size(); ++s) {
     const std::string& f = settings[s].solver;
-    if (f != "exact" && f != "auto" && f != "mdr") continue;
+    if (f != "exact" && f != "auto" && f != "row") continue;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const CaseResult& r = res[s][i];
       if (!r.covered || 3.0 * r.estimate >= r.error) continue;

@@ -20,9 +20,9 @@
 
 #include "cases/case_set.hpp"
 #include "core/metrics/error_metric.hpp"
-#include "core/solvers/baseline.hpp"
 #include "core/solvers/exact.hpp"
-#include "core/solvers/mdr.hpp"
+#include "core/solvers/spectrum.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 #include "stats.hpp"
 
 namespace {
@@ -80,20 +80,20 @@ std::vector<Setting> settings(bool quick) {
   for (double rtol : {1e-2, 1e-3, 1e-4}) {
     if (quick && rtol < 1e-3) continue;
     char name[32];
-    std::snprintf(name, sizeof name, "mdr rtol=%.0e", rtol);
+    std::snprintf(name, sizeof name, "row rtol=%.0e", rtol);
     out.push_back({name, [rtol](const Case& c) {
-                     mdrmap::MdrOptions o;
+                     mdrmap::SpectrumOptions o;
                      o.rtol = rtol;
-                     return mdrmap::run_mdr(c, o);
+                     return mdrmap::run_spectrum(c, o);
                    }});
   }
   if (!quick)
     out.push_back({"baseline a1/dx=200", [](const Case& c) {
-                     mdrmap::BaselineOptions o;
+                     mdrmap::SpectrumBaselineOptions o;
                      o.cells_per_a1 = 200;
                      if (baseline_updates(c, o.cells_per_a1) > 3e8)
                        throw std::runtime_error("over the benchmark's budget");
-                     return mdrmap::run_baseline(c, o);
+                     return mdrmap::run_spectrum_baseline(c, o);
                    }});
   return out;
 }

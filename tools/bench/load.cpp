@@ -11,7 +11,7 @@
 // time_tol 1e-8 (the rounding of D ~ 2 L a1 / R shows at 1e-9).
 //
 // Part 2, three 3-segment histories, side by side in this run: a ladder of the
-// fixed-step element row (run_load_baseline, a0/dx doubling from 12.5 until a
+// fixed-step element row (baseline, run_spectrum_baseline, a1/dx doubling from 12.5 until a
 // call would take over --max-call-seconds) and a ladder of the load solver
 // (rtol 1e-1 .. 1e-5, and fixed a/dx and time steps), errors against the same
 // reference. For each baseline point: the load solver's time at that error,
@@ -34,7 +34,7 @@
 #include "cases/load_case_set.hpp"
 #include "core/metrics/error_metric.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/load_baseline.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 #include "stats.hpp"
 
 namespace {
@@ -450,8 +450,8 @@ int main(int argc, char** argv) {
       rows.push_back(r);
     }
     const auto f_all = front(all), f_rtol = front(rtol_only);
-    // the baseline: a0/dx doubling; stop after a call over max_call seconds,
-    // or before one expected over it (cost ~ (a0/dx)^2: 4x per doubling)
+    // the baseline: a1/dx doubling; stop after a call over max_call seconds,
+    // or before one expected over it (cost ~ (a1/dx)^2: 4x per doubling)
     double last = 0.0;
     std::string stop = "ladder end";
     for (double cpa = 12.5; cpa <= 1e6; cpa *= 2.0) {
@@ -464,27 +464,27 @@ int main(int argc, char** argv) {
             "next call expected ~" + fmt("%.0f", 4.0 * last) + " s > " + fmt("%g", max_call) + " s";
         break;
       }
-      mdrmap::LoadBaselineOptions b;
-      b.cells_per_a0 = cpa;
+      mdrmap::SpectrumBaselineOptions b;
+      b.cells_per_a1 = cpa;
       b.estimate_error = false; // the cheapest baseline: the ratio errs low
       // (no work budget: the ladder stops on time, --max-call-seconds)
       Row r = measure(
-          "baseline", "baseline a0/dx=" + fmt("%g", cpa), nc, ref_of(i),
+          "baseline", "baseline a1/dx=" + fmt("%g", cpa), nc, ref_of(i),
           [&] {
             mdrmap::RunControl unbounded;
             unbounded.max_work = std::numeric_limits<double>::infinity();
-            mdrmap::LoadBaselineOptions bb = b;
+            mdrmap::SpectrumBaselineOptions bb = b;
             bb.control = &unbounded;
-            return mdrmap::run_load_baseline(nc.c, bb);
+            return mdrmap::run_spectrum_baseline(nc.c, bb);
           },
           reps);
       r.cells = cpa;
       if (r.failed) {
-        std::fprintf(stderr, "bench_load: %-30s baseline a0/dx=%-8g FAILED: %s\n", name.c_str(),
+        std::fprintf(stderr, "bench_load: %-30s baseline a1/dx=%-8g FAILED: %s\n", name.c_str(),
                      cpa, r.what.c_str());
         rows.push_back(r);
         if (r.what.find("too expensive") != std::string::npos) {
-          stop = "too expensive at a0/dx=" + fmt("%g", cpa);
+          stop = "too expensive at a1/dx=" + fmt("%g", cpa);
           break;
         }
         continue;
@@ -495,7 +495,7 @@ int main(int argc, char** argv) {
       r.load_s_rtol = time_at(f_rtol, r.err, r.how_rtol);
       r.ratio_rtol = r.seconds / r.load_s_rtol;
       std::fprintf(stderr,
-                   "bench_load: %-30s baseline a0/dx=%-8g err %.2e %9.3f ms; load %.3f ms (%s), "
+                   "bench_load: %-30s baseline a1/dx=%-8g err %.2e %9.3f ms; load %.3f ms (%s), "
                    "ratio %.3g\n",
                    name.c_str(), cpa, r.err, 1e3 * r.seconds, 1e3 * r.load_s, r.how.c_str(),
                    r.ratio);
@@ -615,11 +615,11 @@ int main(int argc, char** argv) {
   }
 
   md << "\n### Side by side with the fixed-step solver\n\n"
-        "`run_load_baseline` (elements over the whole travel path, first order in dx and dt, "
-        "dt = dx / largest velocity, no companion run: its cheapest form) at a0/dx doubling "
+        "`run_spectrum_baseline` (elements over the whole travel path, first order in dx and dt, "
+        "dt = dx / largest velocity, no companion run: its cheapest form) at a1/dx doubling "
         "from 12.5 until a call takes over "
      << fmt("%g", max_call)
-     << " s (cost ~ (a0/dx)^2: the ladder stops before a call expected to take longer); the load "
+     << " s (cost ~ (a1/dx)^2: the ladder stops before a call expected to take longer); the load "
         "solver at rtol "
         "1e-1..1e-5 (with its companion) and at fixed a/dx and fixed steps h/tau (no companion; "
         "h is capped at the sample spacing). Same reference as above. For each baseline point, "

@@ -17,7 +17,7 @@
 // spectrum solver's at rtol 1e-3 and its time there, N^q extrapolated (it is
 // not run there: at fixed depth a1/dx of several thousand, tens of minutes),
 // and the ratio of that time to the spectrum solver's; for the Kelvin scenes
-// also mdr and exact (depth) or the load solver. Prints the table and writes
+// also exact (depth) or kelvin_load (load). Prints the table and writes
 // DIR/spectrum.md. Medians and ratios come from this one run.
 #include <chrono>
 #include <cmath>
@@ -32,7 +32,6 @@
 #include "core/metrics/spectrum_stationary.hpp"
 #include "core/solvers/exact.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/mdr.hpp"
 #include "core/solvers/spectrum.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
 #include "stats.hpp"
@@ -178,16 +177,11 @@ std::vector<Line> kelvin_lines(const Scene& s, const RunResult& ref, int reps) {
     LoadOptions l;
     l.rtol = 1e-3;
     const RunResult r = run_load(s.c, l);
-    return {{s.name, "load solver rtol 0.001", err_of(r, ref, s.c), r.info.error_estimate,
+    return {{s.name, "kelvin_load rtol 0.001", err_of(r, ref, s.c), r.info.error_estimate,
              1e3 * time_median([&] { run_load(s.c, l); }, reps)}};
   }
-  MdrOptions m;
-  m.rtol = 1e-3;
-  const RunResult rm = run_mdr(s.c, m);
   const RunResult re = run_exact(s.c, 1e-3);
-  return {{s.name, "mdr rtol 0.001", err_of(rm, ref, s.c), rm.info.error_estimate,
-           1e3 * time_median([&] { run_mdr(s.c, m); }, reps)},
-          {s.name, "exact rtol 0.001", err_of(re, ref, s.c), re.info.error_estimate,
+  return {{s.name, "exact rtol 0.001", err_of(re, ref, s.c), re.info.error_estimate,
            1e3 * time_median([&] { run_exact(s.c, 1e-3); }, reps)}};
 }
 

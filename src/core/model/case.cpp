@@ -328,7 +328,7 @@ void require_parabola(const Case& c, const char* solver) {
     throw InvalidInput("profile", std::string(solver) +
                                       " solves the parabola only; this case's profile is " +
                                       profile_name(c.indenter.profile) +
-                                      " (the spectrum solver takes every profile)");
+                                      " (row and baseline take every profile)");
 }
 
 double zeta(const Case& c, double w) {

@@ -18,7 +18,7 @@ bool within(double x, double lo, double hi) {
 void check_time(double tau, double aT, const std::string& own, const std::string& what) {
   const double shifted = aT * tau;
   if (within(shifted, kMinTime, kMaxTime)) return;
-  const std::string range = " outside [1e-150, 1e150], the range of the spectrum solver's times";
+  const std::string range = " outside [1e-150, 1e150], the range of the element row's times";
   if (aT != 1.0)
     throw InvalidInput("aT", "times " + what + " = " + format_number(tau) +
                                  " gives a shifted time " + format_number(shifted) + range +
@@ -33,8 +33,8 @@ std::string velocity_problem(double w, double c) {
   if (within(w2, kMinSquare, kMaxSquare) && within(cw2, kMinSquare, kMaxSquare)) return "";
   return "= " + format_number(w) + " gives w^2 = " + format_number(w2) +
          " and c w^2 = " + format_number(cw2) + " (c = " + format_number(c) +
-         ", the profile's coefficient); the spectrum solver (a spectrum or a profile other than "
-         "the parabola) needs both within [1e-280, 1e300]; rescale the units";
+         ", the profile's coefficient); the element row (row, baseline, and auto for a spectrum or a profile other "
+         "than the parabola) needs both within [1e-280, 1e300]; rescale the units";
 }
 
 } // namespace
@@ -53,7 +53,7 @@ void check_spectrum_limits(const Rheology& r) {
       throw InvalidInput("prony",
                          "term " + i + ": G" + i + " = " + format_number(b.G) +
                              " is below 1e-12 of the glassy modulus G0 = " + format_number(G0) +
-                             "; without a dashpot (tau = 0) the spectrum solver's modes "
+                             "; without a dashpot (tau = 0) the element row's modes "
                              "cannot resolve it: drop the term or give tau > 0");
   }
   if (r.tau > 0.0) check_time(r.tau, r.aT, "tau", "tau");

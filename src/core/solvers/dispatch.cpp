@@ -5,20 +5,21 @@
 
 #include "core/metrics/error_metric.hpp"
 #include "core/model/row_limits.hpp"
-#include "core/solvers/baseline.hpp"
 #include "core/solvers/exact.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/load_baseline.hpp"
-#include "core/solvers/mdr.hpp"
 #include "core/solvers/spectrum.hpp"
+#include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {
 
 SolverKind parse_solver(const std::string& name) {
   for (const SolverKind k : kSolverKinds)
     if (name == solver_name(k)) return k;
-  throw InvalidInput("solver",
-                     "must be one of auto, exact, mdr, baseline, spectrum; got '" + name + "'");
+  if (name == "spectrum") return SolverKind::Row; // its name before row
+  if (name == "mdr")
+    throw InvalidInput("solver", "mdr was retired: use row (the element row, which solves the "
+                                 "Kelvin cases mdr solved) or auto");
+  throw InvalidInput("solver", "must be one of auto, exact, row, baseline; got '" + name + "'");
 }
 
 const char* solver_name(SolverKind k) {
@@ -27,12 +28,10 @@ const char* solver_name(SolverKind k) {
     return "auto";
   case SolverKind::Exact:
     return "exact";
-  case SolverKind::Mdr:
-    return "mdr";
+  case SolverKind::Row:
+    return "row";
   case SolverKind::Baseline:
     return "baseline";
-  case SolverKind::Spectrum:
-    return "spectrum";
   }
   return "?";
 }
@@ -48,20 +47,8 @@ ModelNeeds model_needs(const Case& c) {
 }
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
-  if (needs.profile != Profile::Parabola) // the spectrum solver takes every profile
-    return kind == SolverKind::Auto || kind == SolverKind::Spectrum;
-  switch (kind) {
-  case SolverKind::Auto:
-    return true;
-  case SolverKind::Exact:
-    return !needs.by_force && !needs.spectrum;
-  case SolverKind::Mdr:
-  case SolverKind::Baseline:
-    return !needs.spectrum;
-  case SolverKind::Spectrum:
-    return true;
-  }
-  return false;
+  if (kind != SolverKind::Exact) return true; // auto, row and baseline: every case
+  return !needs.by_force && !needs.spectrum && needs.profile == Profile::Parabola;
 }
 
 namespace {
@@ -75,32 +62,18 @@ RunResult within_rtol(RunResult r, double rtol) {
                         format_number(r.info.error_estimate) + " is above rtol " +
                         format_number(rtol) +
                         " at its fixed resolution; the case cannot meet rtol with this solver "
-                        "(use --solver auto or mdr)");
+                        "(use --solver auto or row)");
   return r;
 }
 
-// Load control (docs/design.md, "Load control"): auto and mdr run the load
-// solver; exact refuses (it solves depth control only).
-RunResult run_load_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
-  switch (kind) {
-  case SolverKind::Auto:
-  case SolverKind::Mdr: {
-    LoadOptions o;
-    o.rtol = rtol;
-    o.control = &control;
-    return run_load(c, o);
-  }
-  case SolverKind::Baseline: {
-    // the fixed-step check solver at its default resolution (rtol does not set it)
-    LoadBaselineOptions o;
-    o.control = &control;
-    return within_rtol(run_load_baseline(c, o), rtol);
-  }
-  case SolverKind::Exact:
-  case SolverKind::Spectrum:
-    break;
-  }
-  return run_exact(c, rtol, control); // refuses a force-controlled case
+// The brute-force check (core/solvers/spectrum_baseline.hpp) at a resolution
+// from rtol: first order, its estimate is ~4/(a1/dx) on a step, so a1/dx =
+// 5/rtol, within what a fixed-step run can afford.
+RunResult run_baseline_check(const Case& c, double rtol, const RunControl& control) {
+  SpectrumBaselineOptions o;
+  o.cells_per_a1 = std::clamp(std::ceil(5.0 / rtol), 16.0, 4000.0);
+  o.control = &control;
+  return within_rtol(run_spectrum_baseline(c, o), rtol);
 }
 
 } // namespace
@@ -117,13 +90,13 @@ void require_handled(SolverKind kind, const Case& c) {
     throw InvalidInput("profile", std::string("solver ") + solver_name(kind) +
                                       " solves the parabola only; this case's profile is " +
                                       profile_name(needs.profile) +
-                                      ": use --solver auto or spectrum");
+                                      ": use --solver auto, row or baseline");
   if (needs.spectrum)
     throw InvalidInput("prony", std::string("solver ") + solver_name(kind) +
                                     " solves the Kelvin foundation only (no Maxwell branches); "
                                     "this case has " +
                                     std::to_string(c.rheology.branches.size()) +
-                                    ": use --solver auto or spectrum");
+                                    ": use --solver auto, row or baseline");
   require_depth_control(c, solver_name(kind));
 }
 
@@ -159,9 +132,9 @@ RunResult run_case(const CheckedCase& given, SolverKind kind, double rtol,
                    const RunControl& control) {
   validate_rtol(rtol);
   require_handled(kind, given.get());
-  // the Kelvin parabola asked of the spectrum solver: its limits too (validate
-  // checked them where the case needs the row anyway)
-  if (kind == SolverKind::Spectrum && !uses_element_row(given.get()))
+  // the Kelvin parabola asked of a row: its limits too (validate checked them
+  // where the case needs the row anyway)
+  if ((kind == SolverKind::Row || kind == SolverKind::Baseline) && !uses_element_row(given.get()))
     check_element_row(given.get());
   const CheckedCase& checked = given.get().rheology.aT != 1.0 ? given.shifted() : given;
   return friction_within_rounding(run_solver(checked, kind, rtol, control), checked.get(), rtol);
@@ -172,35 +145,20 @@ namespace {
 RunResult run_solver(const CheckedCase& checked, SolverKind kind, double rtol,
                      const RunControl& control) {
   const Case& c = checked.get();
-  if (kind == SolverKind::Spectrum || (kind == SolverKind::Auto && uses_element_row(c))) {
+  if (kind == SolverKind::Baseline) return run_baseline_check(c, rtol, control);
+  if (kind == SolverKind::Row || (kind == SolverKind::Auto && uses_element_row(c))) {
     SpectrumOptions o;
     o.rtol = rtol;
     o.control = &control;
     return run_spectrum(c, o);
   }
-  if (c.loading.by_force()) return run_load_case(c, kind, rtol, control);
-  switch (kind) {
-  case SolverKind::Auto:
-  case SolverKind::Exact:
-    return run_exact(checked, rtol, control);
-  case SolverKind::Mdr: {
-    MdrOptions o;
+  if (c.loading.by_force()) { // auto on the Kelvin parabola under load: kelvin_load
+    LoadOptions o;
     o.rtol = rtol;
     o.control = &control;
-    return run_mdr(c, o);
+    return run_load(c, o);
   }
-  case SolverKind::Baseline: {
-    // first order: its estimate is ~4/(a1/dx) on a step (0.056 at a1/dx 70, 3e-3 at 700), so
-    // a1/dx = 5/rtol, within what a fixed-step run can afford
-    BaselineOptions o;
-    o.cells_per_a1 = std::clamp(std::ceil(5.0 / rtol), 16.0, 4000.0);
-    o.control = &control;
-    return within_rtol(run_baseline(c, o), rtol);
-  }
-  case SolverKind::Spectrum: // taken above
-    break;
-  }
-  return run_exact(checked, rtol, control);
+  return run_exact(checked, rtol, control); // auto or exact, at fixed depth
 }
 
 } // namespace

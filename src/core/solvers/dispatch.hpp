@@ -8,14 +8,23 @@
 
 namespace mdrmap {
 
-enum class SolverKind { Auto, Exact, Mdr, Baseline, Spectrum };
+/// The solvers a user picks: auto; exact, the continuum oracle and the Kelvin
+/// fast path at fixed depth; row, the element row of every case (any
+/// rheology, N = 0 branches too, any profile, depth or load); baseline, the
+/// fixed-step brute-force check of every case. Auto also runs kelvin_load
+/// (the Kelvin foundation under load, core/solvers/load.hpp), which is not
+/// picked by name.
+enum class SolverKind { Auto, Exact, Row, Baseline };
 
 /// Every kind, in the order of the help text.
-inline constexpr SolverKind kSolverKinds[] = {SolverKind::Auto, SolverKind::Exact, SolverKind::Mdr,
-                                              SolverKind::Baseline, SolverKind::Spectrum};
+inline constexpr SolverKind kSolverKinds[] = {SolverKind::Auto, SolverKind::Exact, SolverKind::Row,
+                                              SolverKind::Baseline};
 
-/// Parses "auto", "exact", "mdr", "baseline", "spectrum"; throws
-/// InvalidInput("solver").
+/// Parses "auto", "exact", "row", "baseline", and "spectrum" as the old name
+/// of row; throws InvalidInput("solver") for anything else, with a line of its
+/// own for the retired "mdr" saying what to use.
+SolverKind parse_solver(const std::string& name);
+/// The solver's name as parse_solver takes it and RunInfo::solver reports it.
 SolverKind parse_solver(const std::string& name);
 const char* solver_name(SolverKind k);
 
@@ -29,14 +38,10 @@ struct ModelNeeds {
 };
 ModelNeeds model_needs(const Case& c);
 
-/// Whether run_case solves cases with these needs with `kind`. exact solves
-/// depth control only; exact, mdr and baseline (and the load solvers they
-/// dispatch to) the Kelvin foundation only; spectrum (the element row of any
-/// rheology) every case, at fixed depth and under load, with or without
-/// branches; auto every case. Only spectrum (and auto, which picks it) takes
-/// the cone and power profiles; the others the parabola only. run_case
-/// refuses the others with InvalidInput naming "profile" (the indenter),
-/// "solver" (the loading) or "prony" (the spectrum).
+/// Whether run_case solves cases with these needs with `kind`: exact the
+/// Kelvin foundation under the parabola at fixed depth only; auto, row and
+/// baseline every case. run_case refuses the others with InvalidInput naming
+/// "profile" (the indenter), "solver" (the loading) or "prony" (the spectrum).
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);
 /// The same for a loading alone, on the Kelvin foundation.
 inline bool solver_handles(SolverKind kind, bool by_force) {
@@ -45,10 +50,10 @@ inline bool solver_handles(SolverKind kind, bool by_force) {
 
 /// Runs one case (its relaxation times shifted by aT). `Auto` picks the
 /// cheapest solver that handles the case and meets rtol: on the Kelvin
-/// foundation the continuum solver at fixed depth and the load solver under
-/// load; with a spectrum the spectrum solver. Every solver charges its work to
-/// `control`: throws CaseAbandoned when the case needs more than its budget
-/// (or, for mdr, cannot meet rtol), Interrupted when its stop flag is set.
+/// parabola exact at fixed depth and kelvin_load under load; row otherwise.
+/// Every solver charges its work to `control`: throws CaseAbandoned when the
+/// case needs more than its budget (or, for baseline, cannot meet rtol at its
+/// fixed resolution), Interrupted when its stop flag is set.
 RunResult run_case(const CheckedCase& c, SolverKind kind, double rtol,
                    const RunControl& control = RunControl{});
 /// The same for a case not yet checked: validates it first (InvalidInput).

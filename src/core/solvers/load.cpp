@@ -74,7 +74,7 @@ public:
       double h = s_.dt_over_tau > 0.0 ? s_.dt_over_tau * tau_ : std::min(h_, hmax);
       if (h >= left * (1.0 - 1e-12)) h = left;
       if (!(row_.t() + h > row_.t()))
-        throw CaseAbandoned("load: the time step (" + format_number(h) +
+        throw CaseAbandoned("kelvin_load: the time step (" + format_number(h) +
                             ") fell below the resolution of the time " + format_number(row_.t()) +
                             " within its segment");
       if (s_.dt_over_tau > 0.0 || left <= 1e-12 * (std::abs(target) + tau_)) {
@@ -96,7 +96,7 @@ private:
   // needs a wider window.
   void reject_outside(const LoadRow::Trial& a, const LoadRow::Trial& b) const {
     if (row_.at_window_edge() && (std::isfinite(a.d) || std::isfinite(b.d)))
-      throw WindowExceeded("load: the leading edge reached the element window's limit");
+      throw WindowExceeded("kelvin_load: the leading edge reached the element window's limit");
   }
 
   void adaptive_step(double h, bool to_target, double target) {
@@ -201,8 +201,9 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
   // (a window of kMaxElements elements is 320 MB of row; at zeta0 = 1e12 after
   // sliding at zeta0 = 1 it would need 4e7 and a step refreshes all of them)
   if (!(2.0 * A / dx <= kMaxElements))
-    throw CaseAbandoned("load: the element window would hold " + format_number(2.0 * A / dx) +
-                        " elements (more than " + format_number(kMaxElements) +
+    throw CaseAbandoned("kelvin_load: the element window would hold " +
+                        format_number(2.0 * A / dx) + " elements (more than " +
+                        format_number(kMaxElements) +
                         "): the velocities of the history differ too much for this solver");
   LoadRow row(c, dx, A, s.phase, control);
   row.set_pieces(s.piece_floor, kPieceCells * dx);
@@ -321,7 +322,7 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
   require_parabola(c, "the load solver");
   validate_rtol(opt.rtol);
   RunResult res;
-  res.info.solver = "mdr";
+  res.info.solver = "kelvin_load";
   res.info.rtol = opt.rtol;
   RunSettings s = initial_settings(opt);
   s.window_a = opt.window_a0 > 0.0 ? opt.window_a0 * c.a0() : history_radius(c, s.start);
@@ -368,9 +369,10 @@ RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
     met = est <= opt.rtol;
     if (attempt >= kAttempts - 1 && met) break;
     if (attempt >= kAttempts - 1)
-      throw CaseAbandoned("load: the error estimate " + format_number(est) + " stays above rtol " +
-                          format_number(opt.rtol) + " after " + std::to_string(attempt + 1) +
-                          " resolutions (a_ref/dx up to " + format_number(s.cells) + ")");
+      throw CaseAbandoned("kelvin_load: the error estimate " + format_number(est) +
+                          " stays above rtol " + format_number(opt.rtol) + " after " +
+                          std::to_string(attempt + 1) + " resolutions (a_ref/dx up to " +
+                          format_number(s.cells) + ")");
     const double f = std::clamp(std::sqrt(est / (kSafety * opt.rtol)), 1.5, 4.0);
     s.cells = std::ceil(s.cells * f);
     s.time_tol /= f * f;

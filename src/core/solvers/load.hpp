@@ -1,8 +1,11 @@
 #pragma once
-// The load-control solver (docs/design.md, "Load control"): a prescribed
-// normal force F0, the depth d(t) free. The element row of mdr (a moving
-// window, memory independent of travel) plus the depth, integrated with
-// adaptive steps; see core/solvers/load_row.hpp for the construction.
+// kelvin_load, the load-control solver of the Kelvin parabola (docs/design.md,
+// "Load control"): a prescribed normal force F0, the depth d(t) free. A row of
+// Kelvin elements (a moving window, memory independent of travel) plus the
+// depth, integrated with adaptive steps; see core/solvers/load_row.hpp for the
+// construction. Auto runs it for the Kelvin parabola under load: the row
+// (spectrum.hpp) solves those cases too, at several times its CPU time
+// (tools/bench/kelvin_load.cpp).
 #include "core/model/case.hpp"
 #include "core/solvers/load_row.hpp"
 #include "core/solvers/result.hpp"

@@ -189,7 +189,7 @@ LoadRow::Edge LoadRow::edge_at(double d1, double h, const Frame& f1) const {
   }
   // (a root evaluation: the walk, the front's bracketed root and the cap's
   // Newton iteration, about 16 element updates' worth)
-  control_.charge(static_cast<double>(j - j0) + kRootWork, "load");
+  control_.charge(static_cast<double>(j - j0) + kRootWork, "kelvin_load");
   front = std::min(front, a);
   const double cap = cap_joint(a, L);
   if (front < cap) return Edge{front, D_front(a, front, L)};
@@ -283,7 +283,7 @@ void LoadRow::detach(const Trial& tr, const Frame& f1) {
     const double tc = t_ + theta * tr.h;
     set_lnU(j, u > 0.0 ? std::log(u) + (tc - t_base_) / tau_ : kNoMemory);
   }
-  control_.charge(static_cast<double>(top - j + 1), "load");
+  control_.charge(static_cast<double>(top - j + 1), "kelvin_load");
 }
 
 bool LoadRow::fits(const Trial& tr) const {
@@ -296,7 +296,7 @@ bool LoadRow::at_window_edge() const {
 
 void LoadRow::commit(const Trial& tr) {
   if (!std::isfinite(tr.d))
-    throw std::runtime_error("load: no depth balances the load over a step of " +
+    throw std::runtime_error("kelvin_load: no depth balances the load over a step of " +
                              format_number(tr.h) + " (fixed steps too long)");
   const Frame f1 = frame_at(tr.h);
   detach(tr, f1);
@@ -309,7 +309,7 @@ void LoadRow::commit(const Trial& tr) {
   const double a = a1(), L = w_ * tau_;
   checks_.max_a1_over_a0 = std::max(checks_.max_a1_over_a0, a / a0_);
   if (!(a <= A_ - 3.0 * dx_))
-    throw WindowExceeded("load: the leading edge a1 = " + format_number(a) +
+    throw WindowExceeded("kelvin_load: the leading edge a1 = " + format_number(a) +
                          " left the element window (" + format_number(A_) + ")");
   // p(-a1) / 4G = D - d + 2 L a1 / R: the leading edge stays attached while >= 0
   if ((D_ - d_) + 2.0 * L * a / R_ < -1e-12 * d_) ++checks_.leading_edge_detached;
@@ -354,7 +354,7 @@ void LoadRow::rebase_time() {
   }
   const double s = (t_ - t_base_) / tau_;
   if (s < 512.0) return;
-  control_.charge(static_cast<double>(cap_), "load");
+  control_.charge(static_cast<double>(cap_), "kelvin_load");
   for (double& v : lnU_)
     if (v != kNoMemory) v -= s;
   t_base_ = t_;
@@ -370,14 +370,14 @@ void LoadRow::restart_clock() {
     t_ = 0.0;
     return;
   }
-  control_.charge(static_cast<double>(cap_), "load");
+  control_.charge(static_cast<double>(cap_), "kelvin_load");
   for (double& v : lnU_)
     if (v != kNoMemory) v -= s; // (-inf after a hold of ~1e308 tau: u = 0, as it is)
   t_ = t_base_ = 0.0;
 }
 
 void LoadRow::start_stationary(double w) {
-  control_.charge(static_cast<double>(cap_), "load");
+  control_.charge(static_cast<double>(cap_), "kelvin_load");
   w_ = w;
   d_ = stationary_depth(c_, w);
   D_ = d_;
@@ -472,7 +472,7 @@ void LoadRow::check_one_interval() {
       break;
     }
   }
-  control_.charge(static_cast<double>(j - first_beyond(f_, e_) + 1), "load");
+  control_.charge(static_cast<double>(j - first_beyond(f_, e_) + 1), "kelvin_load");
 }
 
 } // namespace mdrmap

@@ -1,6 +1,6 @@
 #pragma once
 // The element row under load control (docs/design.md, "Load control"): the
-// moving window of Kelvin elements of mdr plus the free depth d(t). Internal to
+// moving window of Kelvin elements plus the free depth d(t). Internal to
 // the load solver (core/load.cpp); the tests reach it through run_load.
 //
 // What is stored. Element j sits at lab position (j + phase) dx, at

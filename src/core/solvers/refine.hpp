@@ -3,7 +3,7 @@
 // solvers"): run at a resolution a1/dx, run a half-resolution companion with
 // its elements at another phase, take the case error between the two as the
 // estimate, and refine until it is below rtol. Shared by the element-row
-// solvers (mdr; spectrum can call it the same way): they differ only in how
+// solvers (the row, spectrum.cpp): they differ only in how
 // one run goes, where they start and how fine they may go.
 #include <algorithm>
 #include <functional>

@@ -12,7 +12,7 @@ namespace mdrmap {
 
 /// What a run cost and how accurate it believes it is.
 struct RunInfo {
-  std::string solver;          ///< which solver ran: "exact", "mdr", "spectrum", ...
+  std::string solver;          ///< which solver ran: "exact", "row", "baseline" or "kelvin_load"
   double rtol = 0.0;           ///< requested tolerance
   double error_estimate = 0.0; ///< estimated case error (docs/design.md, "Error metric")
   double cells_per_a1 = 0.0;   ///< resolution a1/dx of the final run (0 for exact)

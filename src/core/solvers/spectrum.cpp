@@ -29,7 +29,7 @@ namespace {
 /// added to the estimate.
 constexpr double kEdgeTol = 1e-3, kEdgeFloor = 4e-3;
 
-constexpr const char* kName = "spectrum";
+constexpr const char* kName = "row";
 constexpr double kMaxCells = 2e5; // window memory: 4e5 elements of up to 33 doubles
 /// The first resolution is a1/dx = 1/sqrt(rtol) (the row's error is second
 /// order in the cell), but at most kStartCells: a case that needs more is
@@ -76,7 +76,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   for (const auto& seg : c.history.segments)
     travel += seg.w * seg.T / (c.a1() / cells);
   if (!(travel < 1e18))
-    throw CaseAbandoned("spectrum: the indenter travels " + format_number(travel) +
+    throw CaseAbandoned("row: the indenter travels " + format_number(travel) +
                         " cells over the history, more than the element row can count (1e18)");
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.set_layer_width(c.a1() / fine);
@@ -142,7 +142,7 @@ template <class F> double increasing_root(F f, double x0, double& k, double tol,
   double step = -1.2 * fa / k, b = a, fb = fa;
   for (int n = 0; fa * fb > 0.0; ++n) {
     if (n > 60 || !std::isfinite(step))
-      throw CaseAbandoned("spectrum: the load balance has no root near " + format_number(x0));
+      throw CaseAbandoned("row: the load balance has no root near " + format_number(x0));
     a = b;
     fa = fb;
     b = std::max(a + step, 0.5 * (a + lo_limit));
@@ -431,8 +431,8 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   const LoadGeometry geo = load_geometry(c);
   const double dx = geo.a_ref / cells, a_win = geo.a_win + 4.0 * dx;
   if (!(a_win / dx < 4.0 * kMaxCells))
-    throw CaseAbandoned("spectrum: the window under load would hold " +
-                        format_number(2.0 * a_win / dx) + " elements (at most 8e5)");
+    throw CaseAbandoned("row: the window under load would hold " + format_number(2.0 * a_win / dx) +
+                        " elements (at most 8e5)");
   spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
   row.set_layer_width(geo.a_ref / fine);
@@ -460,7 +460,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
       [&](double dt, double) {
         run.advance(dt, t_seg);
         if (row.a1_now() > a_win - 2.0 * dx)
-          throw CaseAbandoned("spectrum: under load the contact grew past its window (a1 = " +
+          throw CaseAbandoned("row: under load the contact grew past its window (a1 = " +
                               format_number(row.a1_now()) + ")");
       },
       [&] { return row.measure(); });

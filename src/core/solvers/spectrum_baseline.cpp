@@ -13,7 +13,7 @@
 namespace mdrmap {
 namespace {
 
-constexpr const char* kName = "spectrum-baseline";
+constexpr const char* kName = "baseline";
 
 /// The element row over the whole travel path: u, q_1..q_N per element.
 struct Row {
@@ -128,7 +128,7 @@ struct LoadBalance {
     };
     double a = d0, fa = f(a), b = a, fb = fa, step = 1e-3 * d0;
     for (int n = 0; fa * fb > 0.0; ++n) { // bracket
-      if (n > 80) throw std::runtime_error("spectrum-baseline: no depth balances the load");
+      if (n > 80) throw std::runtime_error("baseline: no depth balances the load");
       a = b;
       fa = fb;
       b = fa < 0.0 ? a + step : std::max(0.5 * a, a - step);
@@ -185,8 +185,7 @@ struct LoadBalance {
 
 RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunControl& control) {
   if (!(o.cells_per_a1 >= 2.0) || !(o.spinup_travel >= 2.5) || !(o.steps_per_cell > 0.0))
-    throw InvalidInput("cells-per-a1",
-                       "spectrum-baseline needs cells_per_a1 >= 2, spin-up >= 2.5 a1");
+    throw InvalidInput("cells-per-a1", "baseline needs cells_per_a1 >= 2, spin-up >= 2.5 a1");
   const bool load = c.loading.by_force();
   const double v0 = c.history.v0;
   const double d_start = load ? stationary_load_depth(c, v0) : c.loading.d;
@@ -204,8 +203,10 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
   }
   const double n_elem = std::ceil((2.0 * aw + travel) / dx) + 4.0;
   if (!(n_elem <= static_cast<double>(o.max_elements)) || !(steps <= 1e9))
-    throw std::runtime_error("spectrum-baseline: the case needs " + format_number(n_elem) +
-                             " elements and " + format_number(steps) + " steps; too expensive");
+    throw CaseAbandoned("baseline: the case needs " + format_number(n_elem) + " elements and " +
+                        format_number(steps) +
+                        " steps; too expensive for the fixed-step method (use --solver auto "
+                        "or row)");
   const std::size_t N = c.rheology.branches.size();
   const auto ne = static_cast<std::size_t>(n_elem);
   const double s_pre = -v0 * dt0 * static_cast<double>(n_pre);

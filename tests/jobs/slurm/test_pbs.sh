@@ -63,7 +63,7 @@ sed -i -e 's/^#PBS -l select=1:ncpus=32:mpiprocs=32$/#PBS -l select=1:ncpus=2:mp
   -e 's/^#PBS -l walltime=04:00:00$/#PBS -l walltime=00:01:00/' "$STAGE/jobs/study.pbs"
 [[ $(grep -cE '^#PBS -l (select=1:ncpus=2:mpiprocs=2|walltime=00:01:00)$' "$STAGE/jobs/study.pbs") == 2 ]] ||
   fail "jobs/study.pbs lacks the '#PBS -l select=1:ncpus=32:mpiprocs=32' or 'walltime=04:00:00' line"
-cp "$SRCDIR/tests/jobs/small.ini" "$STAGE/run/study.ini" # 15360 cases, about 2 s at 2 ranks
+cp "$SRCDIR/tests/jobs/small.ini" "$STAGE/run/study.ini" # 2240 cases, about 2 s at 2 ranks
 chmod -R a+rX "$STAGE"
 chown -R 65534:65534 "$STAGE/run"
 user=(setpriv --reuid=65534 --regid=65534 --clear-groups)

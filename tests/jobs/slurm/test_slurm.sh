@@ -44,8 +44,8 @@ mkdir -p "$WORK"
 cd "$WORK"
 start_cluster "$MPI_DEFAULT"
 pass "one-node Slurm started (MpiDefault=$MPI_DEFAULT)"
-cp "$SRCDIR/tests/jobs/small.ini" small.ini # 15360 cases, about 2 s at 2 ranks
-cp "$SRCDIR/tests/jobs/big.ini" big.ini     # 32000 cases, about 3-5 s at 2 ranks
+cp "$SRCDIR/tests/jobs/small.ini" small.ini # 2240 cases, about 2 s at 2 ranks
+cp "$SRCDIR/tests/jobs/big.ini" big.ini     # 4480 cases, about 3-5 s at 2 ranks
 
 # submit NAME [VAR=VALUE...] -- [SBATCH OPTIONS...]: sbatch jobs/study.sbatch
 # from WORK with the settings in its environment; log NAME.log; sets $jid
