@@ -25,7 +25,6 @@ inline constexpr SolverKind kSolverKinds[] = {SolverKind::Auto, SolverKind::Exac
 /// own for the retired "mdr" saying what to use.
 SolverKind parse_solver(const std::string& name);
 /// The solver's name as parse_solver takes it and RunInfo::solver reports it.
-SolverKind parse_solver(const std::string& name);
 const char* solver_name(SolverKind k);
 
 /// What a case asks of a solver: its loading, whether its rheology has
