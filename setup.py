@@ -4,7 +4,8 @@
 configures the project in build-pip/ (not build/) for the interpreter that runs
 pip, builds the targets mdrmap_python and mdrmap only (no tests, no
 benchmarks), and puts the extension _core into the package and the program at
-mdrmap/bin/mdrmap, which the console script `mdrmap` (mdrmap/_program.py) runs.
+mdrmap/bin/mdrmap, which the console script `mdrmap` (mdrmap/_program.py) runs,
+with the programs it runs for study and fit (mdrmap-study, mdrmap-fit) beside it.
 
 Environment:
   CMAKE_ARGS                  more configure arguments, split as the shell does
@@ -24,6 +25,8 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
+# the program and the programs it runs for `study` and `fit` (from its own directory)
+PROGRAMS = ("mdrmap", "mdrmap-study", "mdrmap-fit")
 
 
 def cmake_version():
@@ -66,32 +69,35 @@ class CMakeBuild(build_ext):
             raise RuntimeError("setup.py: CMake built no " + built + " (is it the extension for "
                                + sys.executable + "?)")
         shutil.copy2(built, core)
-        program = self._program_paths()[0]
-        os.makedirs(os.path.dirname(program), exist_ok=True)
-        shutil.copy2(os.path.join(build_dir, "src", "mdrmap"), program)
+        for name in PROGRAMS:
+            program = self._program_paths(name)[0]
+            os.makedirs(os.path.dirname(program), exist_ok=True)
+            shutil.copy2(os.path.join(build_dir, "src", name), program)
 
-    # The program is an output besides the extension: built into build_lib,
+    # The programs are outputs besides the extension: built into build_lib,
     # and (pip install -e, build_ext --inplace) copied into the source tree.
-    def _program_paths(self):
-        """(in build_lib, in the source tree) paths of mdrmap/bin/mdrmap."""
+    def _program_paths(self, name):
+        """(in build_lib, in the source tree) paths of mdrmap/bin/NAME."""
         package_dir = self.get_finalized_command("build_py").get_package_dir("mdrmap")
-        return (os.path.join(self.build_lib, "mdrmap", "bin", "mdrmap"),
-                os.path.join(package_dir, "bin", "mdrmap"))
+        return (os.path.join(self.build_lib, "mdrmap", "bin", name),
+                os.path.join(package_dir, "bin", name))
 
     def copy_extensions_to_source(self):
         super().copy_extensions_to_source()
-        built, inplace = self._program_paths()
-        os.makedirs(os.path.dirname(inplace), exist_ok=True)
-        self.copy_file(built, inplace, level=self.verbose)
+        for name in PROGRAMS:
+            built, inplace = self._program_paths(name)
+            os.makedirs(os.path.dirname(inplace), exist_ok=True)
+            self.copy_file(built, inplace, level=self.verbose)
 
     def get_outputs(self):
-        return super().get_outputs() + [self._program_paths()[0]]
+        return super().get_outputs() + [self._program_paths(name)[0] for name in PROGRAMS]
 
     def get_output_mapping(self):
         mapping = dict(getattr(super(), "get_output_mapping", dict)())
         if self.inplace:
-            built, inplace = self._program_paths()
-            mapping[built] = inplace
+            for name in PROGRAMS:
+                built, inplace = self._program_paths(name)
+                mapping[built] = inplace
         return mapping
 
 

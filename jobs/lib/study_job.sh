@@ -66,10 +66,13 @@ launcher=()
 launcher_pid=""
 signals="" # the signals received, e.g. " USR1"
 ranks_below() { # ranks_below PID: the PIDs of the mdrmap processes below PID
-  local child comm
+  # (a rank starts as mdrmap and runs the study as mdrmap-study beside it, in
+  # the same process: its name is either, cut to 15 characters)
+  local child comm name
   comm=$(basename "$MDRMAP")
   for child in $(pgrep -P "$1" 2>/dev/null); do
-    if [[ "$(ps -o comm= -p "$child" 2>/dev/null)" == "${comm:0:15}" ]]; then
+    name=$(ps -o comm= -p "$child" 2>/dev/null)
+    if [[ "$name" == "${comm:0:15}" || "$name" == mdrmap-study ]]; then
       echo "$child"
     else
       ranks_below "$child"

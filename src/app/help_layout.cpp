@@ -169,4 +169,19 @@ std::vector<HelpEntry> rheology_entries() {
   return e;
 }
 
+std::vector<HelpEntry> geometry_entries(bool solvers) {
+  std::vector<HelpEntry> e = {profile_entry(solvers)};
+  for (const Part part : {Part::Loading, Part::Indenter})
+    for (auto& p : parameter_entries(part))
+      e.push_back(p);
+  return e;
+}
+
+std::vector<HelpEntry> material_entries() {
+  std::vector<HelpEntry> e = parameter_entries(Part::Material);
+  for (auto& r : rheology_entries())
+    e.push_back(r);
+  return e;
+}
+
 } // namespace mdrmap::app

@@ -61,6 +61,13 @@ HelpEntry output_entry();
 /// --prony-file, --T, --wlf, with the ranges of the table's branch specs.
 std::vector<HelpEntry> rheology_entries();
 
+/// A case's geometry and loading entries: --profile (profile_entry), then
+/// the table's loading and indenter parameters.
+std::vector<HelpEntry> geometry_entries(bool solvers);
+/// A case's material entries: the table's material parameters, then
+/// rheology_entries().
+std::vector<HelpEntry> material_entries();
+
 /// --help and --help-all of the subcommand `command`.
 HelpEntry help_option_entry(const std::string& command);
 HelpEntry help_all_option_entry(const std::string& command);

@@ -1,16 +1,16 @@
-// mdrmap: command-line front end. Dispatches to the subcommands; only this
-// layer prints (the core library reports through exceptions).
+// mdrmap: command-line front end. Dispatches to the subcommands (study and
+// fit run as the programs mdrmap-study and mdrmap-fit beside it: sibling.hpp);
+// only this layer prints (the core library reports through exceptions).
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
 #include <vector>
 
-#include "app/fit_cmd.hpp"
 #include "app/help_topics.hpp"
+#include "app/sibling.hpp"
 #include "app/simulate_cmd.hpp"
 #include "app/stationary_cmd.hpp"
-#include "app/study_cmd.hpp"
 #include "mdrmap/version.hpp"
 
 namespace {
@@ -24,7 +24,7 @@ int print_stdout(const std::string& text) {
   return std::fflush(stdout) == 0 ? kExitOk : kExitRuntime;
 }
 
-int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
+int dispatch(const std::vector<std::string>& args, char** argv) {
   if (args.empty()) {
     std::fputs("mdrmap: error: missing subcommand; usage: mdrmap <subcommand> [options] "
                "(subcommands: simulate, stationary, study, fit; see mdrmap --help)\n",
@@ -40,9 +40,9 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
                         ")\n");
   if (cmd == "help") return mdrmap::app::help_main(rest);
   if (cmd == "simulate") return mdrmap::app::simulate_main(rest);
-  if (cmd == "study") return mdrmap::app::study_main(rest, argc, argv);
+  if (cmd == "study") return mdrmap::app::run_sibling("mdrmap-study", argv);
   if (cmd == "stationary") return mdrmap::app::stationary_main(rest);
-  if (cmd == "fit") return mdrmap::app::fit_main(rest, argc, argv);
+  if (cmd == "fit") return mdrmap::app::run_sibling("mdrmap-fit", argv);
 
   if (!cmd.empty() && cmd[0] == '-')
     std::fprintf(stderr,
@@ -51,8 +51,8 @@ int dispatch(const std::vector<std::string>& args, int argc, char** argv) {
                  cmd.c_str());
   else
     std::fprintf(stderr,
-                 "mdrmap: error: unknown subcommand '%s'; available: simulate, stationary, study "
-                 "(see mdrmap --help)\n",
+                 "mdrmap: error: unknown subcommand '%s'; available: simulate, stationary, study, "
+                 "fit (see mdrmap --help)\n",
                  cmd.c_str());
   return kExitBadInput;
 }
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   // reported, not kill the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
   try {
-    return dispatch(std::vector<std::string>(argv + 1, argv + argc), argc, argv);
+    return dispatch(std::vector<std::string>(argv + 1, argv + argc), argv);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mdrmap: error: %s\n", e.what());
     return kExitRuntime;

@@ -81,13 +81,7 @@ std::vector<HelpEntry> solver_entries() {
 /// The options of simulate, in groups: the short help gives their labels,
 /// the full help their entries.
 std::vector<HelpSection> sections() {
-  std::vector<HelpEntry> geometry = {profile_entry(true)};
-  for (const Part part : {Part::Loading, Part::Indenter})
-    for (auto& e : parameter_entries(part))
-      geometry.push_back(e);
-  std::vector<HelpEntry> material = parameter_entries(Part::Material);
-  for (auto& e : rheology_entries())
-    material.push_back(e);
+  const std::vector<HelpEntry> geometry = geometry_entries(true), material = material_entries();
   return {{"geometry", "Case geometry and loading", geometry},
           {"material",
            "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",

@@ -5,7 +5,8 @@
 #   bash tests/install/test_install.sh pip   SRCDIR WORKDIR PYTHON
 #
 # cmake: `cmake --install BUILD_DIR --prefix WORKDIR/prefix` (a built tree),
-#   then PREFIX/bin/mdrmap --version; a step run by PREFIX/bin/mdrmap and by
+#   then PREFIX/bin/mdrmap --version, its study and fit (--help: the programs
+#   it runs, mdrmap-study and mdrmap-fit, beside it); a step run by PREFIX/bin/mdrmap and by
 #   the installed package (PYTHONPATH=PREFIX/lib/python3.X/*-packages) gives
 #   the same numbers bit for bit; the job scripts and tools are under
 #   PREFIX/share/mdrmap, an installed map tool runs (--help) from there, and
@@ -15,7 +16,7 @@
 #   files; no build directories), a venv made by PYTHON with
 #   --system-site-packages (numpy, setuptools, wheel from the system), and
 #   `pip install --no-build-isolation --no-index COPY` (offline), then the
-#   venv's console script `mdrmap` (--version, the step) and its `import
+#   venv's console script `mdrmap` (--version, study and fit --help, the step) and its `import
 #   mdrmap` (the same step, from the venv's site-packages, bit for bit).
 #   CMAKE_ARGS (unless set) gets -DCMAKE_CXX_COMPILER_LAUNCHER=ccache when
 #   ccache is on PATH and -DMDRMAP_WERROR=ON when CI=true (as tools/build.sh);
@@ -79,6 +80,18 @@ check_tools() {
     fail "mdrmap.tools is not the installed package's"
 }
 
+# check_siblings PROGRAM: the programs it runs for study and fit were
+# installed beside it (their help, through PROGRAM)
+check_siblings() {
+  local program=$1 cmd
+  for cmd in study fit; do
+    "$program" "$cmd" --help >"$WORKDIR/$cmd.txt" 2>&1 ||
+      fail "$program $cmd --help failed: $(tail -n 2 "$WORKDIR/$cmd.txt")"
+    grep -q "^Usage: .*mdrmap $cmd" "$WORKDIR/$cmd.txt" ||
+      fail "$program $cmd --help printed no usage: $(head -n 2 "$WORKDIR/$cmd.txt")"
+  done
+}
+
 install_cmake() {
   local build=${4:?BUILD_DIR} python=${5:?PYTHON} prefix=$WORKDIR/prefix
   log "cmake --install $build --prefix $prefix"
@@ -86,6 +99,7 @@ install_cmake() {
     fail "cmake --install failed (see $WORKDIR/install.log)"
   [[ -x "$prefix/bin/mdrmap" ]] || fail "no $prefix/bin/mdrmap"
   "$prefix/bin/mdrmap" --version || fail "$prefix/bin/mdrmap --version failed"
+  check_siblings "$prefix/bin/mdrmap"
   local init
   init=$(find "$prefix/lib" -path '*-packages/mdrmap/__init__.py' | head -n 1)
   [[ -n "$init" ]] || fail "no package mdrmap under $prefix/lib"
@@ -150,6 +164,7 @@ install_pip() {
   }
   [[ -x "$venv/bin/mdrmap" ]] || fail "pip installed no console script $venv/bin/mdrmap"
   "$venv/bin/mdrmap" --version || fail "the console script mdrmap --version failed"
+  check_siblings "$venv/bin/mdrmap"
   "$venv/bin/python" -c \
     'import mdrmap, sys; assert mdrmap.__file__.startswith(sys.prefix), mdrmap.__file__' ||
     fail "import mdrmap in the venv does not load the installed package"

@@ -31,7 +31,9 @@ nobody_mdrmap=$MDRMAP nobody_skip="" nobody_bin=""
 if $is_root && command -v setpriv >/dev/null && ! "${nobody[@]}" test -x "$MDRMAP"; then
   nobody_bin=$(mktemp -d /tmp/mdrmap-bad-inputs-bin.XXXXXX)
   trap 'rm -rf "$nobody_bin"' EXIT
-  cp "$MDRMAP" "$nobody_bin/mdrmap" && chmod 755 "$nobody_bin" "$nobody_bin/mdrmap"
+  # (with the programs it runs for study and fit)
+  cp "$MDRMAP" "$nobody_bin/mdrmap" && cp "$(dirname "$MDRMAP")"/mdrmap-{study,fit} "$nobody_bin/" &&
+    chmod 755 "$nobody_bin" "$nobody_bin"/mdrmap*
   nobody_mdrmap=$nobody_bin/mdrmap
   "${nobody[@]}" test -x "$nobody_mdrmap" ||
     nobody_skip="uid 65534 can execute neither $MDRMAP nor a copy in $nobody_bin"

@@ -65,7 +65,7 @@ wait_open() {
 }
 ranks_of() { # ranks_of JID: the PIDs of the mdrmap processes of this cluster's job JID
   local p env
-  for p in $(pgrep -x mdrmap); do
+  for p in $(pgrep -x 'mdrmap(-study)?'); do # (a rank runs the study as mdrmap-study)
     env=$({ tr '\0' '\n' <"/proc/$p/environ"; } 2>/dev/null) || continue
     grep -qx "SLURM_JOB_ID=$1" <<<"$env" && grep -qxF "SLURM_CONF=$SLURM_CONF" <<<"$env" && echo "$p"
   done

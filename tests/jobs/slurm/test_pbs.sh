@@ -54,6 +54,7 @@ on_exit() { # on_exit RC: show the chain's logs on failure; keep them beside the
 }
 mkdir -p "$STAGE/bin" "$STAGE/run"
 cp "$MDRMAP_EXE" "$STAGE/bin/mdrmap"
+cp "$(dirname "$MDRMAP_EXE")/mdrmap-study" "$STAGE/bin/" # (which mdrmap study runs)
 cp -r "$SRCDIR/jobs" "$STAGE/jobs"
 # the resources in the #PBS lines, as a user edits them (sbatch reads #PBS
 # lines itself: -l select=...:ncpus=32 would ask for 32 CPUs on one node)
