@@ -90,12 +90,13 @@ OLD_OUTPUT_NAMES = _old_output_names()
 class Renamed:
     """An open h5py File (or Group) of a map with old output names, that
     shows them under today's (OLD_OUTPUT_NAMES): f["events/D_c"] reads an old
-    map's /events/d_c, and the group /events lists D_c. Everything else is
+    map's /events/d_c, the group /events lists D_c (and /schema/events so). Everything else is
     the h5py object's."""
 
     def __init__(self, node, h5py, prefix=""):
         self._node, self._h5py, self._prefix = node, h5py, prefix
-        full = {new: old for new, old in OLD_OUTPUT_NAMES.items() if old in node.file}
+        full = {p + new: p + old for new, old in OLD_OUTPUT_NAMES.items()
+                for p in ("", "schema/") if p + old in node.file}  # and its /schema entry
         self._old = {n[len(prefix):]: o[len(prefix):] for n, o in full.items()
                      if n.startswith(prefix) and n not in node.file}
 
