@@ -58,7 +58,7 @@ std::vector<const OutputSpec*> columns(bool load) {
 void write_row(std::FILE* out, const std::vector<const OutputSpec*>& cols, const Series& s,
                std::size_t k) {
   for (std::size_t j = 0; j < cols.size(); ++j)
-    std::fprintf(out, j == 0 ? "%s" : ",%s", format_double(cols[j]->sample(s, k)).c_str());
+    std::fprintf(out, j == 0 ? "%s" : ",%s", format_double(sample(*cols[j], s, k)).c_str());
 }
 
 void write_rows(std::FILE* out, const Series& s, bool load) {
@@ -111,9 +111,11 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
 
 std::string scales_line(const Case& c) {
   const Scales sc = scales(c);
-  return "# scales length=" + format_double(sc.length) + " depth=" + format_double(sc.depth) +
-         " force=" + format_double(sc.force) + " friction=" + format_double(sc.friction) +
-         " time=" + format_double(sc.time);
+  std::string s = "# scales";
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale)
+      s += std::string(" ") + o.name + "=" + format_double(sc.*(o.scale));
+  return s;
 }
 
 std::string csv_header(bool load) {

@@ -11,49 +11,33 @@
 namespace mdrmap::app {
 namespace {
 
-const char* group_text(OutputGroup g) {
-  switch (g) {
-  case OutputGroup::Series:
-    return "time series";
-  case OutputGroup::Event:
-    return "event metric";
-  case OutputGroup::EventState:
-    return "event state";
-  case OutputGroup::Result:
-    return "per-case result";
-  }
-  return "?";
-}
+/// Where an output of a group is: in the CSV and the Python result (the
+/// name between csv_before and csv_after where name_in_csv), in the map
+/// (map_prefix and the name).
+struct Places {
+  OutputGroup group;
+  const char* csv_before;
+  bool name_in_csv;
+  const char* csv_after;
+  const char* map_prefix;
+};
+const Places kPlaces[] = {
+    {OutputGroup::Series, "column; `r.", true, "`", "/timeseries/"},
+    {OutputGroup::Event, "`# event`; `r.events[k]`", false, "", "/events/"},
+    {OutputGroup::EventState, "`# event` (`mu_", true, "`); `r.events[k]`", "/events/<q>_"},
+    {OutputGroup::Result, "first line; `r.info`", false, "", "/results/"},
+    {OutputGroup::Scale, "`# scales`; `r.scales`", false, "", "/scales/"},
+};
 
-/// Where o is: the CSV line or column and the Python result, the map's path.
-std::string csv_place(const OutputSpec& o) {
-  if ((o.where & kInCsv) == 0) return "";
-  switch (o.group) {
-  case OutputGroup::Series:
-    return "column; `r." + std::string(o.name) + "`";
-  case OutputGroup::Event:
-    return "`# event`; `r.events[k]`";
-  case OutputGroup::EventState:
-    return "`# event` (`mu_" + std::string(o.name) + "`); `r.events[k]`";
-  case OutputGroup::Result:
-    return "first line; `r.info`";
+/// "CSV; Python | map" cells of o.
+std::string places(const OutputSpec& o) {
+  for (const Places& p : kPlaces) {
+    if (p.group != o.group) continue;
+    const std::string csv = std::string(p.csv_before) + (p.name_in_csv ? o.name : "") + p.csv_after;
+    return ((o.where & kInCsv) != 0 ? csv : "") + " | " +
+           ((o.where & kInMap) != 0 ? "`" + std::string(p.map_prefix) + o.name + "`" : "");
   }
-  return "";
-}
-
-std::string map_place(const OutputSpec& o) {
-  if ((o.where & kInMap) == 0) return "";
-  switch (o.group) {
-  case OutputGroup::Series:
-    return std::string("`/timeseries/") + o.name + "`";
-  case OutputGroup::Event:
-    return std::string("`/events/") + o.name + "`";
-  case OutputGroup::EventState:
-    return std::string("`/events/<q>_") + o.name + "`";
-  case OutputGroup::Result:
-    return std::string("`/results/") + o.name + "`";
-  }
-  return "";
+  return " | ";
 }
 
 std::string escaped(std::string s) {
@@ -72,10 +56,11 @@ std::string output_quantities_markdown() {
     const std::string name =
         o.group == OutputGroup::EventState ? std::string("<q>_") + o.name : std::string(o.name);
     const char* unit = o.group == OutputGroup::EventState ? "that of q" : dim_name(o.dim);
-    s += "| `" + name + "` | " + group_text(o.group) + " | " + unit + " | " + csv_place(o) + " | " +
-         map_place(o) + " | " + escaped(o.meaning) + " |\n";
+    s += "| `" + name + "` | " + output_group_name(o.group) + " | " + unit + " | " + places(o) +
+         " | " + escaped(o.meaning) + " |\n";
     if (o.old_map_name != nullptr)
-      old += std::string("`/events/") + o.old_map_name + "` (now `" + o.name + "`)";
+      old += (old.empty() ? "`/events/" : ", `/events/") + std::string(o.old_map_name) +
+             "` (now `" + o.name + "`)";
   }
   return s +
          "\n`<q>` is each state quantity of the time series (`FN`, `Fx`, `mu`, `a2`; under "

@@ -69,9 +69,9 @@ std::vector<Field> event_fields(const EventMetrics& e) {
   std::vector<Field> f;
   for (const OutputSpec& o : output_table()) {
     if ((o.where & kInCsv) == 0) continue;
-    if (o.group == OutputGroup::Event) f.emplace_back(o.name, o.event(e));
+    if (o.group == OutputGroup::Event) f.emplace_back(o.name, e.*(o.event));
     if (o.group == OutputGroup::EventState)
-      f.emplace_back(event_state_name(mu, o), o.event_state(e).mu);
+      f.emplace_back(event_state_name(mu, o), (e.*(o.event_state)).mu);
   }
   return f;
 }

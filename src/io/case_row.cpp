@@ -10,8 +10,9 @@ namespace {
 
 using Quantity = OutputSpec; // a state quantity of the output table
 
-/// "results/" or "events/": the group of the map that holds o's row values.
+/// "results/", "scales/" or "events/": the group of the map that holds o's row values.
 std::string group_of(const OutputSpec& o) {
+  if (o.group == OutputGroup::Scale) return "scales/";
   return o.group == OutputGroup::Result ? "results/" : "events/";
 }
 
@@ -58,6 +59,7 @@ void RowLayout::resolve_slots() {
     if (o.group == OutputGroup::Result && o.dim == Dim::WallClock) s.wall_seconds = slot;
     if (o.group == OutputGroup::Result && o.dim != Dim::WallClock) s.results.emplace_back(&o, slot);
     if (o.group == OutputGroup::Event) s.event_metrics.emplace_back(&o, slot);
+    if (o.group == OutputGroup::Scale) s.scales.emplace_back(&o, slot);
     if (o.group == OutputGroup::EventState)
       s.event_states.emplace_back(&o, per_quantity("events", (std::string("_") + o.name).c_str()));
   }
@@ -66,11 +68,6 @@ void RowLayout::resolve_slots() {
   s.residuals_pre = per_quantity("residuals", "_pre");
   s.analytic_ss = per_quantity("analytic", "_ss");
   s.residuals_end = per_quantity("residuals", "_end");
-  s.scale_length = at("scales/length");
-  s.scale_depth = at("scales/depth");
-  s.scale_force = at("scales/force");
-  s.scale_friction = at("scales/friction");
-  s.scale_time = at("scales/time");
   if (by_force_) return; // the seed's jump estimate: at fixed depth only
   s.analytic_jump = per_quantity("analytic", "_jump");
   s.residuals_jump = per_quantity("residuals", "_jump");
@@ -151,20 +148,8 @@ void RowLayout::add_closed_forms() {
 }
 
 void RowLayout::add_scales() {
-  add("scales/length", "length",
-      by_force_ ? "reference length: the Hertz radius a0 of the load F0 with the long-term "
-                  "modulus G (F0 = 16/3 G a0^3 / R)"
-                : "reference length: the leading edge a1 of the contact at the depth d");
-  add("scales/depth", "length", "indentation depth of the reference contact (d, or a0^2 / R)");
-  add("scales/force", "force",
-      "elastic normal force of the reference contact with the long-term modulus G "
-      "(16/3 G a^3 / R; the prescribed load F0 under load)");
-  add("scales/friction", "number",
-      "friction scale: the profile's slope at the reference length "
-      "over two (a / R for the parabola)");
-  add("scales/time", "time",
-      "time scale: the longest relaxation time of the material, shifted by aT (tau for the "
-      "Kelvin foundation)");
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale) add("scales", o);
 }
 
 void RowLayout::add_residuals() {

@@ -54,9 +54,8 @@ struct RowSlots {
   std::vector<std::pair<const OutputSpec*, std::size_t>> event_metrics;
   std::vector<std::pair<const OutputSpec*, PerQuantity>> event_states;
   PerQuantity analytic_ss{}, residuals_end{};
-  PerQuantity analytic_jump{}, residuals_jump{}; ///< at fixed depth only
-  std::size_t scale_length = 0, scale_depth = 0, scale_force = 0, scale_friction = 0,
-              scale_time = 0; ///< the case's Scales
+  PerQuantity analytic_jump{}, residuals_jump{};                 ///< at fixed depth only
+  std::vector<std::pair<const OutputSpec*, std::size_t>> scales; ///< the case's Scales
 };
 
 /// The per-case datasets of a study's map: K segments, under load (the depth

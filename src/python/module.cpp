@@ -250,9 +250,10 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
   out["info"] = info(sim->record);
   out["case"] = case_dict(sim->record.c);
   const Scales sc = scales(sim->record.c);
-  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
-                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
-                           py::arg("time") = sc.time);
+  py::dict scale_dict; // the CSV's `# scales` line
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale) scale_dict[o.name] = sc.*(o.scale);
+  out["scales"] = scale_dict;
   if (record)
     record_rows(out, *sim, *record);
   else
@@ -412,20 +413,6 @@ py::list parameter_table() {
   return out;
 }
 
-const char* group_name(OutputGroup g) {
-  switch (g) {
-  case OutputGroup::Series:
-    return "series";
-  case OutputGroup::Event:
-    return "event";
-  case OutputGroup::EventState:
-    return "event_state";
-  case OutputGroup::Result:
-    return "result";
-  }
-  return "?";
-}
-
 /// The output table (core/outputs/output_table.hpp) as a list of dicts:
 /// name, unit, group, csv, map, meaning, may_be_undefined, old_map_name, load_only.
 py::list output_table_list() {
@@ -434,7 +421,7 @@ py::list output_table_list() {
     py::dict d;
     d["name"] = o.name;
     d["unit"] = dim_name(o.dim);
-    d["group"] = group_name(o.group);
+    d["group"] = output_group_name(o.group);
     d["csv"] = (o.where & kInCsv) != 0;
     d["map"] = (o.where & kInMap) != 0;
     d["meaning"] = o.meaning;

@@ -56,9 +56,9 @@ private:
 // residual from it.
 void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, std::size_t k) {
   for (const auto& [o, at] : S.event_metrics)
-    f.put(at, o->may_be_undefined ? defined_or_fill(o->event(e)) : o->event(e), k);
+    f.put(at, o->may_be_undefined ? defined_or_fill(e.*(o->event)) : e.*(o->event), k);
   for (const auto& [o, at] : S.event_states)
-    f.state(at, o->event_state(e), k);
+    f.state(at, e.*(o->event_state), k);
   f.state(S.analytic_ss, e.ss_after, k);
   f.residuals(S.residuals_end, e.end, e.ss_after, k);
 }
@@ -100,11 +100,8 @@ void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const Run
     fill_event(f, S, ev[k], k);
   if (!L.by_force()) fill_jump(f, S, c, x.at(0));
   const Scales sc = scales(c);
-  f.put(S.scale_length, sc.length);
-  f.put(S.scale_depth, sc.depth);
-  f.put(S.scale_force, sc.force);
-  f.put(S.scale_friction, sc.friction);
-  f.put(S.scale_time, sc.time);
+  for (const auto& [o, at] : S.scales)
+    f.put(at, sc.*(o->scale));
   for (double v : row.values)
     if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
 }

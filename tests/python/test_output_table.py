@@ -83,6 +83,8 @@ def test_csv_and_python_spell_the_table(exe):
     for ln in events:
         assert keys(ln[1:], ("k", "D_c_undefined")) == event_names("csv"), ln
     assert any("D_c_undefined=hold" in ln for ln in events)
+    scales = next(ln for ln in lines if ln.startswith("# scales "))
+    assert keys(scales[1:]) == names("scale", "csv")
     pre = next(ln for ln in lines if ln.startswith("# pre "))
     assert keys(pre[1:]) == states()
     header = next(ln for ln in lines if not ln.startswith("#"))
@@ -95,6 +97,7 @@ def test_csv_and_python_spell_the_table(exe):
     for e in r.events:
         assert [k for k in e if k not in ("k", "D_c_undefined")] == event_names("csv")
     assert list(r.pre) == states()
+    assert list(r.scales) == names("scale", "csv")
     assert r.columns == names("series", "csv")
     for name in r.columns:
         assert getattr(r, name).shape == r.t.shape
@@ -123,10 +126,11 @@ def test_the_map_spells_the_table(exe, tmp_path):
         results = set(f["results"]) - {"status"} - {f"{q}_pre" for q in states()}
         assert results == set(names("result", "map"))
         assert set(f["timeseries"]) == set(names("series", "map"))
+        assert set(f["scales"]) == set(names("scale", "map"))
         unit = {o["name"]: o["unit"] for o in TABLE if o["group"] != "event_state"}
         meaning = {o["name"]: o["meaning"] for o in TABLE if o["group"] == "event"}
-        for group in ("events", "results"):
-            for name in names("event" if group == "events" else "result", "map"):
+        for group, kind in (("events", "event"), ("results", "result"), ("scales", "scale")):
+            for name in names(kind, "map"):
                 assert text(f[f"{group}/{name}"].attrs["units"]) == unit[name], name
                 assert text(f[f"schema/{group}/{name}"].attrs["unit"]) == unit[name], name
         for name, m in meaning.items():
@@ -136,6 +140,8 @@ def test_the_map_spells_the_table(exe, tmp_path):
     try:
         for name in event_names("map") + names("result", "map"):
             assert name in ds.variables, name
+        for name in names("scale", "map"):
+            assert "scale_" + name in ds.variables, name
     finally:
         ds.close()
 

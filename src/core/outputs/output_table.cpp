@@ -9,16 +9,14 @@ namespace {
 
 constexpr unsigned kBoth = kInCsv | kInMap;
 
-using Sample = double (*)(const Series&, std::size_t);
-using Metric = double (*)(const EventMetrics&);
-using StateAt = const State& (*)(const EventMetrics&);
+using Metric = double EventMetrics::*;
+using StateAt = State EventMetrics::*;
 using Result = double (*)(const RunInfo&, double);
 
-OutputSpec series(const char* name, Dim dim, const char* meaning, Sample sample,
+OutputSpec series(const char* name, Dim dim, const char* meaning,
                   std::vector<double> Series::*column, double State::*state = nullptr,
                   bool load_only = false) {
   OutputSpec o{name, dim, OutputGroup::Series, kBoth, meaning};
-  o.sample = sample;
   o.column = column;
   o.state = state;
   o.load_only = load_only;
@@ -48,31 +46,14 @@ OutputSpec result(const char* name, Dim dim, unsigned where, const char* meaning
 
 std::vector<OutputSpec> series_entries() {
   return {
-      series(
-          "t", Dim::Time, "output instant, from the first change at t = 0",
-          [](const Series& s, std::size_t k) { return s.t[k]; }, &Series::t),
-      series(
-          "segment", Dim::Count, "the 0-based segment of each output instant",
-          [](const Series& s, std::size_t k) { return static_cast<double>(s.segment[k]); },
-          nullptr),
-      series(
-          "FN", Dim::Force, "normal force", [](const Series& s, std::size_t k) { return s.FN[k]; },
-          &Series::FN, &State::FN),
-      series(
-          "Fx", Dim::Force, "friction force",
-          [](const Series& s, std::size_t k) { return s.Fx[k]; }, &Series::Fx, &State::Fx),
-      series(
-          "mu", Dim::Number, "friction coefficient Fx / FN",
-          [](const Series& s, std::size_t k) { return s.mu[k]; }, &Series::mu, &State::mu),
-      series(
-          "a2", Dim::Length, "trailing edge a2 of the contact",
-          [](const Series& s, std::size_t k) { return s.a2[k]; }, &Series::a2, &State::a2),
-      series(
-          "d", Dim::Length, "indentation depth",
-          [](const Series& s, std::size_t k) { return s.d[k]; }, &Series::d, &State::d, true),
-      series(
-          "a1", Dim::Length, "leading edge a1 of the contact",
-          [](const Series& s, std::size_t k) { return s.a1[k]; }, &Series::a1, &State::a1, true),
+      series("t", Dim::Time, "output instant, from the first change at t = 0", &Series::t),
+      series("segment", Dim::Count, "the 0-based segment of each output instant", nullptr),
+      series("FN", Dim::Force, "normal force", &Series::FN, &State::FN),
+      series("Fx", Dim::Force, "friction force", &Series::Fx, &State::Fx),
+      series("mu", Dim::Number, "friction coefficient Fx / FN", &Series::mu, &State::mu),
+      series("a2", Dim::Length, "trailing edge a2 of the contact", &Series::a2, &State::a2),
+      series("d", Dim::Length, "indentation depth", &Series::d, &State::d, true),
+      series("a1", Dim::Length, "leading edge a1 of the contact", &Series::a1, &State::a1, true),
   };
 }
 
@@ -89,27 +70,22 @@ std::vector<OutputSpec> extremum_entries() {
   static const std::string largest = std::string("largest") + sol,
                            smallest = std::string("smallest") + sol;
   return {
-      metric("mu_max", Dim::Number, kBoth, largest.c_str(),
-             [](const EventMetrics& e) { return e.mu_max; }),
-      metric("t_max", Dim::Time, kBoth, "time of mu_max since the change",
-             [](const EventMetrics& e) { return e.t_max; }),
+      metric("mu_max", Dim::Number, kBoth, largest.c_str(), &EventMetrics::mu_max),
+      metric("t_max", Dim::Time, kBoth, "time of mu_max since the change", &EventMetrics::t_max),
       metric("slip_max", Dim::Length, kBoth, "slip of mu_max since the change",
-             [](const EventMetrics& e) { return e.slip_max; }),
-      metric("mu_min", Dim::Number, kBoth, smallest.c_str(),
-             [](const EventMetrics& e) { return e.mu_min; }),
-      metric("t_min", Dim::Time, kBoth, "time of mu_min since the change",
-             [](const EventMetrics& e) { return e.t_min; }),
+             &EventMetrics::slip_max),
+      metric("mu_min", Dim::Number, kBoth, smallest.c_str(), &EventMetrics::mu_min),
+      metric("t_min", Dim::Time, kBoth, "time of mu_min since the change", &EventMetrics::t_min),
       metric("slip_min", Dim::Length, kBoth, "slip of mu_min since the change",
-             [](const EventMetrics& e) { return e.slip_min; }),
+             &EventMetrics::slip_min),
       metric("mu_peak", Dim::Number, kBoth,
              "the extremum on the side of the change: mu_max after a rise, mu_min after a drop "
              "or into a hold; mu just after the change where the segment shows no transient "
              "(within the error estimate)",
-             [](const EventMetrics& e) { return e.mu_peak; }),
-      metric("t_peak", Dim::Time, kBoth, "time of mu_peak since the change",
-             [](const EventMetrics& e) { return e.t_peak; }),
+             &EventMetrics::mu_peak),
+      metric("t_peak", Dim::Time, kBoth, "time of mu_peak since the change", &EventMetrics::t_peak),
       metric("slip_peak", Dim::Length, kBoth, "slip of mu_peak since the change",
-             [](const EventMetrics& e) { return e.slip_peak; }),
+             &EventMetrics::slip_peak),
   };
 }
 
@@ -117,51 +93,45 @@ std::vector<OutputSpec> event_entries() {
   std::vector<OutputSpec> v = {
       metric("t", Dim::Time, kBoth,
              "time of the velocity change at the segment's start (the first at t = 0)",
-             [](const EventMetrics& e) { return e.t; }),
+             &EventMetrics::t),
       metric("w_before", Dim::Velocity, kInCsv, "velocity before the change (v for the first)",
-             [](const EventMetrics& e) { return e.w_before; }),
+             &EventMetrics::w_before),
       metric("w_after", Dim::Velocity, kInCsv, "velocity after the change (the segment's w)",
-             [](const EventMetrics& e) { return e.w_after; }),
+             &EventMetrics::w_after),
       metric("mu_before", Dim::Number, kBoth,
              "friction coefficient just before the change (the previous segment's last sample)",
-             [](const EventMetrics& e) { return e.mu_before; }),
+             &EventMetrics::mu_before),
       instant("after", kBoth, "just after the change (the segment's first sample)",
-              [](const EventMetrics& e) -> const State& { return e.after; }),
+              &EventMetrics::after),
   };
   for (OutputSpec& o : extremum_entries())
     v.push_back(o);
   const std::vector<OutputSpec> rest = {
-      instant("end", kBoth, "at the segment's end (its last sample)",
-              [](const EventMetrics& e) -> const State& { return e.end; }),
+      instant("end", kBoth, "at the segment's end (its last sample)", &EventMetrics::end),
       instant("ss_before", kInCsv,
               "in stationary sliding at the velocity before the change (closed form)",
-              [](const EventMetrics& e) -> const State& { return e.ss_before; }),
+              &EventMetrics::ss_before),
       instant("ss_after", kInCsv, "in stationary sliding at the segment's velocity (closed form)",
-              [](const EventMetrics& e) -> const State& { return e.ss_after; }),
-      metric(
-          "D_c", Dim::Length, kBoth, kDc, [](const EventMetrics& e) { return e.d_c; }, true, "d_c"),
+              &EventMetrics::ss_after),
+      metric("D_c", Dim::Length, kBoth, kDc, &EventMetrics::d_c, true, "d_c"),
       metric("overshoot", Dim::Number, kBoth,
              "largest excursion of mu beyond mu_ss(w) on the side opposite to mu just after the "
              "change, relative to |mu - mu_ss(w)| just after the change; 0 for a one-sided "
              "transient",
-             [](const EventMetrics& e) { return e.overshoot; }),
-      metric(
-          "a", Dim::Number, kBoth,
-          "direct effect (mu_direct - mu_before) / ln(w / w_before), mu_direct = mu_after "
-          "with a parallel dashpot, mu_peak without one; undefined across a hold",
-          [](const EventMetrics& e) { return e.a; }, true),
-      metric(
-          "a_minus_b", Dim::Number, kBoth,
-          "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold",
-          [](const EventMetrics& e) { return e.a_minus_b; }, true),
-      metric(
-          "b", Dim::Number, kBoth, "evolution effect a - (a - b); undefined across a hold",
-          [](const EventMetrics& e) { return e.b; }, true),
-      metric(
-          "healing", Dim::Number, kBoth,
-          "static healing of a reslide after a hold: mu_max - mu_ss at the velocity before "
-          "the hold; undefined for any other segment",
-          [](const EventMetrics& e) { return e.healing; }, true),
+             &EventMetrics::overshoot),
+      metric("a", Dim::Number, kBoth,
+             "direct effect (mu_direct - mu_before) / ln(w / w_before), mu_direct = mu_after "
+             "with a parallel dashpot, mu_peak without one; undefined across a hold",
+             &EventMetrics::a, true),
+      metric("a_minus_b", Dim::Number, kBoth,
+             "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold",
+             &EventMetrics::a_minus_b, true),
+      metric("b", Dim::Number, kBoth, "evolution effect a - (a - b); undefined across a hold",
+             &EventMetrics::b, true),
+      metric("healing", Dim::Number, kBoth,
+             "static healing of a reslide after a hold: mu_max - mu_ss at the velocity before "
+             "the hold; undefined for any other segment",
+             &EventMetrics::healing, true),
   };
   v.insert(v.end(), rest.begin(), rest.end());
   return v;
@@ -188,12 +158,42 @@ std::vector<OutputSpec> result_entries() {
   };
 }
 
+OutputSpec scale(const char* name, Dim dim, const char* meaning, double Scales::*member) {
+  OutputSpec o{name, dim, OutputGroup::Scale, kBoth, meaning};
+  o.scale = member;
+  return o;
+}
+
+std::vector<OutputSpec> scale_entries() {
+  return {
+      scale("length", Dim::Length,
+            "reference length: the leading edge a1 of the contact at the depth d; under load "
+            "the Hertz radius a0 of the load F0 with the long-term modulus G "
+            "(F0 = 16/3 G a0^3 / R)",
+            &Scales::length),
+      scale("depth", Dim::Length, "indentation depth of the reference contact (d, or a0^2 / R)",
+            &Scales::depth),
+      scale("force", Dim::Force,
+            "elastic normal force of the reference contact with the long-term modulus G "
+            "(16/3 G a^3 / R; the prescribed load F0 under load)",
+            &Scales::force),
+      scale("friction", Dim::Number,
+            "friction scale: the profile's slope at the reference length over two (a / R for "
+            "the parabola)",
+            &Scales::friction),
+      scale("time", Dim::Time,
+            "time scale: the longest relaxation time of the material, shifted by aT (tau for "
+            "the Kelvin foundation)",
+            &Scales::time),
+  };
+}
+
 } // namespace
 
 const std::vector<OutputSpec>& output_table() {
   static const std::vector<OutputSpec> table = [] {
     std::vector<OutputSpec> t = series_entries();
-    for (const auto& part : {event_entries(), result_entries()})
+    for (const auto& part : {event_entries(), result_entries(), scale_entries()})
       t.insert(t.end(), part.begin(), part.end());
     return t;
   }();
@@ -212,6 +212,26 @@ std::vector<const OutputSpec*> state_outputs(bool load) {
     if (o.group == OutputGroup::Series && o.state != nullptr && (load || !o.load_only))
       out.push_back(&o);
   return out;
+}
+
+double sample(const OutputSpec& column, const Series& s, std::size_t k) {
+  return column.column != nullptr ? (s.*(column.column))[k] : static_cast<double>(s.segment[k]);
+}
+
+const char* output_group_name(OutputGroup g) {
+  switch (g) {
+  case OutputGroup::Series:
+    return "series";
+  case OutputGroup::Event:
+    return "event";
+  case OutputGroup::EventState:
+    return "event_state";
+  case OutputGroup::Result:
+    return "result";
+  case OutputGroup::Scale:
+    return "scale";
+  }
+  return "?";
 }
 
 std::string event_state_name(const OutputSpec& q, const OutputSpec& instant) {

@@ -14,6 +14,7 @@
 
 #include "core/metrics/events.hpp"
 #include "core/model/params.hpp"
+#include "core/model/scales.hpp"
 #include "core/model/state.hpp"
 #include "core/solvers/result.hpp"
 
@@ -25,6 +26,7 @@ enum class OutputGroup {
   Event,      ///< an event metric: one value per segment (the change at its start)
   EventState, ///< a state per segment: every state quantity q as q_<name> (the CSV: mu only)
   Result,     ///< a per-case result of the run
+  Scale,      ///< a scale of the case (core/model/scales.hpp), which the tools measure by
 };
 
 /// Where a quantity appears besides the docs; the Python module's result
@@ -43,14 +45,14 @@ struct OutputSpec {
   bool may_be_undefined = false;      ///< NaN where undefined (the map: its fill value)
   const char* old_map_name = nullptr; ///< its name in maps of mdrmap-map/2 before this table
   /// How it is read (the one that fits the group; the others nullptr):
-  double (*sample)(const Series&, std::size_t k) = nullptr; ///< Series: sample k
   /// Series: its samples (nullptr for segment, the one int column: Series::segment)
   std::vector<double> Series::*column = nullptr;
-  double State::*state = nullptr; ///< Series: the member of a State (nullptr: t, segment)
-  bool load_only = false;         ///< Series: moves under load control only
-  double (*event)(const EventMetrics&) = nullptr;                  ///< Event
-  const State& (*event_state)(const EventMetrics&) = nullptr;      ///< EventState
+  double State::*state = nullptr;        ///< Series: the member of a State (nullptr: t, segment)
+  bool load_only = false;                ///< Series: moves under load control only
+  double EventMetrics::*event = nullptr; ///< Event: its member of EventMetrics
+  State EventMetrics::*event_state = nullptr; ///< EventState: its member of EventMetrics
   double (*result)(const RunInfo&, double wall_seconds) = nullptr; ///< Result
+  double Scales::*scale = nullptr;                                 ///< Scale
 };
 
 /// Every output quantity, group after group, each group in its CSV order.
@@ -63,6 +65,13 @@ const OutputSpec& output(OutputGroup group, const char* name);
 /// The state quantities of the time series (FN, Fx, mu, a2, then d, a1 under
 /// load): the Series entries with a State member, in table order.
 std::vector<const OutputSpec*> state_outputs(bool load);
+
+/// Sample k of a Series entry's column (segment: as a double).
+double sample(const OutputSpec& column, const Series& s, std::size_t k);
+
+/// "series", "event", "event_state", "result" or "scale": the group as the docs and
+/// the Python module's output_table() name it.
+const char* output_group_name(OutputGroup g);
 
 /// The name of state quantity `q` at an EventState instant: "mu_after".
 std::string event_state_name(const OutputSpec& q, const OutputSpec& instant);
