@@ -219,19 +219,10 @@ double sample(const OutputSpec& column, const Series& s, std::size_t k) {
 }
 
 const char* output_group_name(OutputGroup g) {
-  switch (g) {
-  case OutputGroup::Series:
-    return "series";
-  case OutputGroup::Event:
-    return "event";
-  case OutputGroup::EventState:
-    return "event_state";
-  case OutputGroup::Result:
-    return "result";
-  case OutputGroup::Scale:
-    return "scale";
-  }
-  return "?";
+  static const char* const names[] = {"series", "event", "event_state", "result", "scale"};
+  static_assert(sizeof names / sizeof names[0] == static_cast<std::size_t>(OutputGroup::Scale) + 1,
+                "one name per OutputGroup, in its order");
+  return names[static_cast<std::size_t>(g)];
 }
 
 std::string event_state_name(const OutputSpec& q, const OutputSpec& instant) {

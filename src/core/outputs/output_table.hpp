@@ -27,6 +27,7 @@ enum class OutputGroup {
   EventState, ///< a state per segment: every state quantity q as q_<name> (the CSV: mu only)
   Result,     ///< a per-case result of the run
   Scale,      ///< a scale of the case (core/model/scales.hpp), which the tools measure by
+              ///< (the last: output_group_name() counts on it)
 };
 
 /// Where a quantity appears besides the docs; the Python module's result
