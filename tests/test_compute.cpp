@@ -188,8 +188,8 @@ TEST(ComputeCase, DropKeepsTheContactSetThenSlidesStationarilyAtV1) {
   EXPECT_DOUBLE_EQ(value(row, "events/a"),
                    (value(row, "events/mu_after") - value(row, "events/mu_before")) / lr);
   EXPECT_DOUBLE_EQ(value(row, "events/a_minus_b"), (at_v1.mu - value(row, "analytic/mu_pre")) / lr);
-  EXPECT_NE(value(row, "events/d_c"), io::kFillValue);
-  EXPECT_GT(value(row, "events/d_c"), 0.0);
+  EXPECT_NE(value(row, "events/D_c"), io::kFillValue);
+  EXPECT_GT(value(row, "events/D_c"), 0.0);
 }
 
 // Every residual is (sim - analytic) / |analytic| of the row's own columns:
@@ -443,7 +443,7 @@ TEST(ComputeCase, SlideHoldSlideUnderLoad) {
     for (std::size_t k = 0; k < 2; ++k)
       for (const char* m : {"events/a", "events/b", "events/a_minus_b"})
         EXPECT_EQ(v(m, k), io::kFillValue) << m << " " << k;
-    EXPECT_EQ(v("events/d_c", 0), io::kFillValue); // during a hold
+    EXPECT_EQ(v("events/D_c", 0), io::kFillValue); // during a hold
     // the time series: K segments of S samples
     const auto& t = series(row, "t", L);
     ASSERT_EQ(t.size(), 2u * 101u);
@@ -469,7 +469,7 @@ TEST(ComputeCase, VelocityStepUnderLoadHasRateAndState) {
   const CaseRow row =
       compute_case(cfg, L, mdrmap::study::expand_cases(cfg).front(), SolverKind::Auto, false);
   ASSERT_EQ(row.status, 1) << row.message;
-  for (const char* m : {"events/a", "events/b", "events/a_minus_b", "events/d_c"}) {
+  for (const char* m : {"events/a", "events/b", "events/a_minus_b", "events/D_c"}) {
     const double x = value(row, m, 0, L);
     EXPECT_NE(x, io::kFillValue) << m;
     EXPECT_TRUE(std::isfinite(x)) << m;

@@ -163,24 +163,31 @@ TEST(RowSlots, AreTheFieldsByName) {
     for (const std::size_t K : {1u, 3u}) {
       const mdrmap::io::RowLayout L(K, load);
       const mdrmap::io::RowSlots& S = L.slots();
-      EXPECT_EQ(S.error_estimate, L.at("results/error_estimate"));
+      // the table's results, event metrics and event states the map holds, each once
+      std::size_t results = 0, metrics = 0, states = 0;
+      for (const mdrmap::OutputSpec& o : mdrmap::output_table()) {
+        if ((o.where & mdrmap::kInMap) == 0) continue;
+        results += o.group == mdrmap::OutputGroup::Result ? 1 : 0;
+        metrics += o.group == mdrmap::OutputGroup::Event ? 1 : 0;
+        states += o.group == mdrmap::OutputGroup::EventState ? 1 : 0;
+      }
+      EXPECT_EQ(S.results.size() + 1, results); // + wall_seconds
+      EXPECT_EQ(S.event_metrics.size(), metrics);
+      EXPECT_EQ(S.event_states.size(), states);
       EXPECT_EQ(S.wall_seconds, L.at("results/wall_seconds"));
-      EXPECT_EQ(S.event_t + K - 1, L.at("events/t", K - 1));
-      EXPECT_EQ(S.mu_before, L.at("events/mu_before"));
-      EXPECT_EQ(S.mu_peak, L.at("events/mu_peak"));
-      EXPECT_EQ(S.t_peak, L.at("events/t_peak"));
-      EXPECT_EQ(S.slip_peak, L.at("events/slip_peak"));
-      EXPECT_EQ(S.a, L.at("events/a"));
-      EXPECT_EQ(S.b, L.at("events/b"));
-      EXPECT_EQ(S.a_minus_b, L.at("events/a_minus_b"));
-      EXPECT_EQ(S.d_c + K - 1, L.at("events/d_c", K - 1));
+      for (const auto& [o, at] : S.results)
+        EXPECT_EQ(at, L.at(std::string("results/") + o->name)) << o->name;
+      for (const auto& [o, at] : S.event_metrics)
+        EXPECT_EQ(at + K - 1, L.at(std::string("events/") + o->name, K - 1)) << o->name;
+      for (const auto& [o, at] : S.event_states)
+        for (std::size_t q = 0; q < L.quantities(); ++q)
+          EXPECT_EQ(at[q] + K - 1,
+                    L.at("events/" + std::string(L.quantity(q)) + "_" + o->name, K - 1));
       for (std::size_t q = 0; q < L.quantities(); ++q) {
         const std::string n = L.quantity(q);
         EXPECT_EQ(S.results_pre[q], L.at("results/" + n + "_pre"));
         EXPECT_EQ(S.analytic_pre[q], L.at("analytic/" + n + "_pre"));
         EXPECT_EQ(S.residuals_pre[q], L.at("residuals/" + n + "_pre"));
-        EXPECT_EQ(S.events_after[q] + K - 1, L.at("events/" + n + "_after", K - 1));
-        EXPECT_EQ(S.events_end[q], L.at("events/" + n + "_end"));
         EXPECT_EQ(S.analytic_ss[q], L.at("analytic/" + n + "_ss"));
         EXPECT_EQ(S.residuals_end[q], L.at("residuals/" + n + "_end"));
         if (load) continue;

@@ -244,7 +244,7 @@ TEST_F(MapSchema, EveryResultDatasetIsDescribed) {
   EXPECT_EQ(attr(f(), "schema/results/FN_pre", "unit"), "force");
   EXPECT_EQ(attr(f(), "schema/events/mu_peak", "unit"), "number");
   EXPECT_EQ(attr(f(), "schema/events/t_peak", "unit"), "time");
-  EXPECT_EQ(attr(f(), "schema/events/d_c", "unit"), "length");
+  EXPECT_EQ(attr(f(), "schema/events/D_c", "unit"), "length");
   EXPECT_EQ(attr(f(), "schema/analytic/a2_ss", "unit"), "length");
   EXPECT_EQ(attr(f(), "schema/timeseries/t", "unit"), "time");
   // and nothing described that is not in the map
@@ -280,12 +280,12 @@ TEST_F(MapSchema, PerEventDatasetsAreNByKWithDimensionEvent) {
       EXPECT_EQ(x, io::kFillValue);
     }
   }
-  // a, b, a_minus_b, d_c, healing; at fixed depth also the seed's jump
+  // a, b, a_minus_b, D_c, healing; at fixed depth also the seed's jump
   // estimate and its residuals (4 quantities each: undefined for a relaxation
   // spectrum)
   EXPECT_EQ(fill, layout.by_force() ? 5u : 13u);
   for (const char* p :
-       {"events/a", "events/b", "events/a_minus_b", "events/d_c", "events/healing"}) {
+       {"events/a", "events/b", "events/a_minus_b", "events/D_c", "events/healing"}) {
     Handle d = io::make_dataset(H5Dopen2(f(), p, H5P_DEFAULT), p);
     EXPECT_TRUE(io::has_attr(d.id(), "_FillValue")) << p;
   }

@@ -8,6 +8,7 @@
 #include "case/prony_input.hpp"
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
+#include "core/outputs/output_table.hpp"
 
 namespace mdrmap::app {
 using namespace mdrmap::cases; // the case library (src/case)
@@ -45,11 +46,25 @@ void write_reference(std::FILE* out, const SimulateRecord& rec) {
                  *rec.error_vs_exact, rec.reference.c_str(), rec.reference_rtol);
 }
 
+/// The Series entries of the table a run at this loading has.
+std::vector<const OutputSpec*> columns(bool load) {
+  std::vector<const OutputSpec*> c;
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Series && (load || !o.load_only)) c.push_back(&o);
+  return c;
+}
+
+/// Row k of the series: its columns, comma-separated (no newline).
+void write_row(std::FILE* out, const std::vector<const OutputSpec*>& cols, const Series& s,
+               std::size_t k) {
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    std::fprintf(out, j == 0 ? "%s" : ",%s", format_double(sample(*cols[j], s, k)).c_str());
+}
+
 void write_rows(std::FILE* out, const Series& s, bool load) {
+  const std::vector<const OutputSpec*> cols = columns(load);
   for (std::size_t k = 0; k < s.size(); ++k) {
-    std::fprintf(out, "%.17g,%d,%.17g,%.17g,%.17g,%.17g", s.t[k], s.segment[k], s.FN[k], s.Fx[k],
-                 s.mu[k], s.a2[k]);
-    if (load) std::fprintf(out, ",%.17g,%.17g", s.d[k], s.a1[k]);
+    write_row(out, cols, s, k);
     std::fputc('\n', out);
   }
 }
@@ -59,12 +74,9 @@ void write_rows(std::FILE* out, const Series& s, bool load) {
 void write_record_rows(std::FILE* out, const Case& c, const Series& s, const LabRecord& r) {
   const std::vector<std::size_t> rows = record_rows(c);
   const std::vector<double> slip = record_slip(r);
-  const bool load = c.loading.by_force();
+  const std::vector<const OutputSpec*> cols = columns(c.loading.by_force());
   for (std::size_t n = 0; n < rows.size() && n < r.v.size(); ++n) {
-    const std::size_t k = rows[n];
-    std::fprintf(out, "%.17g,%d,%.17g,%.17g,%.17g,%.17g", s.t[k], s.segment[k], s.FN[k], s.Fx[k],
-                 s.mu[k], s.a2[k]);
-    if (load) std::fprintf(out, ",%.17g,%.17g", s.d[k], s.a1[k]);
+    write_row(out, cols, s, rows[n]);
     std::fprintf(out, ",%.17g,%.17g\n", r.v[n], slip[n]);
   }
 }
@@ -73,7 +85,7 @@ void write_event(std::FILE* out, std::size_t k, const EventMetrics& e) {
   std::string line = "# event k=" + std::to_string(k);
   for (const auto& [name, value] : event_fields(e))
     line += std::string(" ") + name + "=" + format_double(value);
-  if (e.d_c_undefined != nullptr) line += std::string(" D_c_undefined=") + e.d_c_undefined;
+  if (e.d_c_undefined != nullptr) line += " " + d_c_undefined_key() + "=" + e.d_c_undefined;
   std::fprintf(out, "%s\n", line.c_str());
 }
 
@@ -99,9 +111,18 @@ std::string case_line(const Case& c, const std::optional<TemperatureInput>& temp
 
 std::string scales_line(const Case& c) {
   const Scales sc = scales(c);
-  return "# scales length=" + format_double(sc.length) + " depth=" + format_double(sc.depth) +
-         " force=" + format_double(sc.force) + " friction=" + format_double(sc.friction) +
-         " time=" + format_double(sc.time);
+  std::string s = "# scales";
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale)
+      s += std::string(" ") + o.name + "=" + format_double(sc.*(o.scale));
+  return s;
+}
+
+std::string csv_header(bool load) {
+  std::string h;
+  for (const OutputSpec* o : columns(load))
+    h += (h.empty() ? "" : ",") + std::string(o->name);
+  return h;
 }
 
 std::string format_double(double x) {
@@ -124,14 +145,11 @@ std::string format_history(const History& h) {
 void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series& series,
                         const std::optional<TemperatureInput>& temperature,
                         const LabRecord* record) {
-  const RunInfo& in = rec.info;
-  std::fprintf(out,
-               "# mdrmap %s (%s) simulate solver=%s rtol=%.17g error_estimate=%.17g "
-               "cells_per_a1=%.17g elements=%ld steps=%ld element_updates=%ld root_solves=%ld "
-               "wall_seconds=%.17g\n",
-               rec.version.c_str(), rec.commit.c_str(), rec.solver.c_str(), rec.rtol,
-               in.error_estimate, in.cells_per_a1, in.elements, in.steps, in.element_updates,
-               in.root_solves, rec.wall_seconds);
+  std::string first = "# mdrmap " + rec.version + " (" + rec.commit +
+                      ") simulate solver=" + rec.solver + " rtol=" + format_double(rec.rtol);
+  for (const auto& [name, value] : result_fields(rec.info, rec.wall_seconds))
+    first += " " + name + "=" + format_double(value);
+  std::fprintf(out, "%s\n", first.c_str());
 
   const Case& c = rec.c;
   const bool load = c.loading.by_force();
@@ -143,8 +161,8 @@ void write_simulate_csv(std::FILE* out, const SimulateRecord& rec, const Series&
 
   std::fputs("# pre", out);
   for (const auto& [name, value] : state_fields(series.pre, load))
-    std::fprintf(out, " %s=%.17g", name, value);
-  std::fprintf(out, "\n%s%s\n", load ? kCsvHeaderLoad : kCsvHeader, record ? ",v,slip" : "");
+    std::fprintf(out, " %s=%s", name.c_str(), format_double(value).c_str());
+  std::fprintf(out, "\n%s%s\n", csv_header(load).c_str(), record ? ",v,slip" : "");
   if (record)
     write_record_rows(out, c, series, *record);
   else

@@ -46,6 +46,8 @@
 // undefined (a log of 0 or of 1, a hold, no 1/e decay within the segment) is
 // printed as nan.
 //
+// Every name on these lines is the output table's (core/outputs/output_table.hpp).
+//
 // Every floating-point number is printed with 17 significant digits, which
 // reads back to the same double.
 #include <cstdio>
@@ -65,9 +67,10 @@ std::string format_double(double x);
 /// A history as "W1:T1,W2:T2,...", each number with 17 significant digits.
 std::string format_history(const History& h);
 
-/// The CSV column header line (without newline): depth control, load control.
-inline constexpr const char* kCsvHeader = "t,segment,FN,Fx,mu,a2";
-inline constexpr const char* kCsvHeaderLoad = "t,segment,FN,Fx,mu,a2,d,a1";
+/// The CSV column header line (without newline): the output table's Series
+/// entries (core/outputs/output_table.hpp), "t,segment,FN,Fx,mu,a2" at
+/// depth control, with ",d,a1" under load.
+std::string csv_header(bool load);
 
 /// The `# case` line of a case (without newline); `temperature` as the
 /// input gave it (CaseInput::temperature).

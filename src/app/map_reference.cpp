@@ -164,6 +164,14 @@ the dataset holds the netCDF default fill value `9.969209968386869e36` and
 says so in `_FillValue` (no dataset holds NaN). Units are dimensions of the
 study's consistent units (`force/length^2`: a modulus).
 
+## Output quantities
+
+Every quantity mdrmap outputs has one name, the same in the CSV of `mdrmap
+simulate`, its Python result `r = mdrmap.simulate(...)` and the map (the
+output table, `src/core/outputs/output_table.cpp`):
+
+)" + output_quantities_markdown() +
+                  R"(
 ## Root attributes
 
 )" + attributes_table();

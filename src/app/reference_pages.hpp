@@ -18,4 +18,7 @@ std::string config_keys_text();
 /// docs/reference/map-schema.md.
 std::string map_reference_markdown();
 
+/// Its section "Output quantities": the output table (core/outputs/output_table.hpp).
+std::string output_quantities_markdown();
+
 } // namespace mdrmap::app

@@ -93,6 +93,22 @@ std::vector<HelpSection> sections() {
           {"help", "Help", {help_option_entry(kCommand), help_all_option_entry(kCommand)}}};
 }
 
+/// "  # event k=K t=... w_before=... ...": the CSV's event fields (the output
+/// table's), wrapped at 78 columns.
+std::string event_line_help() {
+  std::string s = "  # event k=K", line = s;
+  for (const auto& [name, value] : cases::event_fields(EventMetrics{})) {
+    const std::string item = " " + name + "=...";
+    if (line.size() + item.size() > 78) {
+      s += "\n     ";
+      line = "     ";
+    }
+    s += item;
+    line += item;
+  }
+  return s;
+}
+
 std::string output_help() {
   return R"(Output: comment lines starting with '#', then CSV with a header line.
   # mdrmap VERSION (COMMIT) simulate solver=NAME rtol=E error_estimate=...
@@ -115,14 +131,15 @@ std::string output_help() {
                            (under --F0, solvers other than auto only: the
                             case error against the load solver at a 1000x
                             tighter rtol, at least 1e-9)
-  # event k=K t=... w_before=... w_after=... mu_before=... mu_after=...
-      mu_peak=... t_peak=... slip_peak=... mu_end=... mu_ss_before=...
-      mu_ss_after=... D_c=... a=... a_minus_b=... b=...
+)" + event_line_help() +
+         R"(
                            (one line per segment K = 0, 1, ...: the change at
-                            its start, see below)
+                            its start, see below; D_c_undefined=WHY where D_c
+                            is nan)
   # pre FN=... Fx=... mu=... a2=...   (stationary state at V0 before t = 0;
                                        under --F0 also d=... a1=...)
-  t,segment,FN,Fx,mu,a2               (under --F0: t,segment,FN,Fx,mu,a2,d,a1)
+  )" + csv_header(false) +
+         "               (under --F0: " + csv_header(true) + R"()
   ... N rows per segment, segment after segment; segment is 0-based, t is
       measured from the first change (t = 0 is the instant just after it) ...
       (--history-file: one row per row of the record, t measured from its

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "core/metrics/error_metric.hpp"
+#include "core/outputs/output_table.hpp"
 #include "core/solvers/dispatch.hpp"
 #include "mdrmap/version.hpp"
 
@@ -64,36 +65,33 @@ Simulation simulate(const CaseInput& in, const RunControl& control) {
 }
 
 std::vector<Field> event_fields(const EventMetrics& e) {
-  return {
-      {"t", e.t},
-      {"w_before", e.w_before},
-      {"w_after", e.w_after},
-      {"mu_before", e.mu_before},
-      {"mu_after", e.mu_after},
-      {"mu_max", e.mu_max},
-      {"t_max", e.t_max},
-      {"slip_max", e.slip_max},
-      {"mu_min", e.mu_min},
-      {"t_min", e.t_min},
-      {"slip_min", e.slip_min},
-      {"mu_peak", e.mu_peak},
-      {"t_peak", e.t_peak},
-      {"slip_peak", e.slip_peak},
-      {"mu_end", e.end.mu},
-      {"mu_ss_before", e.ss_before.mu},
-      {"mu_ss_after", e.ss_after.mu},
-      {"D_c", e.d_c},
-      {"overshoot", e.overshoot},
-      {"a", e.a},
-      {"a_minus_b", e.a_minus_b},
-      {"b", e.b},
-      {"healing", e.healing},
-  };
+  const OutputSpec& mu = output(OutputGroup::Series, "mu");
+  std::vector<Field> f;
+  for (const OutputSpec& o : output_table()) {
+    if ((o.where & kInCsv) == 0) continue;
+    if (o.group == OutputGroup::Event) f.emplace_back(o.name, e.*(o.event));
+    if (o.group == OutputGroup::EventState)
+      f.emplace_back(event_state_name(mu, o), (e.*(o.event_state)).mu);
+  }
+  return f;
+}
+
+std::string d_c_undefined_key() {
+  return std::string(output(OutputGroup::Event, "D_c").name) + "_undefined";
 }
 
 std::vector<Field> state_fields(const State& s, bool load) {
-  std::vector<Field> f = {{"FN", s.FN}, {"Fx", s.Fx}, {"mu", s.mu}, {"a2", s.a2}};
-  if (load) f.insert(f.end(), {{"d", s.d}, {"a1", s.a1}});
+  std::vector<Field> f;
+  for (const OutputSpec* q : state_outputs(load))
+    f.emplace_back(q->name, s.*(q->state));
+  return f;
+}
+
+std::vector<Field> result_fields(const RunInfo& info, double wall_seconds) {
+  std::vector<Field> f;
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Result && (o.where & kInCsv) != 0)
+      f.emplace_back(o.name, o.result(info, wall_seconds));
   return f;
 }
 

@@ -44,17 +44,25 @@ struct Simulation {
 /// Interrupted) and std::bad_alloc.
 Simulation simulate(const CaseInput& in, const RunControl& control = RunControl{});
 
-/// A named number of a record.
-using Field = std::pair<const char*, double>;
+/// A named number of a record (named by the output table,
+/// core/outputs/output_table.hpp).
+using Field = std::pair<std::string, double>;
 
-/// The numbers of the `# event` line after k, in its order: t, w_before,
-/// w_after, mu_before, mu_after, mu_max, t_max, slip_max, mu_min, t_min,
-/// slip_min, mu_peak, t_peak, slip_peak, mu_end, mu_ss_before, mu_ss_after,
-/// D_c, overshoot, a, a_minus_b, b, healing (EventMetrics; where D_c is
-/// undefined the line adds D_c_undefined=REASON, EventMetrics::d_c_undefined).
+/// The numbers of the `# event` line after k, in the table's order: its
+/// Event entries shown in the CSV and mu at its EventState instants
+/// (mu_after, mu_end, mu_ss_before, mu_ss_after); where D_c is undefined
+/// the line adds D_c_undefined=REASON (EventMetrics::d_c_undefined).
 std::vector<Field> event_fields(const EventMetrics& e);
+
+/// The key of the reason D_c is undefined: "D_c_undefined" (the table's
+/// name of D_c and "_undefined").
+std::string d_c_undefined_key();
 
 /// The fields of the `# pre` line: FN, Fx, mu, a2; under load also d, a1.
 std::vector<Field> state_fields(const State& s, bool load);
+
+/// The per-case results of the first comment line (error_estimate, ...,
+/// wall_seconds), in the table's order; the counts as exact doubles.
+std::vector<Field> result_fields(const RunInfo& info, double wall_seconds);
 
 } // namespace mdrmap::cases

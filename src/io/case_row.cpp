@@ -8,25 +8,13 @@
 namespace mdrmap::io {
 namespace {
 
-// The quantities of a state: the names of the map's fields and their
-// meanings come from this table and the instants below together; the
-// quantities that move under load only come last.
-struct Quantity {
-  const char* name;
-  const char* unit;
-  const char* meaning;
-  bool load_only;                       ///< moves under load control only (fixed at depth control)
-  double State::*value;                 ///< its member of a State
-  std::vector<double> Series::*samples; ///< and of a Series
-};
-const Quantity kQuantities[] = {
-    {"FN", "force", "normal force", false, &State::FN, &Series::FN},
-    {"Fx", "force", "friction force", false, &State::Fx, &Series::Fx},
-    {"mu", "number", "friction coefficient Fx / FN", false, &State::mu, &Series::mu},
-    {"a2", "length", "trailing edge a2 of the contact", false, &State::a2, &Series::a2},
-    {"d", "length", "indentation depth", true, &State::d, &Series::d},
-    {"a1", "length", "leading edge a1 of the contact", true, &State::a1, &Series::a1},
-};
+using Quantity = OutputSpec; // a state quantity of the output table
+
+/// "results/", "scales/" or "events/": the group of the map that holds o's row values.
+std::string group_of(const OutputSpec& o) {
+  if (o.group == OutputGroup::Scale) return "scales/";
+  return o.group == OutputGroup::Result ? "results/" : "events/";
+}
 
 std::string residual(const std::string& sim, const std::string& an, const std::string& measures) {
   return "(" + sim + " - " + an + ") / |" + an + "|: " + measures;
@@ -34,7 +22,8 @@ std::string residual(const std::string& sim, const std::string& an, const std::s
 
 } // namespace
 
-RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_force_(by_force) {
+RowLayout::RowLayout(std::size_t segments, bool by_force)
+    : K_(segments), by_force_(by_force), quantities_(state_outputs(by_force)) {
   add_results();
   add_events();
   add_closed_forms();
@@ -45,9 +34,10 @@ RowLayout::RowLayout(std::size_t segments, bool by_force) : K_(segments), by_for
     offsets_.push_back(offsets_.back() + width(f));
     index_[fields_[f].info.path] = f;
   }
-  series_.push_back({"timeseries/t", "time", "output instant, from the first change at t = 0"});
+  const OutputSpec& t = output(OutputGroup::Series, "t");
+  series_.push_back({std::string("timeseries/") + t.name, dim_name(t.dim), t.meaning});
   for_each_quantity([&](const Quantity& q) {
-    series_.push_back({std::string("timeseries/") + q.name, q.unit,
+    series_.push_back({std::string("timeseries/") + q.name, dim_name(q.dim),
                        std::string(q.meaning) + " at the output instants t"});
   });
   resolve_slots();
@@ -62,37 +52,22 @@ RowSlots::PerQuantity RowLayout::per_quantity(const std::string& group, const ch
 
 void RowLayout::resolve_slots() {
   RowSlots& s = slots_;
-  s.error_estimate = at("results/error_estimate");
-  s.wall_seconds = at("results/wall_seconds");
+  for (const OutputSpec& o : output_table()) {
+    // (the time series are not in a row: series())
+    if ((o.where & kInMap) == 0 || o.group == OutputGroup::Series) continue;
+    const std::size_t slot = o.group == OutputGroup::EventState ? 0 : at(group_of(o) + o.name);
+    if (o.group == OutputGroup::Result && o.dim == Dim::WallClock) s.wall_seconds = slot;
+    if (o.group == OutputGroup::Result && o.dim != Dim::WallClock) s.results.emplace_back(&o, slot);
+    if (o.group == OutputGroup::Event) s.event_metrics.emplace_back(&o, slot);
+    if (o.group == OutputGroup::Scale) s.scales.emplace_back(&o, slot);
+    if (o.group == OutputGroup::EventState)
+      s.event_states.emplace_back(&o, per_quantity("events", (std::string("_") + o.name).c_str()));
+  }
   s.results_pre = per_quantity("results", "_pre");
   s.analytic_pre = per_quantity("analytic", "_pre");
   s.residuals_pre = per_quantity("residuals", "_pre");
-  s.event_t = at("events/t");
-  s.mu_before = at("events/mu_before");
-  s.mu_peak = at("events/mu_peak");
-  s.t_peak = at("events/t_peak");
-  s.slip_peak = at("events/slip_peak");
-  s.mu_max = at("events/mu_max");
-  s.t_max = at("events/t_max");
-  s.slip_max = at("events/slip_max");
-  s.mu_min = at("events/mu_min");
-  s.t_min = at("events/t_min");
-  s.slip_min = at("events/slip_min");
-  s.healing = at("events/healing");
-  s.a = at("events/a");
-  s.b = at("events/b");
-  s.a_minus_b = at("events/a_minus_b");
-  s.d_c = at("events/d_c");
-  s.overshoot = at("events/overshoot");
-  s.events_after = per_quantity("events", "_after");
-  s.events_end = per_quantity("events", "_end");
   s.analytic_ss = per_quantity("analytic", "_ss");
   s.residuals_end = per_quantity("residuals", "_end");
-  s.scale_length = at("scales/length");
-  s.scale_depth = at("scales/depth");
-  s.scale_force = at("scales/force");
-  s.scale_friction = at("scales/friction");
-  s.scale_time = at("scales/time");
   if (by_force_) return; // the seed's jump estimate: at fixed depth only
   s.analytic_jump = per_quantity("analytic", "_jump");
   s.residuals_jump = per_quantity("residuals", "_jump");
@@ -103,28 +78,33 @@ void RowLayout::add(const std::string& path, const char* unit, const std::string
   fields_.push_back({{path, unit, meaning}, per_event, may_be_undefined});
 }
 
-template <class F> void RowLayout::for_each_quantity(F f) const {
-  for (std::size_t q = 0; q < quantities(); ++q)
-    f(kQuantities[q]);
+void RowLayout::add(const std::string& group, const OutputSpec& o) {
+  const bool per_event = o.group == OutputGroup::Event || o.group == OutputGroup::EventState;
+  if (o.group != OutputGroup::EventState) {
+    add(group + "/" + o.name, dim_name(o.dim), o.meaning, per_event, o.may_be_undefined);
+    return;
+  }
+  for_each_quantity([&](const Quantity& q) {
+    add(group + "/" + event_state_name(q, o), dim_name(q.dim),
+        std::string(q.meaning) + " " + o.meaning, true, o.may_be_undefined);
+  });
 }
 
-std::size_t RowLayout::quantities() const {
-  std::size_t n = 0;
-  for (const Quantity& q : kQuantities)
-    n += (by_force_ || !q.load_only) ? 1 : 0;
-  return n;
+template <class F> void RowLayout::for_each_quantity(F f) const {
+  for (std::size_t q = 0; q < quantities(); ++q)
+    f(*quantities_[q]);
 }
 
 const char* RowLayout::quantity(std::size_t q) const {
-  return kQuantities[q].name;
+  return quantities_[q]->name;
 }
 
 double RowLayout::value(const State& s, std::size_t q) const {
-  return s.*(kQuantities[q].value);
+  return s.*(quantities_[q]->state);
 }
 
 const std::vector<double>& RowLayout::samples(const Series& x, std::size_t s) const {
-  return s == 0 ? x.t : x.*(kQuantities[s - 1].samples);
+  return x.*(s == 0 ? output(OutputGroup::Series, "t").column : quantities_[s - 1]->column);
 }
 
 std::string RowLayout::stationary() const {
@@ -132,81 +112,34 @@ std::string RowLayout::stationary() const {
 }
 
 void RowLayout::add_results() {
-  add("results/error_estimate", "number",
-      "the solver's estimate of the case's relative error (docs/design.md, error metric)");
-  add("results/wall_seconds", "s", "wall-clock time the case took, in seconds");
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Result && (o.where & kInMap) != 0) add("results", o);
   for_each_quantity([&](const Quantity& q) {
-    add(std::string("results/") + q.name + "_pre", q.unit,
+    add(std::string("results/") + q.name + "_pre", dim_name(q.dim),
         std::string(q.meaning) + " " + stationary() + "v before t = 0, as solved");
   });
 }
 
+// The event metrics and states of the output table the map holds, in its order.
 void RowLayout::add_events() {
-  add("events/t", "time", "time of the velocity change at the segment's start (the first at t = 0)",
-      true);
-  for_each_quantity([&](const Quantity& q) {
-    add(std::string("events/") + q.name + "_after", q.unit,
-        std::string(q.meaning) + " just after the change (the segment's first sample)", true);
-  });
-  add("events/mu_before", "number",
-      "friction coefficient just before the change (the previous segment's last sample)", true);
-  for (const char* which : {"max", "min"}) {
-    const std::string m = which;
-    add("events/mu_" + m, "number",
-        std::string(m == "max" ? "largest" : "smallest") +
-            " friction coefficient within the segment (from the solution, not the output "
-            "instants)",
-        true);
-    add("events/t_" + m, "time", "time of mu_" + m + " since the change", true);
-    add("events/slip_" + m, "length", "slip of mu_" + m + " since the change", true);
-  }
-  add("events/mu_peak", "number",
-      "the extremum on the side of the change: mu_max after a rise, mu_min after a drop or into "
-      "a hold; mu just after the change where the segment shows no transient (within the error "
-      "estimate)",
-      true);
-  add("events/t_peak", "time", "time of mu_peak since the change", true);
-  add("events/slip_peak", "length", "slip of mu_peak since the change", true);
-  add("events/healing", "number",
-      "static healing of a reslide after a hold: mu_max - mu_ss at the velocity before the "
-      "hold; undefined for any other segment",
-      true, true);
-  for_each_quantity([&](const Quantity& q) {
-    add(std::string("events/") + q.name + "_end", q.unit,
-        std::string(q.meaning) + " at the segment's end (its last sample)", true);
-  });
-  add("events/a", "number",
-      "direct effect (mu_direct - mu_before) / ln(w / w_before), mu_direct = mu_after with a "
-      "parallel dashpot, mu_peak without one; undefined across a hold",
-      true, true);
-  add("events/b", "number", "evolution effect a - (a - b); undefined across a hold", true, true);
-  add("events/a_minus_b", "number",
-      "(mu_ss(w) - mu_ss(w_before)) / ln(w / w_before); undefined across a hold", true, true);
-  add("events/d_c", "length",
-      "slip over which |mu - mu_ss(w)| first falls to 1/e of its value at the reference point "
-      "(the change with a parallel dashpot, the peak without one), counted from there; "
-      "undefined during a hold, without a transient, when the peak is the segment's end, when "
-      "it does not fall that far within the segment, or when the transient overshoots mu_ss(w) "
-      "by more than 1/e of that value",
-      true, true);
-  add("events/overshoot", "number",
-      "largest excursion of mu beyond mu_ss(w) on the side opposite to mu just after the change, "
-      "relative to |mu - mu_ss(w)| just after the change; 0 for a one-sided transient",
-      true);
+  for (const OutputSpec& o : output_table())
+    if ((o.group == OutputGroup::Event || o.group == OutputGroup::EventState) &&
+        (o.where & kInMap) != 0)
+      add("events", o);
 }
 
 void RowLayout::add_closed_forms() {
   for_each_quantity([&](const Quantity& q) {
-    add(std::string("analytic/") + q.name + "_pre", q.unit,
+    add(std::string("analytic/") + q.name + "_pre", dim_name(q.dim),
         std::string(q.meaning) + " " + stationary() + "v (closed form)");
   });
   for_each_quantity([&](const Quantity& q) {
-    add(std::string("analytic/") + q.name + "_ss", q.unit,
+    add(std::string("analytic/") + q.name + "_ss", dim_name(q.dim),
         std::string(q.meaning) + " " + stationary() + "the segment's velocity (closed form)", true);
   });
   if (by_force_) return; // the seed's jump estimate: at fixed depth
   for_each_quantity([&](const Quantity& q) {
-    add(std::string("analytic/") + q.name + "_jump", q.unit,
+    add(std::string("analytic/") + q.name + "_jump", dim_name(q.dim),
         std::string(q.meaning) +
             " just after the first change (t = 0+), the corrected estimate (eqs. 15-16) of the "
             "Kelvin foundation; undefined for a relaxation spectrum",
@@ -215,20 +148,8 @@ void RowLayout::add_closed_forms() {
 }
 
 void RowLayout::add_scales() {
-  add("scales/length", "length",
-      by_force_ ? "reference length: the Hertz radius a0 of the load F0 with the long-term "
-                  "modulus G (F0 = 16/3 G a0^3 / R)"
-                : "reference length: the leading edge a1 of the contact at the depth d");
-  add("scales/depth", "length", "indentation depth of the reference contact (d, or a0^2 / R)");
-  add("scales/force", "force",
-      "elastic normal force of the reference contact with the long-term modulus G "
-      "(16/3 G a^3 / R; the prescribed load F0 under load)");
-  add("scales/friction", "number",
-      "friction scale: the profile's slope at the reference length "
-      "over two (a / R for the parabola)");
-  add("scales/time", "time",
-      "time scale: the longest relaxation time of the material, shifted by aT (tau for the "
-      "Kelvin foundation)");
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale) add("scales", o);
 }
 
 void RowLayout::add_residuals() {
@@ -267,7 +188,9 @@ std::size_t RowLayout::at(const std::string& path, std::size_t k) const {
 const std::vector<FieldInfo>& other_result_info() {
   static const std::vector<FieldInfo> f = {
       {"results/status", "code", "1 done, 0 pending (not yet computed), -1 failed"},
-      {"timeseries/segment", "count", "the 0-based segment of each output instant"},
+      {std::string("timeseries/") + output(OutputGroup::Series, "segment").name,
+       dim_name(output(OutputGroup::Series, "segment").dim),
+       output(OutputGroup::Series, "segment").meaning},
       {"failures/case", "count", "a failed case (0-based index)"},
       {"failures/message", "text", "why it failed"},
   };

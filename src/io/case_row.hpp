@@ -1,5 +1,6 @@
 #pragma once
 // One case's row of the friction map (schema mdrmap-map/2, docs/reference/map-schema.md),
+// its datasets named by the output table (core/outputs/output_table.hpp),
 // as computed (study/compute.hpp) and as written (io/map_file.hpp): which
 // per-case datasets a study's map has, their units and meanings, and the row
 // that holds one case's values. MPI- and HDF5-free.
@@ -7,9 +8,11 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "core/model/state.hpp"
+#include "core/outputs/output_table.hpp"
 
 namespace mdrmap::io {
 
@@ -41,17 +44,18 @@ struct RowField {
 struct RowSlots {
   static constexpr std::size_t kMaxQuantities = 6; ///< FN, Fx, mu, a2, d, a1
   using PerQuantity = std::array<std::size_t, kMaxQuantities>;
-  std::size_t error_estimate = 0, wall_seconds = 0;
+  /// The map's per-case results (the output table's Result entries in the map)
+  /// but wall_seconds, which is measured last, at its own slot.
+  std::vector<std::pair<const OutputSpec*, std::size_t>> results;
+  std::size_t wall_seconds = 0;
   PerQuantity results_pre{}, analytic_pre{}, residuals_pre{};
-  std::size_t event_t = 0, mu_before = 0, mu_peak = 0, t_peak = 0, slip_peak = 0;
-  std::size_t mu_max = 0, t_max = 0, slip_max = 0, mu_min = 0, t_min = 0, slip_min = 0;
-  std::size_t healing = 0;                          ///< may be undefined (kFillValue)
-  std::size_t a = 0, b = 0, a_minus_b = 0, d_c = 0; ///< may be undefined (kFillValue)
-  std::size_t overshoot = 0;
-  PerQuantity events_after{}, events_end{}, analytic_ss{}, residuals_end{};
-  PerQuantity analytic_jump{}, residuals_jump{}; ///< at fixed depth only
-  std::size_t scale_length = 0, scale_depth = 0, scale_force = 0, scale_friction = 0,
-              scale_time = 0; ///< the case's Scales
+  /// The map's event metrics (Event entries) and event states (EventState
+  /// entries: each quantity's start), in table order.
+  std::vector<std::pair<const OutputSpec*, std::size_t>> event_metrics;
+  std::vector<std::pair<const OutputSpec*, PerQuantity>> event_states;
+  PerQuantity analytic_ss{}, residuals_end{};
+  PerQuantity analytic_jump{}, residuals_jump{};                 ///< at fixed depth only
+  std::vector<std::pair<const OutputSpec*, std::size_t>> scales; ///< the case's Scales
 };
 
 /// The per-case datasets of a study's map: K segments, under load (the depth
@@ -76,7 +80,7 @@ public:
   /// The time series: t, FN, Fx, mu, a2 (and d, a1 under load), [N, K S].
   const std::vector<FieldInfo>& series() const { return series_; }
   /// The quantities of a state the map stores: FN, Fx, mu, a2 (and d, a1 under load).
-  std::size_t quantities() const;
+  std::size_t quantities() const { return quantities_.size(); }
   /// Name of quantity q (< quantities()), as in the datasets' names: "FN", ...
   const char* quantity(std::size_t q) const;
   /// Quantity q of a state.
@@ -87,8 +91,9 @@ public:
 private:
   void add(const std::string& path, const char* unit, const std::string& meaning,
            bool per_event = false, bool may_be_undefined = false);
-  template <class F> void for_each_quantity(F f) const; ///< FN, Fx, mu, a2 (d, a1 under load)
-  std::string stationary() const;                       ///< "in stationary sliding at "
+  void add(const std::string& group, const OutputSpec& o); ///< an entry of the output table
+  template <class F> void for_each_quantity(F f) const;    ///< FN, Fx, mu, a2 (d, a1 under load)
+  std::string stationary() const;                          ///< "in stationary sliding at "
   void add_results();
   void add_events();
   void add_closed_forms();
@@ -101,6 +106,7 @@ private:
   std::vector<RowField> fields_;
   std::vector<std::size_t> offsets_;                   ///< fields_.size() + 1
   std::unordered_map<std::string, std::size_t> index_; ///< path -> field
+  std::vector<const OutputSpec*> quantities_;          ///< the state quantities of the table
   std::vector<FieldInfo> series_;
   RowSlots slots_;
 };

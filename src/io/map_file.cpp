@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/model/params.hpp"
+#include "core/outputs/output_table.hpp"
 
 namespace mdrmap::io {
 namespace {
@@ -574,6 +575,20 @@ void read_failure_layout(hid_t f, std::uint64_t file_size, MapLayout& m) {
   }
 }
 
+/// Throws OldOutputNames where the map has an output's old name in place of
+/// its name (events/d_c for events/D_c).
+void check_output_names(hid_t f, const std::string& path) {
+  for (const OutputSpec& o : output_table()) {
+    if (o.old_map_name == nullptr) continue;
+    const std::string group = o.group == OutputGroup::Result ? "results/" : "events/";
+    if (has_link(f, group + o.old_map_name) && !has_link(f, group + o.name))
+      throw OldOutputNames("'" + path + "' holds /" + group + o.old_map_name +
+                           ", the old name of /" + group + o.name +
+                           " (an earlier mdrmap wrote it); continue it with that mdrmap or start "
+                           "a new map (mdrmap.open_map reads it)");
+  }
+}
+
 } // namespace
 
 MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>* status) {
@@ -598,6 +613,7 @@ MapLayout MapFile::read_layout(const std::string& path, std::vector<std::int8_t>
     check_status(H5Pget_userblock(fcpl.id(), &userblock), "file creation properties");
     if (userblock != 0) throw H5Error("'" + path + "' has a user block");
   }
+  check_output_names(f, path);
   MapLayout m;
   const long long n = read_ll_attr(f, "n_cases"), samples = read_ll_attr(f, "samples"),
                   K = read_ll_attr(f, "segments");

@@ -40,6 +40,15 @@
 
 namespace mdrmap::io {
 
+/// A map that names an output quantity as mdrmap did before the output
+/// table (core/outputs/output_table.hpp, OutputSpec::old_map_name): readable
+/// (the Python module reads the old names as the new), not continued, so that
+/// no map mixes the two spellings.
+class OldOutputNames : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
 inline constexpr const char* kSchema = "mdrmap-map/2";
 
 /// /failures holds at most this many failed cases (the slots reserved at
@@ -140,7 +149,8 @@ public:
   /// Serial, read-only: the layout of a map, checked dataset by dataset
   /// (type, shape, contiguous storage inside the file), and its status
   /// column when `status` is given. Throws H5Error saying what is wrong (a
-  /// map of an earlier schema: which one, and that it cannot be continued).
+  /// map of an earlier schema: which one, and that it cannot be continued),
+  /// OldOutputNames for a map with an output's old name (events/d_c).
   static MapLayout read_layout(const std::string& path, std::vector<std::int8_t>* status);
   /// Serial, read-only: the map's /failures (none when it has none).
   static std::vector<Failure> read_failures(const std::string& path);

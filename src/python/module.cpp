@@ -30,6 +30,7 @@
 #include "core/model/params.hpp"
 #include "core/model/scales.hpp"
 #include "core/model/temperature.hpp"
+#include "core/outputs/output_table.hpp"
 #include "fit/least_squares.hpp"
 #include "mdrmap/version.hpp"
 #include "python/call.hpp"
@@ -111,7 +112,7 @@ template <class T> py::array_t<T> view(const std::vector<T>& v, const py::capsul
 py::dict fields(const std::vector<cases::Field>& f) {
   py::dict d;
   for (const auto& [name, value] : f)
-    d[name] = value;
+    d[py::str(name)] = value;
   return d;
 }
 
@@ -121,8 +122,9 @@ py::list events(const cases::SimulateRecord& rec) {
     py::dict e;
     e["k"] = k;
     for (const auto& [name, value] : cases::event_fields(rec.events[k]))
-      e[name] = value;
-    if (const char* why = rec.events[k].d_c_undefined) e["D_c_undefined"] = why; // (as the CSV)
+      e[py::str(name)] = value;
+    if (const char* why = rec.events[k].d_c_undefined)
+      e[py::str(cases::d_c_undefined_key())] = why; // (as the CSV)
     out.append(std::move(e));
   }
   return out;
@@ -136,13 +138,11 @@ py::dict info(const cases::SimulateRecord& rec) {
   d["commit"] = rec.commit;
   d["solver"] = rec.solver;
   d["rtol"] = rec.rtol;
-  d["error_estimate"] = in.error_estimate;
-  d["cells_per_a1"] = in.cells_per_a1;
-  d["elements"] = in.elements;
-  d["steps"] = in.steps;
-  d["element_updates"] = in.element_updates;
-  d["root_solves"] = in.root_solves;
-  d["wall_seconds"] = rec.wall_seconds;
+  for (const auto& [name, value] : cases::result_fields(in, rec.wall_seconds)) // (as the CSV)
+    if (output(OutputGroup::Result, name.c_str()).dim == Dim::Count)
+      d[py::str(name)] = static_cast<long>(value);
+    else
+      d[py::str(name)] = value;
   if (rec.error_vs_exact && rec.reference == "exact") d["error_vs_exact"] = *rec.error_vs_exact;
   if (rec.error_vs_exact && rec.reference != "exact") {
     d["error_vs_reference"] = *rec.error_vs_exact;
@@ -194,16 +194,10 @@ void series_views(py::dict& out, std::unique_ptr<cases::Simulation> sim) {
   const bool load = sim->record.c.loading.by_force();
   py::capsule owner(sim.get(), [](void* p) { delete static_cast<cases::Simulation*>(p); });
   sim.release();
-  out["t"] = view(s.t, owner);
-  out["segment"] = view(s.segment, owner);
-  out["FN"] = view(s.FN, owner);
-  out["Fx"] = view(s.Fx, owner);
-  out["mu"] = view(s.mu, owner);
-  out["a2"] = view(s.a2, owner);
-  if (load) {
-    out["d"] = view(s.d, owner);
-    out["a1"] = view(s.a1, owner);
-  }
+  for (const OutputSpec& o : output_table()) // the CSV's columns (core/outputs/output_table.hpp)
+    if (o.group == OutputGroup::Series && (load || !o.load_only))
+      out[o.name] = o.column != nullptr ? py::object(view(s.*(o.column), owner))
+                                        : py::object(view(s.segment, owner));
 }
 
 /// The elements `rows` of v, as a new array.
@@ -223,16 +217,11 @@ void record_rows(py::dict& out, const cases::Simulation& sim, const cases::LabRe
   std::vector<std::size_t> rows = cases::record_rows(sim.record.c);
   rows.resize(std::min(rows.size(), r.v.size()));
   const Series& s = sim.series;
-  out["t"] = picked(s.t, rows);
-  out["segment"] = picked(s.segment, rows);
-  out["FN"] = picked(s.FN, rows);
-  out["Fx"] = picked(s.Fx, rows);
-  out["mu"] = picked(s.mu, rows);
-  out["a2"] = picked(s.a2, rows);
-  if (sim.record.c.loading.by_force()) {
-    out["d"] = picked(s.d, rows);
-    out["a1"] = picked(s.a1, rows);
-  }
+  const bool load = sim.record.c.loading.by_force();
+  for (const OutputSpec& o : output_table()) // the CSV's columns
+    if (o.group == OutputGroup::Series && (load || !o.load_only))
+      out[o.name] = o.column != nullptr ? py::object(picked(s.*(o.column), rows))
+                                        : py::object(picked(s.segment, rows));
   std::vector<double> v(r.v.begin(), r.v.begin() + static_cast<std::ptrdiff_t>(rows.size()));
   std::vector<double> slip = cases::record_slip(r);
   slip.resize(rows.size());
@@ -261,9 +250,10 @@ py::dict simulate(const py::dict& options, const py::object& progress) {
   out["info"] = info(sim->record);
   out["case"] = case_dict(sim->record.c);
   const Scales sc = scales(sim->record.c);
-  out["scales"] = py::dict(py::arg("length") = sc.length, py::arg("depth") = sc.depth,
-                           py::arg("force") = sc.force, py::arg("friction") = sc.friction,
-                           py::arg("time") = sc.time);
+  py::dict scale_dict; // the CSV's `# scales` line
+  for (const OutputSpec& o : output_table())
+    if (o.group == OutputGroup::Scale) scale_dict[o.name] = sc.*(o.scale);
+  out["scales"] = scale_dict;
   if (record)
     record_rows(out, *sim, *record);
   else
@@ -342,7 +332,7 @@ py::dict stationary(const py::dict& options, const py::object& progress) {
     auto x = a.mutable_unchecked<1>();
     for (std::size_t k = 0; k < states.size(); ++k)
       x(static_cast<py::ssize_t>(k)) = cases::state_fields(states[k], load)[j].second;
-    out[cases::state_fields(State{}, load)[j].first] = a;
+    out[py::str(cases::state_fields(State{}, load)[j].first)] = a;
   }
   return out;
 }
@@ -423,6 +413,27 @@ py::list parameter_table() {
   return out;
 }
 
+/// The output table (core/outputs/output_table.hpp) as a list of dicts:
+/// name, unit, group, csv, map, meaning, may_be_undefined, old_map_name, load_only.
+py::list output_table_list() {
+  py::list out;
+  for (const OutputSpec& o : output_table()) {
+    py::dict d;
+    d["name"] = o.name;
+    d["unit"] = dim_name(o.dim);
+    d["group"] = output_group_name(o.group);
+    d["csv"] = (o.where & kInCsv) != 0;
+    d["map"] = (o.where & kInMap) != 0;
+    d["meaning"] = o.meaning;
+    d["may_be_undefined"] = o.may_be_undefined;
+    d["old_map_name"] =
+        o.old_map_name ? py::object(py::str(o.old_map_name)) : py::object(py::none());
+    d["load_only"] = o.load_only;
+    out.append(std::move(d));
+  }
+  return out;
+}
+
 /// The help of the case options outside the table (case/option_help.hpp),
 /// {name: {placeholder, text, default}} in the command line's words.
 py::dict option_help_table() {
@@ -474,6 +485,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("material_file_option", &mdrmap::cases::material_file_option, py::arg("path"),
         "The option a material file goes under: material (a card) or prony-file.");
   m.def("parameter_table", &parameter_table, "The parameter table as a list of dicts.");
+  m.def("output_table", &output_table_list,
+        "The output table as a list of dicts: name, unit, group (series, event, event_state, "
+        "result), csv, map, meaning, may_be_undefined, old_map_name, load_only.");
   m.def("option_help", &option_help_table,
         "The help of the case options outside the table, {name: {placeholder, text, default}}.");
   m.def("parameter_aliases", &alias_table,

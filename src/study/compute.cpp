@@ -51,27 +51,14 @@ private:
   std::vector<double>& v_;
 };
 
-void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, const State& after,
-                std::size_t k) {
-  f.put(S.event_t, e.t, k);
-  f.state(S.events_after, after, k);
-  f.put(S.mu_before, e.mu_before, k);
-  f.put(S.mu_peak, e.mu_peak, k);
-  f.put(S.t_peak, e.t_peak, k);
-  f.put(S.slip_peak, e.slip_peak, k);
-  f.put(S.mu_max, e.mu_max, k);
-  f.put(S.t_max, e.t_max, k);
-  f.put(S.slip_max, e.slip_max, k);
-  f.put(S.mu_min, e.mu_min, k);
-  f.put(S.t_min, e.t_min, k);
-  f.put(S.slip_min, e.slip_min, k);
-  f.put(S.healing, defined_or_fill(e.healing), k);
-  f.state(S.events_end, e.end, k);
-  f.put(S.a, defined_or_fill(e.a), k);
-  f.put(S.b, defined_or_fill(e.b), k);
-  f.put(S.a_minus_b, defined_or_fill(e.a_minus_b), k);
-  f.put(S.d_c, defined_or_fill(e.d_c), k);
-  f.put(S.overshoot, e.overshoot, k);
+// The event metrics and states the map holds (the output table's), then the
+// closed-form stationary state at the segment's velocity and the end's
+// residual from it.
+void fill_event(Filler& f, const io::RowSlots& S, const EventMetrics& e, std::size_t k) {
+  for (const auto& [o, at] : S.event_metrics)
+    f.put(at, o->may_be_undefined ? defined_or_fill(e.*(o->event)) : e.*(o->event), k);
+  for (const auto& [o, at] : S.event_states)
+    f.state(at, e.*(o->event_state), k);
   f.state(S.analytic_ss, e.ss_after, k);
   f.residuals(S.residuals_end, e.end, e.ss_after, k);
 }
@@ -103,21 +90,18 @@ void fill_row(io::CaseRow& row, const io::RowLayout& L, const Case& c, const Run
   const std::vector<EventMetrics> ev =
       event_metrics(c, x, r.transients, r.info.error_estimate, r.probes);
   Filler f(L, row.values);
-  f.put(S.error_estimate, r.info.error_estimate);
+  for (const auto& [o, at] : S.results)
+    f.put(at, o->result(r.info, 0.0));
   f.state(S.results_pre, x.pre);
   const State& an_pre = ev.front().ss_before; // stationary at v0, closed form
   f.state(S.analytic_pre, an_pre);
   f.residuals(S.residuals_pre, x.pre, an_pre);
-  const auto N = static_cast<std::size_t>(c.sampling.samples);
   for (std::size_t k = 0; k < ev.size(); ++k)
-    fill_event(f, S, ev[k], x.at(k * N), k);
+    fill_event(f, S, ev[k], k);
   if (!L.by_force()) fill_jump(f, S, c, x.at(0));
   const Scales sc = scales(c);
-  f.put(S.scale_length, sc.length);
-  f.put(S.scale_depth, sc.depth);
-  f.put(S.scale_force, sc.force);
-  f.put(S.scale_friction, sc.friction);
-  f.put(S.scale_time, sc.time);
+  for (const auto& [o, at] : S.scales)
+    f.put(at, sc.*(o->scale));
   for (double v : row.values)
     if (!std::isfinite(v)) throw std::runtime_error("the solver returned a non-finite value");
 }

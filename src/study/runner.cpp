@@ -277,6 +277,8 @@ PendingCases open_map(MPI_Comm comm, const StudyRequest& req, std::size_t n_case
     if (!lock.held()) lock_existing(req.output, lock, "resume", "touch", false);
     try {
       packed = io::MapFile::read_layout(req.output, &status).pack();
+    } catch (const io::OldOutputNames& e) {
+      throw InvalidInput("resume", std::string(e.what()) + "; refusing to touch it");
     } catch (const io::H5Error& e) {
       if (!req.resume) throw;
       throw InvalidInput("resume", "'" + req.output + "' is damaged (" + e.what() +

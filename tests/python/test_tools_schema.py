@@ -82,7 +82,7 @@ def test_summary_reads_scales_units_and_columns(maps, srcdir, tmp_path):
     assert "FN_pre [force]" in out["orig"] and "FN_pre [kN]" in out["altered"]
     # lengths over /scales/length (D_c), zeta0 = v tau over it; friction scale untouched
     for k in (0, 1):
-        d0, d1 = stats(out["orig"], f"event {k}: d_c / a0"), stats(out["altered"], f"event {k}: d_c / a0")
+        d0, d1 = stats(out["orig"], f"event {k}: D_c / a0"), stats(out["altered"], f"event {k}: D_c / a0")
         assert d1 == pytest.approx([x / 2 for x in d0], rel=1e-2)
         assert stats(out["orig"], f"event {k}: a / a0/R") == stats(out["altered"], f"event {k}: a / a0/R")
     zeta = [re.search(r"zeta0 = .*\)  (\S+) \.\. (\S+)", out[n]).groups() for n in ("orig", "altered")]
@@ -113,8 +113,8 @@ def test_steps_and_rate_state_follow_the_scales(maps, srcdir, tmp_path):
     b, _ = tool(srcdir, "map_rate_state", altered, "-o", str(tmp_path / "d.png"))
     line = {n: {ln.split()[0]: ln.split() for ln in o.splitlines() if ln.split()}
             for n, o in (("a", a), ("b", b))}
-    assert [float(x) / 2 for x in line["a"]["d_c"][-3:]] == \
-        pytest.approx([float(x) for x in line["b"]["d_c"][-3:]], rel=1e-3)
+    assert [float(x) / 2 for x in line["a"]["D_c"][-3:]] == \
+        pytest.approx([float(x) for x in line["b"]["D_c"][-3:]], rel=1e-3)
     assert line["a"]["a"][-3:] == line["b"]["a"][-3:]
 
 

@@ -161,7 +161,7 @@ if dict(ds.sizes) != {"case": N, "event": 1, "sample": 7}:
 for name in ["d", "G", "w", "T"]:
     if name not in ds.coords:
         fail(f"open_map: /cases/{name} is not a coordinate")
-for name in ["mu_after", "mu_peak", "a", "d_c", "status", "message", "analytic_mu_jump",
+for name in ["mu_after", "mu_peak", "a", "D_c", "status", "message", "analytic_mu_jump",
              "analytic_mu_ss", "residual_mu_end", "scale_length", "scale_time", "ts_mu",
              "ts_segment"]:
     if name not in ds.data_vars:

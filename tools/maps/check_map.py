@@ -8,7 +8,7 @@ or mdrmap-map/1 (names, shapes, types), the root provenance attributes, that
 status holds only -1/0/1, that no value is NaN or infinite, and that done
 cases carry a positive normal force. For mdrmap-map/2 also: /scales (length,
 depth, force, friction, time); the fill value
-(9.969209968386869e36) appears only in events/{a,b,a_minus_b,d_c,healing}, which carry
+(9.969209968386869e36) appears only in events/{a,b,a_minus_b,D_c,healing}, which carry
 it as their attribute _FillValue; /timeseries/segment numbers the segments;
 every failed case has a message in /failures. With --complete, also that no
 case is pending. Exits 0 when the map is valid, 1 otherwise, printing one
@@ -50,18 +50,21 @@ FILL = 9.969209968386869e36
 ROOT_ATTRS2 = ["mdrmap_schema", "n_cases", "segments", "samples", "loading", "program_version",
                "git_commit", "created_utc", "command_line", "mpi_size", "units"]
 EVENTS = ["t", "FN_after", "Fx_after", "mu_after", "a2_after", "mu_before", "mu_peak", "t_peak",
-          "slip_peak", "FN_end", "Fx_end", "mu_end", "a2_end", "a", "b", "a_minus_b", "d_c"]
+          "slip_peak", "FN_end", "Fx_end", "mu_end", "a2_end", "a", "b", "a_minus_b", "D_c"]
+# D_c's name in maps written before the output table (read as D_c by the module)
+OLD_NAMES = {"D_c": "d_c"}
 # the extrema and the healing of a reslide (issue 32): in maps written since
 EXTREMA = ["mu_max", "t_max", "slip_max", "mu_min", "t_min", "slip_min", "healing"]
-FILLED = {"events/a", "events/b", "events/a_minus_b", "events/d_c", "events/healing"}
+FILLED = {"events/a", "events/b", "events/a_minus_b", "events/D_c", "events/d_c",
+          "events/healing"}
 SCALES = ["length", "depth", "force", "friction", "time"]  # /scales (docs/reference/map-schema.md)
 
 
-def expected_datasets2(n, k, s, load, timeseries, indenter=("R",), extrema=True):
+def expected_datasets2(n, k, s, load, timeseries, indenter=("R",), extrema=True, old=False):
     """`load`: the name of the prescribed load's /cases column (F0, or FN in a
     map written before it was named F0), or None at fixed depth; `indenter`:
     the profile's columns (R of the parabola, beta of the cone, n and A of a
-    power law)."""
+    power law); `old`: a map with the old output names (OLD_NAMES)."""
     q = ["FN", "Fx", "mu", "a2"] + (["d", "a1"] if load else [])
     d = {f"cases/{c}": ((n,), "f8") for c in [load or "d", *indenter, "tau", "G", "v"]}
     d["cases/w"] = ((n, k), "f8")
@@ -80,7 +83,7 @@ def expected_datasets2(n, k, s, load, timeseries, indenter=("R",), extrema=True)
             d[f"analytic/{x}_jump"] = ((n,), "f8")
             d[f"residuals/{x}_jump"] = ((n,), "f8")
     for m in EVENTS + (["d_end", "a1_end"] if load else []) + (EXTREMA if extrema else []):
-        d[f"events/{m}"] = ((n, k), "f8")
+        d[f"events/{OLD_NAMES.get(m, m) if old else m}"] = ((n, k), "f8")
     if timeseries:
         for x in ["t"] + q:
             d[f"timeseries/{x}"] = ((n, k * s), "f8")
@@ -161,7 +164,8 @@ def check2(f, complete, expect_failed):
                         f"{load or 'd'}")
     indenter = [c for c in ("R", "beta", "n", "A") if f"cases/{c}" in f] or ["R"]
     check_datasets2(f, expected_datasets2(n, k, s, load, "timeseries" in f, indenter,
-                                          "events/mu_max" in f), problems)
+                                          "events/mu_max" in f,
+                                          "events/d_c" in f and "events/D_c" not in f), problems)
     status = check_grid_status(f, n, problems)
     done = status == 1
     if "results/FN_pre" in f and np.any(f["results/FN_pre"][()][done] <= 0):
@@ -170,7 +174,7 @@ def check2(f, complete, expect_failed):
         if name in f and np.any(f[name][()][done] <= 0):
             problems.append(f"a done case has /{name} <= 0")
     if done.any():
-        for name in ("cases/w", "events/mu_after", "events/d_c"):
+        for name in ("cases/w", "events/mu_after", "events/D_c", "events/d_c"):
             if name in f and name not in FILLED and np.any(f[name][()][done] == FILL):
                 problems.append(f"/{name} holds the fill value in a done case")
     if "timeseries/segment" in f:

@@ -120,7 +120,8 @@ std::vector<EventMetrics> event_metrics(const Case& c, const Series& series,
     e.ss_before = stationary_state(c, e.w_before);
     e.ss_after = stationary_state(c, e.w_after);
     e.mu_before = k == 0 ? series.pre.mu : series.mu[i0 - 1];
-    e.mu_after = series.mu[i0];
+    e.after = series.at(i0);
+    e.mu_after = e.after.mu;
     const double direction = e.w_after > e.w_before ? 1.0 : -1.0;
     const Transient tr = !transients.empty() ? transients[k]
                          : !probes.empty() && !probes[k].t.empty()

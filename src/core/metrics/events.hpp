@@ -19,6 +19,7 @@ struct EventMetrics {
   double w_after = 0.0;   ///< w_k
   double mu_before = 0.0; ///< mu(t_k-): the last sample of the previous segment (pre for k = 0)
   double mu_after = 0.0;  ///< mu(t_k+): the first sample of the segment
+  State after;            ///< the state at t_k+ (the segment's first sample; after.mu = mu_after)
   /// The largest and the smallest mu within the segment, their times since
   /// the change and their slips w_k t (from the solution, not the samples).
   double mu_max = 0.0, t_max = 0.0, slip_max = 0.0;

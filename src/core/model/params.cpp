@@ -106,6 +106,8 @@ const char* dim_name(Dim d) {
     return "count";
   case Dim::Number:
     return "number";
+  case Dim::WallClock:
+    return "wall-clock time";
   }
   return "?";
 }

@@ -13,9 +13,11 @@
 namespace mdrmap {
 
 /// Physical dimension, in the user's consistent units.
-enum class Dim { Length, Time, Velocity, Stress, Force, Count, Number };
+/// WallClock: wall-clock time in seconds (an output's, never a case parameter's).
+enum class Dim { Length, Time, Velocity, Stress, Force, Count, Number, WallClock };
 
-/// "length", "time", "length/time", "force/length^2", "count", "number".
+/// "length", "time", "length/time", "force/length^2", "count", "number",
+/// "wall-clock time".
 const char* dim_name(Dim d);
 
 /// Which part of a case a parameter belongs to.

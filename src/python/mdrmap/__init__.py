@@ -59,6 +59,7 @@ __all__ = ["simulate", "stationary", "fit", "parameters", "open_map", "to_grid",
 # the options as the command line spells them -> the keyword of each
 _OPTIONS = _core.option_names()
 _TABLE = _core.parameter_table()
+_OUTPUTS = _core.output_table()  # every output quantity's one name (the CSV's, the map's)
 # the old spellings the options take, {alias: option}: FN for F0
 _ALIASES = _core.parameter_aliases()
 _INTEGER = {p["name"] for p in _TABLE if p["unit"] == "count"}
@@ -105,6 +106,8 @@ class Result:
              D_c_undefined, why: no_change, hold, no_transient, peak_at_end,
              overshoot or no_decay (docs/design.md, "Event metrics")
     pre      the stationary state before t = 0: FN, Fx, mu, a2 (d, a1 under load)
+    (Every name is the output table's, mdrmap._core.output_table(), as in
+    the CSV and the map: docs/reference/map-schema.md, "Output quantities".)
     info     solver, rtol, error_estimate, cells_per_a1, elements, steps,
              element_updates, root_solves, wall_seconds, version, commit
              (error_vs_exact, or error_vs_reference/reference/reference_rtol,
@@ -138,8 +141,8 @@ class Result:
     def columns(self):
         """The names of the per-sample arrays, in the CSV's order: t, segment,
         FN, Fx, mu, a2 (and d, a1 under load; v, slip of a lab record)."""
-        return ["t", "segment", "FN", "Fx", "mu", "a2"] + (["d", "a1"] if self.load else []) + \
-            (["v", "slip"] if self.record else [])
+        return [o["name"] for o in _OUTPUTS if o["group"] == "series" and o["csv"] and
+                (self.load or not o["load_only"])] + (["v", "slip"] if self.record else [])
 
     def _attrs(self):
         return {"case": dict(self.case), "pre": dict(self.pre), "scales": dict(self.scales),

@@ -12,8 +12,8 @@ reads both layouts (the root attribute mdrmap_schema):
     status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a
     case failed ('' otherwise; mdrmap-map/2: from /failures/{case,message});
   - /events (mdrmap-map/2) under their bare names over (case, event): t,
-    mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
-    fill value) are NaN;
+    mu_after, mu_peak, a, b, a_minus_b, D_c, ...; undefined values (the netCDF
+    fill value) are NaN; an old map's events/d_c is D_c (OLD_OUTPUT_NAMES);
   - /analytic as analytic_<name>, /residuals as residual_<name>, /scales as
     scale_<name> (the case's reference length, depth, force, friction and
     time), /timeseries as ts_<name> over (case, sample) (mdrmap-map/2: also ts_segment over
@@ -71,6 +71,71 @@ CASE_ALIASES = {"FN": "F0"}
 def case_name(name):
     """Today's name of a /cases column or grid axis (F0 for an old map's FN)."""
     return CASE_ALIASES.get(name, name)
+
+
+def _old_output_names():
+    """{path: old path} of the output quantities whose name in maps changed
+    (the output table's old_map_name: events/D_c was events/d_c)."""
+    from . import _core
+
+    group = {"event": "events", "event_state": "events", "result": "results"}
+    return {f"{group[o['group']]}/{o['name']}": f"{group[o['group']]}/{o['old_map_name']}"
+            for o in _core.output_table() if o["old_map_name"] and o["group"] in group}
+
+
+# today's path -> its old path in maps written before the output table
+OLD_OUTPUT_NAMES = _old_output_names()
+
+
+class Renamed:
+    """An open h5py File (or Group) of a map with old output names, that
+    shows them under today's (OLD_OUTPUT_NAMES): f["events/D_c"] reads an old
+    map's /events/d_c, the group /events lists D_c (and /schema/events so). Everything else is
+    the h5py object's."""
+
+    def __init__(self, node, h5py, prefix=""):
+        self._node, self._h5py, self._prefix = node, h5py, prefix
+        full = {p + new: p + old for new, old in OLD_OUTPUT_NAMES.items()
+                for p in ("", "schema/") if p + old in node.file}  # and its /schema entry
+        self._old = {n[len(prefix):]: o[len(prefix):] for n, o in full.items()
+                     if n.startswith(prefix) and n not in node.file}
+
+    def _real(self, key):
+        return self._old.get(key.strip("/"), key)
+
+    def __getitem__(self, key):
+        obj = self._node[self._real(key)]
+        if isinstance(obj, self._h5py.Group):
+            return Renamed(obj, self._h5py, self._prefix + key.strip("/") + "/")
+        return obj
+
+    def __contains__(self, key):
+        return self._real(key) in self._node
+
+    def get(self, key, default=None):
+        return self[key] if key in self else default
+
+    def keys(self):
+        back = {o: n for n, o in self._old.items() if "/" not in n}
+        return [back.get(k, k) for k in self._node.keys()]
+
+    def __iter__(self):
+        return iter(self.keys())
+
+    def __len__(self):
+        return len(self._node)
+
+    def items(self):
+        return [(k, self[k]) for k in self.keys()]
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self._node.file.close()
+
+    def __getattr__(self, name):
+        return getattr(self._node, name)
 
 
 class MapError(ValueError):
@@ -238,6 +303,8 @@ def open_h5(path, h5py, warn=None, versions=(1, 2)):
         if item not in f:
             f.close()
             raise MapError(f"{path} is an incomplete mdrmap map (no /{item})")
+    if any(old in f and new not in f for new, old in OLD_OUTPUT_NAMES.items()):
+        return Renamed(f, h5py)  # an old map's events/d_c as events/D_c
     return f
 
 
@@ -399,6 +466,10 @@ def _open_group(path, group, prefix, n, scaled, version):
         raise MapError(f"{path}: /{group} is not along the {n} cases")
     for name in ds.data_vars:
         ds[name].attrs["map_path"] = f"{group}/{name}"
+    old = {o.split("/", 1)[1]: n.split("/", 1)[1] for n, o in OLD_OUTPUT_NAMES.items()
+           if n.startswith(group + "/")}  # an old map's events/d_c: D_c
+    ds = ds.rename({k: old[k] for k in list(ds.data_vars)
+                    if k in old and old[k] not in ds.data_vars}) if old else ds
     ds = ds.rename({k: prefix + k for k in ds.data_vars}) if prefix else ds
     if group == "cases":
         ds = ds.rename({k: case_name(k) for k in ds.data_vars

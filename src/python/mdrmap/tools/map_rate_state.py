@@ -43,7 +43,7 @@ from ._maplib import (UserError, add_figure_options, add_select_option, fmt,
 
 PROG = "map_rate_state"
 METRICS = [("a", "direct effect a"), ("b", "evolution b"), ("a_minus_b", "a \u2212 b"),
-           ("d_c", "D$_c$")]
+           ("D_c", "D$_c$")]
 
 
 def axis_is_log(values, flagged, np):
@@ -166,7 +166,7 @@ def plan_cells(args, sel, m, np):
 
 def panel_norm(name, z, ok, plt, colors, np):
     """(colour map, norm): D_c sequential (log over a wide range), the others symmetric."""
-    if name == "d_c":
+    if name == "D_c":
         finite = z[ok]
         cmap = plt.get_cmap("viridis").copy()
         if finite.size and np.all(finite > 0) and finite.max() / finite.min() > 30:

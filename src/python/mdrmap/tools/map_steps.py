@@ -24,7 +24,7 @@ grid axis such as v, F0, w1_over_v, T1_over_tau; the tool says which).
 Prints one row per plotted case: its zeta0 = v tau / a0 (zeta = v tau / a1 at
 depth), w_after / w_before, the stationary levels and mu just after the change
 in units of a/R, the normalised response just after the change and at the
-segment's end, and D_c (events/d_c) in units of a.
+segment's end, and D_c (events/D_c) in units of a.
 
 Usage:
     python3 -m mdrmap map_steps velocity_steps.h5 -o steps.png
@@ -55,7 +55,7 @@ def read_event(f, m, k, path, np):
                         f"timeseries = true in [run] (or --set run.timeseries=true)")
     if not 0 <= k < K:
         raise UserError(f"--event {k}: the map has {K} event(s) (0..{K - 1})")
-    for need in ("analytic/mu_pre", "analytic/mu_ss", "events/t", "events/d_c",
+    for need in ("analytic/mu_pre", "analytic/mu_ss", "events/t", "events/D_c",
                  "events/mu_after"):
         if need not in f:
             raise UserError(f"{path} is an incomplete mdrmap map (no /{need})")
@@ -66,11 +66,11 @@ def read_event(f, m, k, path, np):
     lo, hi = int(cols.min()), int(cols.max()) + 1
     ss = read_masked(f["analytic/mu_ss"]).reshape(n, K)
     per_event = {q: read_masked(f[f"events/{q}"]).reshape(n, K)[:, k]
-                 for q in ("t", "d_c", "mu_after")}
+                 for q in ("t", "D_c", "mu_after")}
     return {"t": np.asarray(f["timeseries/t"][:, lo:hi], dtype=float)[:, cols - lo],
             "mu": np.asarray(f["timeseries/mu"][:, lo:hi], dtype=float)[:, cols - lo],
             "before": read_masked(f["analytic/mu_pre"]) if k == 0 else ss[:, k - 1],
-            "after": ss[:, k], "t0": per_event["t"], "dc": per_event["d_c"],
+            "after": ss[:, k], "t0": per_event["t"], "dc": per_event["D_c"],
             "mu_after": per_event["mu_after"]}
 
 

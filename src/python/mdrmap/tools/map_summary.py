@@ -58,7 +58,7 @@ from ._maplib import (SCHEMA2, Parser, UserError, fmt, load_cases, open_map, rea
                     scale_of, scale_symbol, text)
 
 PROG = "map_summary"
-EVENT_ROWS = ["mu_before", "mu_after", "mu_peak", "mu_end", "a", "b", "a_minus_b", "d_c"]
+EVENT_ROWS = ["mu_before", "mu_after", "mu_peak", "mu_end", "a", "b", "a_minus_b", "D_c"]
 MAX_FAILED = 20  # failed cases listed
 
 

@@ -17,7 +17,7 @@ reads both layouts (the root attribute mdrmap_schema):
     status; mdrmap-map/1 also mu_jump, mu_post, ...), and `message`: why a
     case failed ('' otherwise; mdrmap-map/2: from /failures/{case,message});
   - /events (mdrmap-map/2) under their bare names over (case, event): t,
-    mu_after, mu_peak, a, b, a_minus_b, d_c, ...; undefined values (the netCDF
+    mu_after, mu_peak, a, b, a_minus_b, D_c, ...; undefined values (the netCDF
     fill value) are NaN;
   - /analytic as analytic_<name>, /residuals as residual_<name>, /scales as
     scale_<name> (each case's reference length, depth, force, friction and
