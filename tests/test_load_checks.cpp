@@ -34,7 +34,7 @@ double force_of(double a0, double R = kR, double G = 1.0) {
 Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs, long samples = 21,
                double a0 = kA0) {
   Case c;
-  c.indenter.R = kR;
+  c.indenter.as<Parabola>().R = kR;
   c.rheology.tau = 1.0;
   c.loading.F0 = force_of(a0);
   c.history.v0 = zeta0 * a0;
@@ -92,7 +92,7 @@ TEST(LoadStationary, DepthRootBalancesTheLoad) {
   for (double F0 : {1e-12, 1.0, 1e3}) {
     Case c = load_case(1.0, {{1.0, 1.0}});
     c.loading.F0 = F0;
-    const double d0 = c.a0() * c.a0() / c.indenter.R;
+    const double d0 = c.a0() * c.a0() / c.indenter.as<Parabola>().R;
     c.rheology.tau = 0.0;
     // d0 = a0^2 / R with a0 from a cube root carries a few ulp of its own
     EXPECT_NEAR(load_check::stationary_depth(c, c.history.v0) / d0, 1.0, 2e-15);
@@ -217,7 +217,7 @@ TEST(LoadStationary, LimitsAndTheirApproach) {
 /// d(0) = 0. With y = (d/d0)^(3/2) it is y' = (1 - y)/tau, so
 /// d(t) = d0 (1 - exp(-t/tau))^(2/3).
 double creep_depth(const Case& c, double t) {
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   if (c.rheology.tau == 0.0) return d0;
   const double y = -std::expm1(-t / c.rheology.tau);
   return d0 * std::cbrt(y * y);
@@ -230,7 +230,7 @@ double creep_depth(const Case& c, double t) {
 /// geometrically towards 1.
 double creep_time_by_quadrature(const Case& c, double d) {
   const double F0 = c.loading.F0, G = c.rheology.G, tau = c.rheology.tau;
-  const double A = F0 / (8.0 * G * std::sqrt(c.indenter.R * d));
+  const double A = F0 / (8.0 * G * std::sqrt(c.indenter.as<Parabola>().R * d));
   auto f = [&](double x) { return 2.0 * tau * d * x * x / (A - (2.0 / 3.0) * d * x * x * x); };
   double t = 0.0, lo = 0.0, width = 0.5;
   for (int k = 0; k < 60; ++k, width *= 0.5) {
@@ -308,7 +308,7 @@ double creep_error(const Case& c, const Series& s) {
   std::vector<double> ref;
   for (double t : s.t)
     ref.push_back(creep_depth(c, t));
-  return max_dev(s.d, ref, c.a0() * c.a0() / c.indenter.R);
+  return max_dev(s.d, ref, c.a0() * c.a0() / c.indenter.as<Parabola>().R);
 }
 
 // The fixed-step row converges to the creep solution, in dt at first order
@@ -339,7 +339,7 @@ TEST(LoadCreep, BaselineOrdersInDtAndDx) {
 /// by a0. Many samples: the grid's phase against the edges sweeps through a
 /// cell, so the largest deviation is the envelope of the O(dx) sawtooth.
 double end_error(const Case& c, const Series& s) {
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   const State ss = load_check::stationary_state(c, c.history.segments.back().w);
   double e = 0.0;
   for (std::size_t k = 0; k < s.size(); ++k) {
@@ -374,7 +374,7 @@ TEST(LoadBaseline, ReachesTheStationaryStateUnderLoad) {
 /// Largest difference of two runs of a transient over the samples: d, a1
 /// by d0 and a0, mu by its largest magnitude, and (with_a2) a2 by a0.
 double transient_diff(const Case& c, const Series& s, const Series& ref, bool with_a2) {
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   double mu_max = 0.0;
   for (double m : ref.mu)
     mu_max = std::max(mu_max, std::abs(m));
@@ -416,7 +416,7 @@ TEST(LoadBaseline, TauToZeroIsHertzAtOnce) {
     for (LoadBaselineStart start : {LoadBaselineStart::Stationary, LoadBaselineStart::Undeformed}) {
       Case c = load_case(1.0, {{0.1, 2.0}, {0.0, 1.0}, {3.0, 2.0}}, 11);
       c.rheology.tau = tau;
-      const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+      const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
       const std::vector<double> cells = {50, 100, 200, 400};
       std::vector<double> err;
       for (double n : cells) {
@@ -424,7 +424,7 @@ TEST(LoadBaseline, TauToZeroIsHertzAtOnce) {
         double e = 0.0;
         for (std::size_t k = 1; k < s.size(); ++k)
           e = std::max({e, std::abs(s.d[k] / d0 - 1.0), std::abs(s.a1[k] / a0 - 1.0),
-                        std::abs(s.mu[k]) / (a0 / c.indenter.R)});
+                        std::abs(s.mu[k]) / (a0 / c.indenter.as<Parabola>().R)});
         err.push_back(e);
       }
       char what[64];

@@ -59,7 +59,7 @@ TEST(MdrCaseSet, SetSpansTheHardRanges) {
     const Case& c = nc.c;
     ASSERT_EQ(c.history.size(), 1u) << nc.name;
     ASSERT_EQ(c.sampling.samples, 201) << nc.name; // the default protocol
-    const double dr = c.loading.d / c.indenter.R;
+    const double dr = c.loading.d / c.indenter.as<Parabola>().R;
     if (c.rheology.tau == 0)
       tau0 = true;
     else
@@ -217,7 +217,7 @@ TEST(MdrSimilarity, DimensionlessResultsDependOnZetaOnly) {
   o.cells_per_a1 = 60;
   o.estimate_error = false;
   const auto r0 = run_mdr(base, o);
-  const double d0 = base.loading.d, R0 = base.indenter.R, G0 = base.rheology.G;
+  const double d0 = base.loading.d, R0 = base.indenter.as<Parabola>().R, G0 = base.rheology.G;
   const double tau0 = base.rheology.tau, a10 = analytic::a1(base);
   const double scales[][4] = {{1e-4, 3.0, 7.0, 1e3}, {1e3, 1e-2, 1e6, 1e-3}, {0.3, 20.0, 2.0, 5.0}};
   for (const auto& k : scales) {
@@ -261,12 +261,12 @@ TEST(MdrHardCases, NoNaNNoBlowUp) {
   const Case base = scene(1.0, 0.5);
   for (double v1 : {0.0, 0.01, 10.0}) {
     // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
-    const Case c = step_case(base.loading.d, base.indenter.R, 0.0, base.history.v0, v1,
-                             base.rheology.G, 0.0, 11);
+    const Case c = step_case(base.loading.d, base.indenter.as<Parabola>().R, 0.0, base.history.v0,
+                             v1, base.rheology.G, 0.0, 11);
     const auto r = run_mdr(c, MdrOptions{});
     ASSERT_TRUE(all_finite(r.series));
-    const double hertz =
-        16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+    const double hertz = 16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.as<Parabola>().R) *
+                         std::pow(c.loading.d, 1.5);
     for (std::size_t k = 0; k < r.series.size(); ++k) {
       EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
       EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);

@@ -152,7 +152,7 @@ TEST(MdrHistoryTangency, ContactGrowsFromTheTangencyAfterAHoldStarts) {
   Case c = history(1.0, {{0.0, 1.0}}, 41);
   c.sampling.spacing = Spacing::Log;
   c.sampling.decades = 8.0;
-  const long double R = c.indenter.R, a1 = c.a1(), tau = c.rheology.tau;
+  const long double R = c.indenter.as<Parabola>().R, a1 = c.a1(), tau = c.rheology.tau;
   const long double L = c.history.v0 * c.rheology.tau;
   const long double a2 = analytic::a2_stationary(c, c.history.v0), ha2 = (a1 - a2) * (a1 + a2) / R;
   const Series s = mdr_at(c, 32.0);
@@ -246,8 +246,8 @@ TEST(MdrHistoryHardCases, NoNaNNoBlowUp) {
   c.rheology.tau = 0.0; // elastic: valid, Hertz whatever the history
   const RunResult r = run_mdr(c, MdrOptions{});
   ASSERT_TRUE(all_finite(r.series));
-  const double hertz =
-      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+  const double hertz = 16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.as<Parabola>().R) *
+                       std::pow(c.loading.d, 1.5);
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);
     EXPECT_NEAR(r.series.mu[k], 0.0, 1e-12);

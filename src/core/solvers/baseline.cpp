@@ -73,7 +73,7 @@ struct Row {
   std::vector<double> u;
   std::vector<unsigned char> contact;
 
-  double h(double x) const { return (a1 - x) * (a1 + x) / c.indenter.R; }
+  double h(double x) const { return (a1 - x) * (a1 + x) / c.indenter.as<Parabola>().R; }
   double force(double xi, double w) const { // per element / dx
     return 4.0 * c.rheology.G * (h(xi) - c.rheology.tau * w * c.indenter.slope(xi));
   }

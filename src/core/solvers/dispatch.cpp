@@ -48,7 +48,7 @@ ModelNeeds model_needs(const Case& c) {
 }
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
-  if (needs.profile != Profile::Parabola) // the spectrum solver takes every profile
+  if (needs.profile != Profile::of<Parabola>()) // the spectrum solver takes every profile
     return kind == SolverKind::Auto || kind == SolverKind::Spectrum;
   switch (kind) {
   case SolverKind::Auto:
@@ -113,7 +113,7 @@ namespace {
 void require_handled(SolverKind kind, const Case& c) {
   const ModelNeeds needs = model_needs(c);
   if (solver_handles(kind, needs)) return;
-  if (needs.profile != Profile::Parabola)
+  if (needs.profile != Profile::of<Parabola>())
     throw InvalidInput("profile", std::string("solver ") + solver_name(kind) +
                                       " solves the parabola only; this case's profile is " +
                                       profile_name(needs.profile) +

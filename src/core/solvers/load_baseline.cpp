@@ -33,7 +33,7 @@ double stationary_force(const Case& c, double d, double w) {
 }
 
 double stationary_depth(const Case& c, double w) {
-  const double F0 = c.loading.F0, a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double F0 = c.loading.F0, a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   auto f = [&](double d) { return stationary_force(c, d, w) - F0; };
   double hi = d0, fhi = f(hi);
   for (int k = 0; fhi < 0.0 && k < 200; ++k) // rounding at tau = 0 only
@@ -141,7 +141,8 @@ public:
   void step(double s, double w, double dt, double dec) {
     const double D = settle(s, w);
     d_ = D + (d_ - D) * dec;
-    const double a1 = std::min(std::sqrt(c_.indenter.R * d_), g_.a_lim), s1 = s + w * dt;
+    const double a1 = std::min(std::sqrt(c_.indenter.as<Parabola>().R * d_), g_.a_lim),
+                 s1 = s + w * dt;
     for (std::size_t i = first(s1); i < last(s); ++i) {
       const double x = xi(i, s1), hx = h(x);
       const bool inside = std::abs(x) <= a1;
@@ -158,9 +159,9 @@ public:
     if (dec == 0.0) // relaxed within the step (tau = 0 or tau << dt): elastic balance
       while (relax_elastic(s1, w)) {
       }
-    if (!(std::sqrt(c_.indenter.R * d_) <= g_.a_lim))
+    if (!(std::sqrt(c_.indenter.as<Parabola>().R * d_) <= g_.a_lim))
       throw std::runtime_error("load baseline: the depth left the window (a1 = " +
-                               format_number(std::sqrt(c_.indenter.R * d_)) +
+                               format_number(std::sqrt(c_.indenter.as<Parabola>().R * d_)) +
                                "); raise depth_limit");
   }
 
@@ -169,7 +170,7 @@ public:
     const double D = settle(s, w), G4 = 4.0 * c_.rheology.G * g_.dx;
     charge(last(s) - first(s));
     State st;
-    st.a2 = -std::sqrt(c_.indenter.R * d_);
+    st.a2 = -std::sqrt(c_.indenter.as<Parabola>().R * d_);
     for (std::size_t i = first(s); i < last(s); ++i) {
       if (!contact_[i]) continue;
       const double x = xi(i, s), p = G4 * (D - q(x, w));
@@ -179,7 +180,7 @@ public:
     }
     st.mu = st.Fx / st.FN;
     st.d = d_;
-    st.a1 = std::sqrt(c_.indenter.R * d_);
+    st.a1 = std::sqrt(c_.indenter.as<Parabola>().R * d_);
     return st;
   }
 
@@ -237,7 +238,7 @@ private:
   /// again). Returns whether an element touched.
   bool relax_elastic(double s, double w) {
     d_ = settle(s, w);
-    const double a1 = std::min(std::sqrt(c_.indenter.R * d_), g_.a_lim);
+    const double a1 = std::min(std::sqrt(c_.indenter.as<Parabola>().R * d_), g_.a_lim);
     charge(last(s) - first(s) + 1);
     bool touched = false;
     for (std::size_t i = first(s); i < last(s); ++i) {

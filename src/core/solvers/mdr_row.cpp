@@ -152,7 +152,9 @@ State Row::measure() const {
   const double xb = xi(jb), xn = xb + dx_;
   const double xr = std::clamp(std::min(read_edge(jb).x, a1_), xb, std::max(xb, std::min(xn, a1_)));
   st.FN = integrate(ja, jb, xr, [&](double x) { return pressure(x); });
-  st.Fx = integrate(ja, jb, xr, [&](double x) { return pressure(x) * (-2.0 * x / s_.indenter.R); });
+  st.Fx = integrate(ja, jb, xr, [&](double x) {
+    return pressure(x) * (-2.0 * x / s_.indenter.as<Parabola>().R);
+  });
   st.mu = st.Fx / st.FN;
   st.d = s_.loading.d;
   st.a1 = a1_;

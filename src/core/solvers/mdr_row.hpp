@@ -163,10 +163,13 @@ private:
     return dt > 0.0 ? 1.0 : 0.0;
   }
 
-  double h(double x) const { return (a1_ - x) * (a1_ + x) / s_.indenter.R; }
-  double dh(double xa, double xb) const { return (xa - xb) * (xa + xb) / s_.indenter.R; }
+  double h(double x) const { return (a1_ - x) * (a1_ + x) / s_.indenter.as<Parabola>().R; }
+  double dh(double xa, double xb) const {
+    return (xa - xb) * (xa + xb) / s_.indenter.as<Parabola>().R;
+  }
   double pressure(double x) const { // contact force per unit length
-    return 4.0 * s_.rheology.G * (h(x) - s_.rheology.tau * w_ * 2.0 * x / s_.indenter.R);
+    return 4.0 * s_.rheology.G *
+           (h(x) - s_.rheology.tau * w_ * 2.0 * x / s_.indenter.as<Parabola>().R);
   }
 
   double xi(long long j) const { return (static_cast<double>(j + m_) + theta_ + phase_) * dx_; }

@@ -80,8 +80,8 @@ Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, doubl
          double sub_travel, double edge_tol, const RunControl& control, const char* name)
     : law_(law), control_(control), name_(name), parab_(c.indenter.parabolic()),
       gc_(c.indenter.coefficient()), gn_(c.indenter.exponent()),
-      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.R), d_(d), dx_(dx),
-      aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
+      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.as<Parabola>().R), d_(d),
+      dx_(dx), aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8 + static_cast<std::size_t>(kPast);
   stride_ = std::max<std::size_t>(law.free_dim(), 1);
