@@ -2424,7 +2424,7 @@ TEST(cli, StationaryConeAtFixedDepthIsTheClosedForm) {
   ASSERT_EQ(t.rows.size(), 5U);
   EXPECT_EQ(t.comments[1], "# case profile=cone d=0.02 tau=2 G=3 beta=20");
   mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Cone>(), G, tau);
-  c.indenter.as<Cone>().beta = beta;
+  c.indenter.as<mdrmap::Cone>().beta = beta;
   c.loading.d = d;
   expect_core_states(t, c);
   const double cc = cone_c(beta), a1 = d / cc;
@@ -2460,8 +2460,8 @@ TEST(cli, StationaryPowerLawUnderLoadWithASpectrumIsTheCores) {
   EXPECT_NE(t.comments[1].find(" prony=2:0.10000000000000001,5:10 a0="), std::string::npos)
       << t.comments[1];
   mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Power>(), 1.0, 0.5);
-  c.indenter.as<Power>().n = 1.5;
-  c.indenter.as<Power>().A = 2;
+  c.indenter.as<mdrmap::Power>().n = 1.5;
+  c.indenter.as<mdrmap::Power>().A = 2;
   c.loading.F0 = 0.05;
   c.rheology.branches = {{2.0, 0.1}, {5.0, 10.0}};
   expect_core_states(t, c);
@@ -2479,7 +2479,7 @@ TEST(cli, StationaryParabolaIsTheCores) {
   ASSERT_EQ(depth.rows.size(), 5U);
   EXPECT_EQ(depth.comments[1], "# case d=0.10000000000000001 R=10 tau=1 G=2 aT=0.5");
   mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Parabola>(), 2.0, 1.0);
-  c.indenter.as<Parabola>().R = 10;
+  c.indenter.as<mdrmap::Parabola>().R = 10;
   c.loading.d = 0.1;
   c.rheology.aT = 0.5;
   expect_core_states(depth, c);
@@ -2488,7 +2488,7 @@ TEST(cli, StationaryParabolaIsTheCores) {
       run_stationary({"--F0", "0.2", "--R", "10", "--tau", "1", "--v-list", "0.1,1,10"});
   ASSERT_EQ(load.rows.size(), 3U);
   mdrmap::Case l = stationary_case(mdrmap::Profile::of<mdrmap::Parabola>(), 1.0, 1.0);
-  l.indenter.as<Parabola>().R = 10;
+  l.indenter.as<mdrmap::Parabola>().R = 10;
   l.loading.F0 = 0.2;
   expect_core_states(load, l);
   for (const auto& row : load.rows)
@@ -2502,9 +2502,7 @@ TEST(cli, StationaryParabolaIsTheCores) {
 TEST(cli, StationaryConeOnKelvinHasMuPiOver2TanBetaForVTauFromA1) {
   for (const double beta : {10.0, 45.0, 80.0}) {
     SCOPED_TRACE("beta = " + num(beta));
-    mdrmap::Indenter cone;
-    cone.profile = mdrmap::Profile::of<mdrmap::Cone>();
-    cone.beta = beta;
+    const mdrmap::Indenter cone = mdrmap::Cone{beta};
     const double a1 = cone.contact_radius(0.01); // the core's a1: v = a1 is v tau = a1 exactly
     std::string list = mdrmap::app::format_double(0.5 * a1);
     for (const double k : {1.0, 1.5, 10.0, 1e6})

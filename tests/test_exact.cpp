@@ -59,7 +59,7 @@ struct Ref {
   ld d, R, G, tau, v, v1, a1, L, L1, a2v, a2v1, ha2v;
 
   explicit Ref(const Case& c)
-      : d(c.loading.d), R(c.indenter.as<Parabola>().R), G(c.rheology.G), tau(c.rheology.tau),
+      : d(c.loading.d), R(c.indenter.as<mdrmap::Parabola>().R), G(c.rheology.G), tau(c.rheology.tau),
         v(c.history.v0), v1(v1_of(c)), a1(std::sqrt(R * d)), L(v * tau), L1(v1 * tau),
         a2v(a2_of(L)), a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
 
@@ -216,7 +216,7 @@ TEST(ExactStartStop, MatchesA1SqrtOneMinusExp) {
   const ExactSolution ex(cs);
   const double a1 = analytic::a1(cs);
   const double Fx_scale = 2.0 * cs.rheology.G * std::pow(a1, 4) /
-                          (cs.indenter.as<Parabola>().R * cs.indenter.as<Parabola>().R);
+                          (cs.indenter.as<mdrmap::Parabola>().R * cs.indenter.as<mdrmap::Parabola>().R);
   for (double tt : {0.01, 0.1, 0.5, 1.0, 2.0, 4.0, 6.0, 12.0}) {
     const double t = tt * cs.rheology.tau;
     const State st = ex.at(t);
@@ -326,7 +326,7 @@ TEST(ExactTransient, ForcesEqualQuadratureOverContactSet) {
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
       const Case c = scene_z(zeta, ratio);
       const ExactSolution ex(c);
-      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.as<Parabola>().R,
+      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R,
                G = c.rheology.G;
       const ld L1 = static_cast<ld>(v1_of(c)) * static_cast<ld>(c.rheology.tau);
       auto p = [&](ld x) { return d - x * x / R - 2.0L * L1 * x / R; };
@@ -363,7 +363,7 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
   for (const Base& b : bases) {
     auto dimless = [&](const Case& c) {
       const auto r = mdrmap::run_exact(c, 1e-12);
-      const double a1 = analytic::a1(c), sdr = std::sqrt(c.loading.d / c.indenter.as<Parabola>().R);
+      const double a1 = analytic::a1(c), sdr = std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R);
       std::vector<std::vector<double>> out(4);
       for (std::size_t k = 0; k < r.series.size(); ++k) {
         out[0].push_back(r.series.mu[k] / sdr);

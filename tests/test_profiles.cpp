@@ -40,19 +40,19 @@ const double kPi = boost::math::constants::pi<double>();
 
 Case cone_case(double beta, double d, double tau, double v, std::vector<Branch> b = {}) {
   Case c = mdrmap::step_case(d, 1.0, tau, v, v, 1.0, 1.0, 11);
-  c.indenter.as<Parabola>().R = 0.0;
-  c.indenter.profile = Profile::of<Cone>();
-  c.indenter.as<Cone>().beta = beta;
+  c.indenter.as<mdrmap::Parabola>().R = 0.0;
+  c.indenter.profile = Profile::of<mdrmap::Cone>();
+  c.indenter.as<mdrmap::Cone>().beta = beta;
   c.rheology.branches = std::move(b);
   return c;
 }
 
 Case power_case(double n, double A, double d, double tau, double v, std::vector<Branch> b = {}) {
   Case c = cone_case(10.0, d, tau, v, std::move(b));
-  c.indenter.profile = Profile::of<Power>();
-  c.indenter.as<Cone>().beta = 0.0;
-  c.indenter.as<Power>().n = n;
-  c.indenter.as<Power>().A = A;
+  c.indenter.profile = Profile::of<mdrmap::Power>();
+  c.indenter.as<mdrmap::Cone>().beta = 0.0;
+  c.indenter.as<mdrmap::Power>().n = n;
+  c.indenter.as<mdrmap::Power>().A = A;
   return c;
 }
 
@@ -236,10 +236,10 @@ TEST(ProfileStationary, UnderLoadMeetsTheLoadAndTheDepthState) {
 
 Case as_power(const Case& c) {
   Case p = c;
-  p.indenter.profile = Profile::of<Power>();
-  p.indenter.as<Power>().n = 2.0;
-  p.indenter.as<Power>().A = 1.0 / (2.0 * c.indenter.as<Parabola>().R);
-  p.indenter.as<Parabola>().R = 0.0;
+  p.indenter.profile = Profile::of<mdrmap::Power>();
+  p.indenter.as<mdrmap::Power>().n = 2.0;
+  p.indenter.as<mdrmap::Power>().A = 1.0 / (2.0 * c.indenter.as<mdrmap::Parabola>().R);
+  p.indenter.as<mdrmap::Parabola>().R = 0.0;
   return p;
 }
 
@@ -348,7 +348,7 @@ std::string refused(const Case& c) {
 TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
   Case c = cone_case(10.0, 0.1, 1.0, 1.0);
   EXPECT_EQ(refused(c), "");
-  c.indenter.as<Parabola>().R = 2.0;
+  c.indenter.as<mdrmap::Parabola>().R = 2.0;
   EXPECT_EQ(refused(c), "R");
   for (double beta : {0.0, 90.0, -5.0, 120.0}) {
     c = cone_case(beta, 0.1, 1.0, 1.0);
@@ -359,10 +359,10 @@ TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
   p = power_case(1.0, 0.0, 0.1, 1.0, 1.0);
   EXPECT_EQ(refused(p), "A");
   p = power_case(2.0, 1.0, 0.1, 1.0, 1.0);
-  p.indenter.as<Cone>().beta = 10.0;
+  p.indenter.as<mdrmap::Cone>().beta = 10.0;
   EXPECT_EQ(refused(p), "beta");
   Case par = mdrmap::step_case(0.1, 2.0, 1.0, 1.0, 1.0);
-  par.indenter.as<Power>().n = 2.0;
+  par.indenter.as<mdrmap::Power>().n = 2.0;
   EXPECT_EQ(refused(par), "n");
 }
 

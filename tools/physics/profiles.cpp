@@ -27,14 +27,14 @@ const double kBetas[] = {5.0, 10.0, 30.0};
 
 Indenter cone(double beta) {
   Indenter i;
-  i.profile = Profile::of<Cone>();
+  i.profile = Profile::of<mdrmap::Cone>();
   i.beta = beta;
   return i;
 }
 
 Indenter power(double n) {
   Indenter i;
-  i.profile = Profile::of<Power>();
+  i.profile = Profile::of<mdrmap::Power>();
   i.n = n;
   i.A = 1.0;
   return i;
@@ -157,7 +157,7 @@ void power_row(const Indenter& ind, double n, const std::vector<double>& x, std:
   for (bool load : {false, true}) {
     const Case c = kelvin_case(ind, load);
     std::ostringstream label;
-    label << (ind.profile == Profile::of<Parabola>() ? "parabola," : "power,") << n;
+    label << (ind.profile == Profile::of<mdrmap::Parabola>() ? "parabola," : "power,") << n;
     const std::vector<double> mu = curve(c, x, csv, label.str());
     const auto [xs, ms] = maximum(c, x, mu);
     const Point p = std::isnan(xs) ? Point{NAN, NAN, NAN} : at(c, xs);

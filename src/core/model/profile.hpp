@@ -2,15 +2,17 @@
 // The indenter: a rigid axisymmetric profile and its MDR image g(x)
 // (docs/design.md, "Indenter profiles"). Each shape is one class in one file
 // of core/model/shapes/ (its name, its parameters with their ranges and help
-// texts, g, g', the contact radius, the elastic force and its radius); the
-// table below lists them, and everything else asks the indenter (or visits
-// its shape) instead of naming a shape.
+// texts, and its image(): g, g', the contact radius, the elastic force and
+// its radius, the kink at the tip and the integrals the element row needs);
+// the table below lists them, and everything else asks the indenter (or
+// visits its shape) instead of naming a shape.
 #include <array>
 #include <cstddef>
 #include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "core/model/shapes/cone.hpp"
 #include "core/model/shapes/parabola.hpp"
@@ -27,6 +29,15 @@ template <class S, class... T>
 struct is_shape<S, std::tuple<T...>> : std::disjunction<std::is_same<S, T>...> {};
 /// Whether S is one of the table's shapes.
 template <class S> inline constexpr bool is_shape_v = is_shape<S>::value;
+
+/// The MDR images of the shapes (a shape's image(): the parabola itself, the
+/// cone's and the power law's g = c |x|^n), one alternative per shape: what
+/// the element row holds and visits.
+template <class T> struct ImagesOf;
+template <class... S> struct ImagesOf<std::tuple<S...>> {
+  using type = std::variant<std::decay_t<decltype(std::declval<S>().image())>...>;
+};
+using ShapeImage = typename ImagesOf<Shapes>::type;
 
 /// Which shape an indenter has: its index in Shapes.
 class Profile {
@@ -75,6 +86,15 @@ struct Indenter {
       return visit_from<I + 1>(std::forward<F>(f));
   }
 
+  template <std::size_t I> ShapeImage image_from() const {
+    if constexpr (I + 1 == kShapeCount)
+      return ShapeImage(std::in_place_index<I>, std::get<I>(shapes).image());
+    else if (profile.index() == I)
+      return ShapeImage(std::in_place_index<I>, std::get<I>(shapes).image());
+    else
+      return image_from<I + 1>();
+  }
+
   Indenter() = default;
   /// An indenter of shape s.
   template <class S, class = std::enable_if_t<is_shape_v<S>>>
@@ -90,38 +110,40 @@ struct Indenter {
   template <class F> decltype(auto) visit(F&& f) const { return visit_from<0>(std::forward<F>(f)); }
 
   bool parabolic() const { return is<Parabola>(); }
+  /// The chosen shape's image, formed once (its coefficient computed).
+  ShapeImage image() const { return image_from<0>(); }
   /// The exponent n of g: 2, 1 or n.
   double exponent() const {
-    return visit([](const auto& s) { return s.exponent(); });
+    return visit([](const auto& s) { return s.image().exponent(); });
   }
   /// The coefficient c of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A.
   double coefficient() const {
-    return visit([](const auto& s) { return s.coefficient(); });
+    return visit([](const auto& s) { return s.image().coefficient(); });
   }
   double g(double x) const {
-    return visit([x](const auto& s) { return s.g(x); });
+    return visit([x](const auto& s) { return s.image().g(x); });
   }
   double slope(double x) const {
-    return visit([x](const auto& s) { return s.slope(x); });
+    return visit([x](const auto& s) { return s.image().slope(x); });
   }
   /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
   /// solvers ask for it at every sample.)
   double contact_radius(double d) const {
-    return visit([d](const auto& s) { return s.contact_radius(d); });
+    return visit([d](const auto& s) { return s.image().contact_radius(d); });
   }
   /// The same as the element-row solvers form it: sqrt(R d) for the parabola
   /// (their arithmetic since the seed, bit for bit), contact_radius otherwise.
   double leading_edge(double d) const {
-    return visit([d](const auto& s) { return s.leading_edge(d); });
+    return visit([d](const auto& s) { return s.image().leading_edge(d); });
   }
   /// Elastic normal force of the full contact [-a, a] at depth g(a) on a
   /// foundation of modulus G: 4 G int (g(a) - g).
   double elastic_force(double a, double G) const {
-    return visit([a, G](const auto& s) { return s.elastic_force(a, G); });
+    return visit([a, G](const auto& s) { return s.image().elastic_force(a, G); });
   }
   /// The radius a of that force: elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {
-    return visit([F, G](const auto& s) { return s.hertz_radius(F, G); });
+    return visit([F, G](const auto& s) { return s.image().hertz_radius(F, G); });
   }
 };
 

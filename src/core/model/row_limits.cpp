@@ -62,7 +62,7 @@ void check_spectrum_limits(const Rheology& r) {
 void check_profile_limits(const Indenter& i) {
   i.visit([](const auto& s) {
     if (!s.coefficient_option) return; // (checked through the scales)
-    const double c = s.coefficient();
+    const double c = s.image().coefficient();
     if (within(c, kMinCoefficient, kMaxCoefficient)) return;
     throw InvalidInput(s.coefficient_option,
                        std::string("gives the profile's coefficient c = ") + s.coefficient_words +

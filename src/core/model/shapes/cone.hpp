@@ -32,16 +32,10 @@ struct Cone {
                 std::tan(beta * boost::math::constants::degree<double>()),
             1.0};
   }
-  double exponent() const { return 1.0; }
-  double coefficient() const { return image().c; }
+  /// g = c x^2 (the stationary states take the parabola's closed forms).
   bool quadratic() const { return false; }
+  /// g = c |x|: the closed-form edge under load on the Kelvin foundation.
   bool linear() const { return true; }
-  double g(double x) const { return image().g(x); }
-  double slope(double x) const { return image().slope(x); }
-  double contact_radius(double d) const { return image().contact_radius(d); }
-  double leading_edge(double d) const { return contact_radius(d); }
-  double elastic_force(double a, double G) const { return image().elastic_force(a, G); }
-  double hertz_radius(double F, double G) const { return image().hertz_radius(F, G); }
 };
 
 } // namespace mdrmap

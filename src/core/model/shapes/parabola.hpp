@@ -38,6 +38,24 @@ struct Parabola {
   /// The element-row solvers' contact radius: sqrt(R d) (theirs since the seed).
   double leading_edge(double d) const { return std::sqrt(R * d); }
   double elastic_force(double a, double G) const { return 16.0 / 3.0 * G * a * a * a / R; }
+
+  // What the element row asks (core/model/shapes/power_law.hpp tells each).
+  const Parabola& image() const { return *this; }
+  double apex_slope() const { return 0.0; }
+  bool smooth_apex() const { return true; }
+  bool exact_forcing() const { return true; }
+  double depth(double x, double d) const { return d - x * x / R; }
+  double lift(double x, double w) const { return 2.0 * x * w / R; }
+  bool inside(double x, double d) const { return x * x <= R * d; }
+  double curvature(double) const { return 2.0 / R; }
+  double side_slope(double x, int) const { return slope(x); }
+  double radius_rate(double a, double d) const { return a / (2.0 * d); }
+  double integral_g(double t) const { return t * t * t / (3.0 * R); }
+  double integral_slope_squared(double t) const { return 4.0 * t * t * t / (3.0 * R * R); }
+  /// The Taylor form, exact.
+  template <class Out, class Path> Out forcing(double x, double w, double, const Path& q) const {
+    return {depth(x, q.d), q.r - lift(x, w), q.k - w * w / R};
+  }
   double hertz_radius(double F, double G) const { return std::cbrt(3.0 * F * R / (16.0 * G)); }
 };
 

@@ -31,16 +31,10 @@ struct Power {
   static constexpr const char* coefficient_words = "kappa_n A = ";
 
   PowerImage image() const { return {mdr_kappa(n) * A, n}; }
-  double exponent() const { return n; }
-  double coefficient() const { return image().c; }
+  /// g = c x^2: n = 2 (the stationary states take the parabola's closed forms).
   bool quadratic() const { return n == 2.0; }
+  /// The cone's closed-form edge under load (not taken for n = 1).
   bool linear() const { return false; }
-  double g(double x) const { return image().g(x); }
-  double slope(double x) const { return image().slope(x); }
-  double contact_radius(double d) const { return image().contact_radius(d); }
-  double leading_edge(double d) const { return contact_radius(d); }
-  double elastic_force(double a, double G) const { return image().elastic_force(a, G); }
-  double hertz_radius(double F, double G) const { return image().hertz_radius(F, G); }
 };
 
 } // namespace mdrmap
