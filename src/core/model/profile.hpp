@@ -31,13 +31,20 @@ struct is_shape<S, std::tuple<T...>> : std::disjunction<std::is_same<S, T>...> {
 template <class S> inline constexpr bool is_shape_v = is_shape<S>::value;
 
 /// The MDR images of the shapes (a shape's image(): the parabola itself, the
-/// cone's and the power law's g = c |x|^n), one alternative per shape: what
-/// the element row holds and visits.
-template <class T> struct ImagesOf;
-template <class... S> struct ImagesOf<std::tuple<S...>> {
-  using type = std::variant<std::decay_t<decltype(std::declval<S>().image())>...>;
+/// cone's and the power law's g = c |x|^n), each type once: what the element
+/// row holds and visits.
+template <class V, class T> struct WithImage;
+template <class... U, class T> struct WithImage<std::variant<U...>, T> {
+  using type =
+      std::conditional_t<(std::is_same_v<T, U> || ...), std::variant<U...>, std::variant<U..., T>>;
 };
-using ShapeImage = typename ImagesOf<Shapes>::type;
+template <class V, class T> struct ImagesOf;
+template <class V> struct ImagesOf<V, std::tuple<>> { using type = V; };
+template <class V, class S, class... R> struct ImagesOf<V, std::tuple<S, R...>> {
+  using image = std::decay_t<decltype(std::declval<S>().image())>;
+  using type = typename ImagesOf<typename WithImage<V, image>::type, std::tuple<R...>>::type;
+};
+using ShapeImage = typename ImagesOf<std::variant<>, Shapes>::type;
 
 /// Which shape an indenter has: its index in Shapes.
 class Profile {
@@ -88,9 +95,9 @@ struct Indenter {
 
   template <std::size_t I> ShapeImage image_from() const {
     if constexpr (I + 1 == kShapeCount)
-      return ShapeImage(std::in_place_index<I>, std::get<I>(shapes).image());
+      return ShapeImage(std::get<I>(shapes).image());
     else if (profile.index() == I)
-      return ShapeImage(std::in_place_index<I>, std::get<I>(shapes).image());
+      return ShapeImage(std::get<I>(shapes).image());
     else
       return image_from<I + 1>();
   }
