@@ -248,15 +248,15 @@ TEST(AnalyticForces, MatchQuadratureOfPaperIntegrands) {
 // more than 1%, while the corrected forms agree to rounding.
 namespace {
 ld paper_eq9(const Case& c, ld a2, ld w) {
-  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R,
-           G = c.rheology.G, tau = c.rheology.tau;
+  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d,
+           R = c.indenter.as<mdrmap::Parabola>().R, G = c.rheology.G, tau = c.rheology.tau;
   return 4.0L * G *
          (d * (a1 + a2) - (a1 * a1 * a1 - a2 * a2 * a2) / (3.0L * R) +
           tau * w / R * (a1 * a1 - a2 * a2));
 }
 ld paper_eq10(const Case& c, ld a2, ld w) {
-  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R,
-           G = c.rheology.G, tau = c.rheology.tau;
+  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d,
+           R = c.indenter.as<mdrmap::Parabola>().R, G = c.rheology.G, tau = c.rheology.tau;
   return 8.0L * G / (R * R) *
          (R * d / 2.0L * (a1 * a1 - a2 * a2) - (std::pow(a1, 4.0L) - std::pow(a2, 4.0L)) / 2.0L +
           2.0L * tau * w / 3.0L * (a1 * a1 * a1 + a2 * a2 * a2));
@@ -349,8 +349,8 @@ TEST(AnalyticStationary, AccurateAtHighSpeedWhereNaiveEq7Fails) {
   for (double zeta : {1e4, 1e6, 1e8}) {
     Case c = make_case(1e-6, 1e-3, 1e-3, 1.0);
     const double w = vel(c, zeta);
-    const ld a1 =
-        std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) * static_cast<ld>(c.loading.d));
+    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                            static_cast<ld>(c.loading.d));
     const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a2_stationary(c, w), ref), 1e-14) << zeta;
@@ -372,8 +372,8 @@ TEST(AnalyticStationary, A1MinusA2AccurateEverywhere) {
   for (double lz = -8.0; lz <= 8.0; lz += 0.25) {
     Case c = make_case(2e-4, 5e-2, 3.0, 1.0);
     const double w = vel(c, std::pow(10.0, lz));
-    const ld a1 =
-        std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) * static_cast<ld>(c.loading.d));
+    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                            static_cast<ld>(c.loading.d));
     const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a1_minus_a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a1_minus_a2_stationary(c, w), ref), 1e-14) << "zeta=1e" << lz;
@@ -562,8 +562,8 @@ TEST(AnalyticJump, DecreaseUsesOldContactSetWithNewVelocity) {
 // code's value carries ~4 roundings: 2e-15 relative. tau = 0: instant recovery.
 TEST(AnalyticStartStop, A2Formula) {
   Case c = make_case(3e-6, 1e-3, 1e-3, 1.0);
-  const ld a1 =
-      std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) * static_cast<ld>(c.loading.d));
+  const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                          static_cast<ld>(c.loading.d));
   for (double t_over_tau : {1e-20, 1e-8, 1e-3, 0.1, 1.0, 3.0, 10.0, 50.0}) {
     const double t = t_over_tau * c.rheology.tau;
     const ld want = a1 * std::sqrt(-std::expm1(-static_cast<ld>(t) / c.rheology.tau));
@@ -601,10 +601,11 @@ TEST(AnalyticHardRanges, FiniteAndPhysical) {
     EXPECT_LE(st.a2, A) << what;
     // Bounds from p >= 0 on the contact: F_N between the Hertz-like integrals.
     // p <= d + 2 L a1 / R on a contact of length <= 2 a1.
-    EXPECT_LE(st.FN, 4.0 * c.rheology.G *
-                         (2 * A * c.loading.d + 4 * A * A * std::max(c.history.v0, v1_of(c)) *
-                                                    c.rheology.tau / c.indenter.as<mdrmap::Parabola>().R) *
-                         (1 + 1e-12))
+    EXPECT_LE(st.FN,
+              4.0 * c.rheology.G *
+                  (2 * A * c.loading.d + 4 * A * A * std::max(c.history.v0, v1_of(c)) *
+                                             c.rheology.tau / c.indenter.as<mdrmap::Parabola>().R) *
+                  (1 + 1e-12))
         << what;
   };
   int n = 0;

@@ -27,7 +27,8 @@ const std::vector<Branch> kTwoBranches = {{1.0, 1.0}, {10.0, 0.01}}; // issue 32
 Case profile_case(Profile p, double beta_or_A, double n, double d) {
   Case c;
   c.indenter.profile = p;
-  (p == Profile::of<mdrmap::Cone>() ? c.indenter.as<mdrmap::Cone>().beta : c.indenter.as<mdrmap::Power>().A) = beta_or_A;
+  (p == Profile::of<mdrmap::Cone>() ? c.indenter.as<mdrmap::Cone>().beta
+                                    : c.indenter.as<mdrmap::Power>().A) = beta_or_A;
   c.indenter.as<mdrmap::Power>().n = p == Profile::of<mdrmap::Power>() ? n : 0.0;
   c.loading.d = d;
   c.rheology.G = 1.0;
@@ -74,7 +75,9 @@ TEST(ProfileStationaryLimits, GlassyLimitKeepsMuTimesVelocity) {
       {"power n = 1.5",
        profile_case(Profile::of<mdrmap::Power>(), 0.05, 1.5, 0.01),
        {1e8, 1e12, 1e16, 1e18}},
-      {"power n = 3", profile_case(Profile::of<mdrmap::Power>(), 0.5, 3.0, 0.01), {1e8, 1e12, 1e16, 1e18}},
+      {"power n = 3",
+       profile_case(Profile::of<mdrmap::Power>(), 0.5, 3.0, 0.01),
+       {1e8, 1e12, 1e16, 1e18}},
       {"cone 89.99999999999 deg",
        profile_case(Profile::of<mdrmap::Cone>(), 89.99999999999, 0.0, 0.01),
        {100.0, 1e4, 1e10}},
@@ -102,7 +105,9 @@ TEST(ProfileStationaryLimits, RelaxedLimitIsTheKelvinContactAndFast) {
     std::vector<double> v;
   } rows[] = {
       {"cone 0.01 deg", profile_case(Profile::of<mdrmap::Cone>(), 0.01, 0.0, 0.01), {1e-6}},
-      {"cone 1e-6 deg", profile_case(Profile::of<mdrmap::Cone>(), 1e-6, 0.0, 0.01), {1e-6, 1e-2, 1.0}},
+      {"cone 1e-6 deg",
+       profile_case(Profile::of<mdrmap::Cone>(), 1e-6, 0.0, 0.01),
+       {1e-6, 1e-2, 1.0}},
       {"power n = 1.5", profile_case(Profile::of<mdrmap::Power>(), 0.05, 1.5, 0.01), {1e-6, 1e-4}},
       {"power n = 3", profile_case(Profile::of<mdrmap::Power>(), 0.5, 3.0, 0.01), {1e-6, 1e-4}},
   };
