@@ -108,7 +108,7 @@ QuadForces quad_forces(const Case& c, double a2, double w) {
   // The limits are the contact set that contact_forces is given: the code's a1
   // (a rounded double) and the double a2, both exact in long double.
   const ld a1 = static_cast<ld>(analytic::a1(c));
-  const ld d = c.loading.d, R = c.indenter.R, G = c.rheology.G;
+  const ld d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R, G = c.rheology.G;
   const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
   auto p = [&](ld x) { return d - x * x / R - 2.0L * L * x / R; };
   auto px = [&](ld x) { return p(x) * (-2.0L * x / R); };
@@ -168,7 +168,8 @@ double vel(const Case& c, double zeta) {
 
 // Hertz force of the MDR parabola: (16/3) G sqrt(R) d^{3/2}, in long double.
 ld hertz(const Case& c) {
-  return 16.0L / 3.0L * static_cast<ld>(c.rheology.G) * std::sqrt(static_cast<ld>(c.indenter.R)) *
+  return 16.0L / 3.0L * static_cast<ld>(c.rheology.G) *
+         std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R)) *
          std::pow(static_cast<ld>(c.loading.d), 1.5L);
 }
 
@@ -247,15 +248,15 @@ TEST(AnalyticForces, MatchQuadratureOfPaperIntegrands) {
 // more than 1%, while the corrected forms agree to rounding.
 namespace {
 ld paper_eq9(const Case& c, ld a2, ld w) {
-  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.R,
-           G = c.rheology.G, tau = c.rheology.tau;
+  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d,
+           R = c.indenter.as<mdrmap::Parabola>().R, G = c.rheology.G, tau = c.rheology.tau;
   return 4.0L * G *
          (d * (a1 + a2) - (a1 * a1 * a1 - a2 * a2 * a2) / (3.0L * R) +
           tau * w / R * (a1 * a1 - a2 * a2));
 }
 ld paper_eq10(const Case& c, ld a2, ld w) {
-  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d, R = c.indenter.R,
-           G = c.rheology.G, tau = c.rheology.tau;
+  const ld a1 = static_cast<ld>(analytic::a1(c)), d = c.loading.d,
+           R = c.indenter.as<mdrmap::Parabola>().R, G = c.rheology.G, tau = c.rheology.tau;
   return 8.0L * G / (R * R) *
          (R * d / 2.0L * (a1 * a1 - a2 * a2) - (std::pow(a1, 4.0L) - std::pow(a2, 4.0L)) / 2.0L +
           2.0L * tau * w / 3.0L * (a1 * a1 * a1 + a2 * a2 * a2));
@@ -319,7 +320,7 @@ TEST(AnalyticStationary, A2SatisfiesForceZeroCondition) {
       Case c = make_case(dr * 0.02, 0.02, 1e-3, 1.0);
       const double w = vel(c, std::pow(10.0, lz));
       const ld a2 = analytic::a2_stationary(c, w);
-      const ld d = c.loading.d, R = c.indenter.R,
+      const ld d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R,
                L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
       const ld residual = d - a2 * a2 / R - 2.0L * L * a2 / R;
       EXPECT_LE(std::fabs(residual / d), 1e-14L) << "d/R=" << dr << " zeta=1e" << lz;
@@ -334,9 +335,9 @@ TEST(AnalyticStationary, EqualsNaiveEq7WhereWellConditioned) {
   for (double zeta : {0.0, 1e-6, 1e-3, 0.1, 0.5, 1.0}) {
     Case c = make_case(3e-5, 0.1, 2.0, 1.0);
     const double w = vel(c, zeta);
-    const double naive =
-        std::sqrt(w * w * c.rheology.tau * c.rheology.tau + c.indenter.R * c.loading.d) -
-        w * c.rheology.tau;
+    const double naive = std::sqrt(w * w * c.rheology.tau * c.rheology.tau +
+                                   c.indenter.as<mdrmap::Parabola>().R * c.loading.d) -
+                         w * c.rheology.tau;
     EXPECT_NEAR(analytic::a2_stationary(c, w), naive, 1e-14 * naive) << zeta;
   }
 }
@@ -348,7 +349,8 @@ TEST(AnalyticStationary, AccurateAtHighSpeedWhereNaiveEq7Fails) {
   for (double zeta : {1e4, 1e6, 1e8}) {
     Case c = make_case(1e-6, 1e-3, 1e-3, 1.0);
     const double w = vel(c, zeta);
-    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
+    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                            static_cast<ld>(c.loading.d));
     const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a2_stationary(c, w), ref), 1e-14) << zeta;
@@ -356,9 +358,9 @@ TEST(AnalyticStationary, AccurateAtHighSpeedWhereNaiveEq7Fails) {
     // a2 = a1^2/(2L) (1 - a1^2/(4L^2) + ...).
     EXPECT_NEAR(static_cast<double>(ref / (a1 * a1 / (2.0L * L))), 1.0, 0.3 / (zeta * zeta));
     if (zeta == 1e8) {
-      const double naive =
-          std::sqrt(w * w * c.rheology.tau * c.rheology.tau + c.indenter.R * c.loading.d) -
-          w * c.rheology.tau;
+      const double naive = std::sqrt(w * w * c.rheology.tau * c.rheology.tau +
+                                     c.indenter.as<mdrmap::Parabola>().R * c.loading.d) -
+                           w * c.rheology.tau;
       EXPECT_GT(rel(naive, ref), 0.5) << "naive eq. (7) unexpectedly accurate: " << naive;
     }
   }
@@ -370,7 +372,8 @@ TEST(AnalyticStationary, A1MinusA2AccurateEverywhere) {
   for (double lz = -8.0; lz <= 8.0; lz += 0.25) {
     Case c = make_case(2e-4, 5e-2, 3.0, 1.0);
     const double w = vel(c, std::pow(10.0, lz));
-    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
+    const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                            static_cast<ld>(c.loading.d));
     const ld L = static_cast<ld>(w) * static_cast<ld>(c.rheology.tau);
     const ld ref = a1_minus_a2_newton(a1, L);
     EXPECT_LT(rel(analytic::a1_minus_a2_stationary(c, w), ref), 1e-14) << "zeta=1e" << lz;
@@ -409,7 +412,7 @@ TEST(AnalyticLimits, HertzAtTauZero) {
 // (|ratio - 1| <= zeta, the next coefficients being 2/3 and 3/4).
 TEST(AnalyticLimits, ConvergesToHertzAsTauToZero) {
   Case c = make_case(1e-3, 0.4, 1.0, 1.0, 0.0, 2.0);
-  const double sdr = std::sqrt(c.loading.d / c.indenter.R);
+  const double sdr = std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R);
   auto eN = [&](double zeta) {
     c.rheology.tau = zeta; // v = a1 below, so zeta = tau * a1 / a1
     return rel(analytic::stationary(c, analytic::a1(c)).FN, hertz(c));
@@ -460,7 +463,8 @@ TEST(AnalyticLimits, HighSpeedLimitsEq12To14) {
     }
   }
   EXPECT_NEAR(state(1e8).mu / analytic::mu_inf(c), 1.0, 1e-8);
-  EXPECT_DOUBLE_EQ(analytic::mu_inf(c), 4.0 / 3.0 * std::sqrt(c.loading.d / c.indenter.R));
+  EXPECT_DOUBLE_EQ(analytic::mu_inf(c),
+                   4.0 / 3.0 * std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R));
   // The friction coefficient rises monotonically from 0 to mu_inf with speed.
   double prev = 0.0;
   for (double lz = -6.0; lz <= 8.0; lz += 0.1) {
@@ -486,7 +490,8 @@ TEST(AnalyticJump, PostDropLimit) {
     EXPECT_NEAR(e(k) / (5.0 * k / 12.0), 1.0, 4.0 * k) << k;
     EXPECT_NEAR(std::log10(e(k) / e(k / 10)), 1.0, 0.05) << k;
   }
-  EXPECT_DOUBLE_EQ(analytic::mu_post_drop_limit(c), 0.75 * std::sqrt(c.loading.d / c.indenter.R));
+  EXPECT_DOUBLE_EQ(analytic::mu_post_drop_limit(c),
+                   0.75 * std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R));
 }
 
 // Increase v -> v1 > v: the elements in (a2(v1), a2(v)] would have negative
@@ -511,8 +516,8 @@ TEST(AnalyticJump, IncreaseEqualsStationaryAtNewVelocity) {
       if (ratio > 1.0) {
         const ld x = 0.5L * (static_cast<ld>(a2v1) + analytic::a2_stationary(c, v));
         const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.rheology.tau);
-        EXPECT_LT(static_cast<ld>(c.loading.d) - x * x / c.indenter.R -
-                      2.0L * L1 * x / c.indenter.R,
+        EXPECT_LT(static_cast<ld>(c.loading.d) - x * x / c.indenter.as<mdrmap::Parabola>().R -
+                      2.0L * L1 * x / c.indenter.as<mdrmap::Parabola>().R,
                   0.0L);
       }
     }
@@ -537,7 +542,8 @@ TEST(AnalyticJump, DecreaseUsesOldContactSetWithNewVelocity) {
       // Every element of [-a1, a2(v)] keeps a non-negative force at v1.
       const ld L1 = static_cast<ld>(v1) * static_cast<ld>(c.rheology.tau);
       const ld x = a2v;
-      EXPECT_GE(static_cast<ld>(c.loading.d) - x * x / c.indenter.R - 2.0L * L1 * x / c.indenter.R,
+      EXPECT_GE(static_cast<ld>(c.loading.d) - x * x / c.indenter.as<mdrmap::Parabola>().R -
+                    2.0L * L1 * x / c.indenter.as<mdrmap::Parabola>().R,
                 -1e-15L * c.loading.d);
       const State pre = analytic::stationary(c, v);
       const State post = analytic::stationary(c, v1);
@@ -556,14 +562,15 @@ TEST(AnalyticJump, DecreaseUsesOldContactSetWithNewVelocity) {
 // code's value carries ~4 roundings: 2e-15 relative. tau = 0: instant recovery.
 TEST(AnalyticStartStop, A2Formula) {
   Case c = make_case(3e-6, 1e-3, 1e-3, 1.0);
-  const ld a1 = std::sqrt(static_cast<ld>(c.indenter.R) * static_cast<ld>(c.loading.d));
+  const ld a1 = std::sqrt(static_cast<ld>(c.indenter.as<mdrmap::Parabola>().R) *
+                          static_cast<ld>(c.loading.d));
   for (double t_over_tau : {1e-20, 1e-8, 1e-3, 0.1, 1.0, 3.0, 10.0, 50.0}) {
     const double t = t_over_tau * c.rheology.tau;
     const ld want = a1 * std::sqrt(-std::expm1(-static_cast<ld>(t) / c.rheology.tau));
     const double got = analytic::a2_start_stop(c, t);
     EXPECT_LT(rel(got, want), 2e-15) << t_over_tau;
     const ld x = got;
-    const ld resid = (c.loading.d - x * x / c.indenter.R) -
+    const ld resid = (c.loading.d - x * x / c.indenter.as<mdrmap::Parabola>().R) -
                      c.loading.d * std::exp(-static_cast<ld>(t) / c.rheology.tau);
     EXPECT_LT(std::fabs(resid / c.loading.d), 1e-15L) << t_over_tau;
   }
@@ -580,22 +587,25 @@ TEST(AnalyticStartStop, A2Formula) {
 TEST(AnalyticHardRanges, FiniteAndPhysical) {
   auto check = [](const State& st, const Case& c, const char* what) {
     const double A = analytic::a1(c);
-    const double mu_max = 4.0 / 3.0 * std::sqrt(c.loading.d / c.indenter.R) * (1 + 1e-12);
+    const double mu_max =
+        4.0 / 3.0 * std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R) * (1 + 1e-12);
     EXPECT_TRUE(std::isfinite(st.FN) && std::isfinite(st.Fx) && std::isfinite(st.mu) &&
                 std::isfinite(st.a2))
         << what;
     EXPECT_GT(st.FN, 0.0) << what;
     EXPECT_GE(st.Fx, 0.0) << what;
     EXPECT_GE(st.mu, 0.0) << what;
-    EXPECT_LE(st.mu, mu_max) << what << " d=" << c.loading.d << " R=" << c.indenter.R;
+    EXPECT_LE(st.mu, mu_max) << what << " d=" << c.loading.d
+                             << " R=" << c.indenter.as<mdrmap::Parabola>().R;
     EXPECT_GE(st.a2, 0.0) << what;
     EXPECT_LE(st.a2, A) << what;
     // Bounds from p >= 0 on the contact: F_N between the Hertz-like integrals.
     // p <= d + 2 L a1 / R on a contact of length <= 2 a1.
-    EXPECT_LE(st.FN, 4.0 * c.rheology.G *
-                         (2 * A * c.loading.d + 4 * A * A * std::max(c.history.v0, v1_of(c)) *
-                                                    c.rheology.tau / c.indenter.R) *
-                         (1 + 1e-12))
+    EXPECT_LE(st.FN,
+              4.0 * c.rheology.G *
+                  (2 * A * c.loading.d + 4 * A * A * std::max(c.history.v0, v1_of(c)) *
+                                             c.rheology.tau / c.indenter.as<mdrmap::Parabola>().R) *
+                  (1 + 1e-12))
         << what;
   };
   int n = 0;

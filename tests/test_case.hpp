@@ -93,7 +93,7 @@ inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
 inline void expect_row_hertz_throughout(const Case& c) {
   const RunResult r = run_spectrum(c, SpectrumOptions{});
   const double hertz =
-      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.R) * std::pow(c.loading.d, 1.5);
+      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.as<Parabola>().R) * std::pow(c.loading.d, 1.5);
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     ASSERT_TRUE(std::isfinite(r.series.FN[k]) && std::isfinite(r.series.mu[k])) << k;
     EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);

@@ -214,7 +214,7 @@ enum Col { kT = 0, kSegment = 1, kFN = 2, kFx = 3, kMu = 4, kA2 = 5, kD = 6, kA1
 std::regex case_line_regex(bool load) {
   // the parabola's parameters (the other profiles' are not shown), the loading given
   auto given = [&](const mdrmap::ParamSpec& p) {
-    return p.applies_to(mdrmap::Profile::Parabola) &&
+    return p.applies_to(mdrmap::Profile::of<mdrmap::Parabola>()) &&
            (!p.one_of || (std::string(p.name) == "F0") == load);
   };
   std::string re = "^# case";
@@ -2452,8 +2452,8 @@ TEST(cli, StationaryConeAtFixedDepthIsTheClosedForm) {
                       "--v-list", "0.001,0.01,0.0174,0.05,1"});
   ASSERT_EQ(t.rows.size(), 5U);
   EXPECT_EQ(t.comments[1], "# case profile=cone d=0.02 tau=2 G=3 beta=20");
-  mdrmap::Case c = stationary_case(mdrmap::Profile::Cone, G, tau);
-  c.indenter.beta = beta;
+  mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Cone>(), G, tau);
+  c.indenter.as<mdrmap::Cone>().beta = beta;
   c.loading.d = d;
   expect_core_states(t, c);
   const double cc = cone_c(beta), a1 = d / cc;
@@ -2488,9 +2488,9 @@ TEST(cli, StationaryPowerLawUnderLoadWithASpectrumIsTheCores) {
       << t.comments[1];
   EXPECT_NE(t.comments[1].find(" prony=2:0.10000000000000001,5:10 a0="), std::string::npos)
       << t.comments[1];
-  mdrmap::Case c = stationary_case(mdrmap::Profile::Power, 1.0, 0.5);
-  c.indenter.n = 1.5;
-  c.indenter.A = 2;
+  mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Power>(), 1.0, 0.5);
+  c.indenter.as<mdrmap::Power>().n = 1.5;
+  c.indenter.as<mdrmap::Power>().A = 2;
   c.loading.F0 = 0.05;
   c.rheology.branches = {{2.0, 0.1}, {5.0, 10.0}};
   expect_core_states(t, c);
@@ -2507,8 +2507,8 @@ TEST(cli, StationaryParabolaIsTheCores) {
                                                 "--aT", "0.5", "--v-range", "0.01:100:5"});
   ASSERT_EQ(depth.rows.size(), 5U);
   EXPECT_EQ(depth.comments[1], "# case d=0.10000000000000001 R=10 tau=1 G=2 aT=0.5");
-  mdrmap::Case c = stationary_case(mdrmap::Profile::Parabola, 2.0, 1.0);
-  c.indenter.R = 10;
+  mdrmap::Case c = stationary_case(mdrmap::Profile::of<mdrmap::Parabola>(), 2.0, 1.0);
+  c.indenter.as<mdrmap::Parabola>().R = 10;
   c.loading.d = 0.1;
   c.rheology.aT = 0.5;
   expect_core_states(depth, c);
@@ -2516,8 +2516,8 @@ TEST(cli, StationaryParabolaIsTheCores) {
   const StationaryTable load =
       run_stationary({"--F0", "0.2", "--R", "10", "--tau", "1", "--v-list", "0.1,1,10"});
   ASSERT_EQ(load.rows.size(), 3U);
-  mdrmap::Case l = stationary_case(mdrmap::Profile::Parabola, 1.0, 1.0);
-  l.indenter.R = 10;
+  mdrmap::Case l = stationary_case(mdrmap::Profile::of<mdrmap::Parabola>(), 1.0, 1.0);
+  l.indenter.as<mdrmap::Parabola>().R = 10;
   l.loading.F0 = 0.2;
   expect_core_states(load, l);
   for (const auto& row : load.rows)
@@ -2531,9 +2531,7 @@ TEST(cli, StationaryParabolaIsTheCores) {
 TEST(cli, StationaryConeOnKelvinHasMuPiOver2TanBetaForVTauFromA1) {
   for (const double beta : {10.0, 45.0, 80.0}) {
     SCOPED_TRACE("beta = " + num(beta));
-    mdrmap::Indenter cone;
-    cone.profile = mdrmap::Profile::Cone;
-    cone.beta = beta;
+    const mdrmap::Indenter cone = mdrmap::Cone{beta};
     const double a1 = cone.contact_radius(0.01); // the core's a1: v = a1 is v tau = a1 exactly
     std::string list = mdrmap::app::format_double(0.5 * a1);
     for (const double k : {1.0, 1.5, 10.0, 1e6})

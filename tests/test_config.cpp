@@ -471,7 +471,7 @@ TEST(StudyConfigGood, CaseForIsTheSeedStep) {
     const mdrmap::Case k = case_for(c, r);
     EXPECT_EQ(k.loading.d, val(c, r, "d"));
     EXPECT_EQ(k.loading.F0, 0.0);
-    EXPECT_EQ(k.indenter.R, val(c, r, "R"));
+    EXPECT_EQ(k.indenter.as<mdrmap::Parabola>().R, val(c, r, "R"));
     EXPECT_EQ(k.rheology.tau, val(c, r, "tau"));
     EXPECT_EQ(k.rheology.G, val(c, r, "G"));
     EXPECT_EQ(k.history.v0, val(c, r, "v"));
@@ -547,7 +547,7 @@ TEST(StudyCases, GoodCsvAnyColumnOrder) {
   ASSERT_EQ(rows.size(), 3u);
   const auto cases = cases_of(c);
   EXPECT_EQ(cases[0].loading.d, 1e-3);
-  EXPECT_EQ(cases[0].indenter.R, 1.0);
+  EXPECT_EQ(cases[0].indenter.as<mdrmap::Parabola>().R, 1.0);
   EXPECT_EQ(cases[0].rheology.tau, 1.0);
   EXPECT_EQ(cases[0].history.v0, 2.0);
   EXPECT_EQ(cases[0].history.segments.at(0).w, 0.5);

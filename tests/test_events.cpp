@@ -178,9 +178,9 @@ TEST(TransientTracker, FromThePeak) {
 // largest |mu| it is no transient.
 TEST(EventsFromTheSolution, NoiseIsNoTransient) {
   Case c = step_case(0.01, 1.0, 1.0, 1.0, 0.1, 1.0, 0.0, 5);
-  c.indenter.profile = Profile::Cone;
-  c.indenter.R = 0.0;
-  c.indenter.beta = 1e-10;
+  c.indenter.profile = Profile::of<Cone>();
+  c.indenter.as<Parabola>().R = 0.0;
+  c.indenter.as<Cone>().beta = 1e-10;
   const RunResult r = run_case(c, SolverKind::Auto, 1e-3);
   const EventMetrics e =
       event_metrics(c, r.series, r.transients, r.info.error_estimate, r.probes)[0];
@@ -331,9 +331,9 @@ Case three_terms(bool load) {
 /// A Kelvin cone (beta 30 degrees), a drop.
 Case cone_drop(bool load) {
   Case c = event_case(load, 1.0, {{0.1, 1.5}});
-  c.indenter.profile = Profile::Cone;
-  c.indenter.R = 0.0;
-  c.indenter.beta = 30.0;
+  c.indenter.profile = Profile::of<Cone>();
+  c.indenter.as<Parabola>().R = 0.0;
+  c.indenter.as<Cone>().beta = 30.0;
   return c;
 }
 

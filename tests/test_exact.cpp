@@ -59,9 +59,9 @@ struct Ref {
   ld d, R, G, tau, v, v1, a1, L, L1, a2v, a2v1, ha2v;
 
   explicit Ref(const Case& c)
-      : d(c.loading.d), R(c.indenter.R), G(c.rheology.G), tau(c.rheology.tau), v(c.history.v0),
-        v1(v1_of(c)), a1(std::sqrt(R * d)), L(v * tau), L1(v1 * tau), a2v(a2_of(L)),
-        a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
+      : d(c.loading.d), R(c.indenter.as<mdrmap::Parabola>().R), G(c.rheology.G),
+        tau(c.rheology.tau), v(c.history.v0), v1(v1_of(c)), a1(std::sqrt(R * d)), L(v * tau),
+        L1(v1 * tau), a2v(a2_of(L)), a2v1(a2_of(L1)), ha2v(d - a2v * a2v / R) {}
 
   // Eq. (7) rationalised (the naive difference loses all digits for L >> a1,
   // also in long double).
@@ -215,7 +215,9 @@ TEST(ExactStartStop, MatchesA1SqrtOneMinusExp) {
   const Case cs = scene_z(zeta, 0.0);
   const ExactSolution ex(cs);
   const double a1 = analytic::a1(cs);
-  const double Fx_scale = 2.0 * cs.rheology.G * std::pow(a1, 4) / (cs.indenter.R * cs.indenter.R);
+  const double Fx_scale =
+      2.0 * cs.rheology.G * std::pow(a1, 4) /
+      (cs.indenter.as<mdrmap::Parabola>().R * cs.indenter.as<mdrmap::Parabola>().R);
   for (double tt : {0.01, 0.1, 0.5, 1.0, 2.0, 4.0, 6.0, 12.0}) {
     const double t = tt * cs.rheology.tau;
     const State st = ex.at(t);
@@ -325,7 +327,8 @@ TEST(ExactTransient, ForcesEqualQuadratureOverContactSet) {
     for (double ratio : {0.0, 1e-3, 0.1, 0.5}) {
       const Case c = scene_z(zeta, ratio);
       const ExactSolution ex(c);
-      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.R, G = c.rheology.G;
+      const ld a1 = analytic::a1(c), d = c.loading.d, R = c.indenter.as<mdrmap::Parabola>().R,
+               G = c.rheology.G;
       const ld L1 = static_cast<ld>(v1_of(c)) * static_cast<ld>(c.rheology.tau);
       auto p = [&](ld x) { return d - x * x / R - 2.0L * L1 * x / R; };
       auto px = [&](ld x) { return p(x) * (-2.0L * x / R); };
@@ -361,7 +364,8 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
   for (const Base& b : bases) {
     auto dimless = [&](const Case& c) {
       const auto r = mdrmap::run_exact(c, 1e-12);
-      const double a1 = analytic::a1(c), sdr = std::sqrt(c.loading.d / c.indenter.R);
+      const double a1 = analytic::a1(c),
+                   sdr = std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R);
       std::vector<std::vector<double>> out(4);
       for (std::size_t k = 0; k < r.series.size(); ++k) {
         out[0].push_back(r.series.mu[k] / sdr);

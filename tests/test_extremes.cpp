@@ -25,7 +25,7 @@ Case depth_case(std::vector<Segment> segments, double d = 1e-3, double R = 1.0, 
                 double v = 1.0, long samples = 201) {
   Case c;
   c.loading.d = d;
-  c.indenter.R = R;
+  c.indenter.as<Parabola>().R = R;
   c.rheology.tau = tau;
   c.history.v0 = v;
   c.history.segments = std::move(segments);
@@ -100,8 +100,8 @@ Case sls_case(std::vector<Segment> segments, double v = 1.0) {
 Case with_profile(Case c, Profile p, double beta_or_A, double n = 0.0) {
   c.indenter = Indenter{};
   c.indenter.profile = p;
-  (p == Profile::Cone ? c.indenter.beta : c.indenter.A) = beta_or_A;
-  c.indenter.n = n;
+  (p == Profile::of<Cone>() ? c.indenter.as<Cone>().beta : c.indenter.as<Power>().A) = beta_or_A;
+  c.indenter.as<Power>().n = n;
   c.loading.d = 0.01;
   return c;
 }
@@ -118,7 +118,7 @@ TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
   tiny_branch.rheology.branches = {{1.0, 1.0}, {1e-13, 1e-5}};
   Case long_branch = sls_case({{0.1, 1.0}});
   long_branch.rheology.branches = {{1.0, 1e200}};
-  Case long_dashpot = with_profile(depth_case({{0.1, 1.0}}), Profile::Cone, 10.0);
+  Case long_dashpot = with_profile(depth_case({{0.1, 1.0}}), Profile::of<Cone>(), 10.0);
   long_dashpot.rheology.tau = 1e200;
   const struct {
     const char* label;
@@ -133,11 +133,11 @@ TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
       {"tau1 = 1e200", long_branch, "prony"},
       {"a cone's dashpot of 1e200", long_dashpot, "tau"},
       {"cone of 1e-300 degrees (was blamed on R)",
-       with_profile(sls_case({{0.1, 1.0}}), Profile::Cone, 1e-300), "beta"},
-      {"power law of A = 1e200", with_profile(sls_case({{0.1, 1.0}}), Profile::Power, 1e200, 1.5),
-       "A"},
-      {"power law of n = 200", with_profile(sls_case({{0.1, 1.0}}), Profile::Power, 1.0, 200.0),
-       "n"},
+       with_profile(sls_case({{0.1, 1.0}}), Profile::of<Cone>(), 1e-300), "beta"},
+      {"power law of A = 1e200",
+       with_profile(sls_case({{0.1, 1.0}}), Profile::of<Power>(), 1e200, 1.5), "A"},
+      {"power law of n = 200",
+       with_profile(sls_case({{0.1, 1.0}}), Profile::of<Power>(), 1.0, 200.0), "n"},
   };
   for (const auto& r : rows) {
     SCOPED_TRACE(r.label);
@@ -303,8 +303,8 @@ TEST(Extremes, BaselineFailsACaseWhoseEstimateIsAboveRtol) {
 // whose mu stands clear of the rounding, or is negligible, is within rtol of
 // its stationary state.
 TEST(Extremes, AFrictionWithinRoundingIsRefused) {
-  Case needle =
-      with_profile(depth_case({{1e5, 1e-12}}, 0.01, 1.0, 0.0, 1e4, 5), Profile::Cone, 89.999999999);
+  Case needle = with_profile(depth_case({{1e5, 1e-12}}, 0.01, 1.0, 0.0, 1e4, 5),
+                             Profile::of<Cone>(), 89.999999999);
   needle.rheology.branches = {{1.0, 1.0}, {10.0, 0.01}};
   try {
     const RunResult r = run_case(needle, SolverKind::Auto, 1e-3);
@@ -316,7 +316,8 @@ TEST(Extremes, AFrictionWithinRoundingIsRefused) {
   // beta 10: mu 6e-12 and 6e-14 of its scale 0.088 at v tau/a1 3e12, 3e14;
   // the second is within rtol of a negligible friction
   for (const double v : {1e12, 1e14}) {
-    Case cone = with_profile(depth_case({{v, 1e-12}}, 0.01, 1.0, 0.0, v, 3), Profile::Cone, 10.0);
+    Case cone =
+        with_profile(depth_case({{v, 1e-12}}, 0.01, 1.0, 0.0, v, 3), Profile::of<Cone>(), 10.0);
     cone.rheology.branches = needle.rheology.branches;
     const double mu_ss = stationary_state(cone, v).mu;
     EXPECT_NEAR(run_case(cone, SolverKind::Auto, 1e-3).series.pre.mu, mu_ss,

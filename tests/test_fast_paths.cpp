@@ -37,7 +37,7 @@ void expect_same_state(const State& a, const State& b, const std::string& where)
 Case history_case(double v, const std::vector<Segment>& segments, long samples) {
   Case c;
   c.loading.d = 1e-3;
-  c.indenter.R = 1.0;
+  c.indenter.as<mdrmap::Parabola>().R = 1.0;
   c.rheology.tau = 1.0;
   c.history.v0 = v;
   c.history.segments = segments;
@@ -106,7 +106,7 @@ TEST(ExactCache, ADropFillsItARiseNeedsNoneAStopNever) {
 
 TEST(CheckedCase, IsValidatedWhenMade) {
   Case bad = history_case(1.0, {{0.5, 1.0}}, 11);
-  bad.indenter.R = -1.0;
+  bad.indenter.as<mdrmap::Parabola>().R = -1.0;
   try {
     CheckedCase c(bad);
     ADD_FAILURE() << "no InvalidInput";

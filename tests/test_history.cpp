@@ -101,7 +101,7 @@ TEST(HistoryClaims, HoldGrowsTheContactAndRelaxesFriction) {
     prev_a2 = r.series.a2[i];
     prev_fx = r.series.Fx[i];
     // F_N = integral of 4 G h over [-a1, e], by quadrature
-    const double e = r.series.a2[i], a1 = c.a1(), R = c.indenter.R;
+    const double e = r.series.a2[i], a1 = c.a1(), R = c.indenter.as<Parabola>().R;
     const double FN = 4.0 * (a1 * a1 * (e + a1) - (e * e * e + a1 * a1 * a1) / 3.0) / R;
     EXPECT_NEAR(r.series.FN[i], FN, 1e-12 * FN);
   }
@@ -246,7 +246,7 @@ TEST(HistorySimilarity, ScaledVariablesCollapse) {
   Case s = c;
   const double L = 37.0, T = 1e-3, S = 4e6;
   s.loading.d *= L;
-  s.indenter.R *= L;
+  s.indenter.as<Parabola>().R *= L;
   s.rheology.tau *= T;
   s.rheology.G *= S;
   s.history.v0 *= L / T;

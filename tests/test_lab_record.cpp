@@ -69,7 +69,7 @@ const char* const kStepHold = "# a step and a hold\n"
 Case depth_case() {
   Case c;
   c.loading.d = 0.1;
-  c.indenter.R = 10.0;
+  c.indenter.as<mdrmap::Parabola>().R = 10.0;
   c.rheology.tau = 1.0;
   c.rheology.G = 1.0;
   return c;

@@ -29,7 +29,7 @@ namespace {
 Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs, long samples = 21,
                double F0 = 4e-3, double tau = 1.0) {
   Case c;
-  c.indenter.R = 2.0;
+  c.indenter.as<Parabola>().R = 2.0;
   c.rheology.tau = tau;
   c.loading.F0 = F0;
   c.history.v0 = zeta0 * c.a0() / tau;
@@ -40,7 +40,7 @@ Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
 }
 
 double d0_of(const Case& c) {
-  return c.a0() * c.a0() / c.indenter.R;
+  return c.a0() * c.a0() / c.indenter.as<Parabola>().R;
 }
 
 Series at(const Case& c, double cells, double time_tol, double dt_over_tau = 0.0) {
@@ -62,7 +62,7 @@ TEST(StationaryUnderLoad, RootOfTheFixedDepthStationaryForce) {
       EXPECT_NEAR(fixed.FN / F0, 1.0, 4e-15) << "F0=" << F0 << " zeta0=" << z;
       const State st = stationary_under_load(c, w);
       EXPECT_EQ(st.d, d);
-      EXPECT_NEAR(st.a1, std::sqrt(c.indenter.R * d), 1e-15 * st.a1);
+      EXPECT_NEAR(st.a1, std::sqrt(c.indenter.as<Parabola>().R * d), 1e-15 * st.a1);
       EXPECT_NEAR(st.mu, fixed.mu, 1e-14 * fixed.mu);
       EXPECT_NEAR(st.a2, fixed.a2, 1e-14 * st.a1);
     }
@@ -77,7 +77,8 @@ TEST(StationaryUnderLoad, HertzAsTauGoesToZero) {
     const double z = c.history.v0 * tau / c.a0();
     const double d = stationary_depth(c, c.history.v0);
     EXPECT_LT(std::abs(d / d0 - 1.0), 4.0 * z) << tau;
-    EXPECT_LT(stationary_under_load(c, c.history.v0).mu / (c.a0() / c.indenter.R), 4.0 * z);
+    EXPECT_LT(stationary_under_load(c, c.history.v0).mu / (c.a0() / c.indenter.as<Parabola>().R),
+              4.0 * z);
   }
   c.rheology.tau = 0.0;
   EXPECT_NEAR(stationary_depth(c, c.history.v0) / d0, 1.0, 1e-15);
@@ -91,7 +92,8 @@ TEST(StationaryUnderLoad, LargeZetaLimits) {
     const Case c = load_case(z, {{1.0, 1.0}}, 3);
     const State st = stationary_under_load(c, c.history.v0);
     const double dev_d = std::abs(st.d / d0_of(c) * 0.75 * z - 1.0);
-    const double dev_mu = std::abs(st.mu / (4.0 / 3.0 * std::sqrt(st.d / c.indenter.R)) - 1.0);
+    const double dev_mu =
+        std::abs(st.mu / (4.0 / 3.0 * std::sqrt(st.d / c.indenter.as<Parabola>().R)) - 1.0);
     EXPECT_LT(dev_d, 2.0 / std::sqrt(z)) << z; // corrections ~ alpha/zeta0 ~ zeta0^-3/2
     EXPECT_LT(dev_mu, 2.0 / std::sqrt(z)) << z;
     EXPECT_LT(dev_d, 0.2 * prev_dev);
@@ -176,7 +178,8 @@ TEST(RunLoad, IndentationCreepUnderAStepLoad) {
       const double t = r.series.t[k];
       const double exact = d0 * std::pow(-std::expm1(-t / c.rheology.tau), 2.0 / 3.0);
       worst = std::max(worst, std::abs(r.series.d[k] - exact) / d0);
-      EXPECT_NEAR(r.series.a1[k], std::sqrt(c.indenter.R * r.series.d[k]), 1e-15 * c.a0());
+      EXPECT_NEAR(r.series.a1[k], std::sqrt(c.indenter.as<Parabola>().R * r.series.d[k]),
+                  1e-15 * c.a0());
       EXPECT_NEAR(r.series.a2[k], r.series.a1[k], 1e-12 * c.a0()) << t; // full contact
       EXPECT_NEAR(r.series.FN[k] / F0, 1.0, 1e-12);
     }

@@ -42,7 +42,7 @@ double stationary_force(const Case& c, double d, double w) {
 /// The depth of stationary sliding at w under c.loading.F0: the root of
 /// stationary_force(c, d, w) = F0, bracketed from d0 = a0^2/R downwards.
 double stationary_depth(const Case& c, double w) {
-  const double F0 = c.loading.F0, a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double F0 = c.loading.F0, a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   auto f = [&](double d) { return stationary_force(c, d, w) - F0; };
   double hi = d0, fhi = f(hi);
   for (int k = 0; fhi < 0.0 && k < 200; ++k) // rounding at tau = 0 only
@@ -82,7 +82,7 @@ double force_of(double a0, double R = kR, double G = 1.0) {
 Case load_case(double zeta0, const std::vector<std::pair<double, double>>& segs, long samples = 21,
                double a0 = kA0) {
   Case c;
-  c.indenter.R = kR;
+  c.indenter.as<Parabola>().R = kR;
   c.rheology.tau = 1.0;
   c.loading.F0 = force_of(a0);
   c.history.v0 = zeta0 * a0;
@@ -140,7 +140,7 @@ TEST(LoadStationary, DepthRootBalancesTheLoad) {
   for (double F0 : {1e-12, 1.0, 1e3}) {
     Case c = load_case(1.0, {{1.0, 1.0}});
     c.loading.F0 = F0;
-    const double d0 = c.a0() * c.a0() / c.indenter.R;
+    const double d0 = c.a0() * c.a0() / c.indenter.as<Parabola>().R;
     c.rheology.tau = 0.0;
     // d0 = a0^2 / R with a0 from a cube root carries a few ulp of its own
     EXPECT_NEAR(load_check::stationary_depth(c, c.history.v0) / d0, 1.0, 2e-15);
@@ -265,7 +265,7 @@ TEST(LoadStationary, LimitsAndTheirApproach) {
 /// d(0) = 0. With y = (d/d0)^(3/2) it is y' = (1 - y)/tau, so
 /// d(t) = d0 (1 - exp(-t/tau))^(2/3).
 double creep_depth(const Case& c, double t) {
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   if (c.rheology.tau == 0.0) return d0;
   const double y = -std::expm1(-t / c.rheology.tau);
   return d0 * std::cbrt(y * y);
@@ -278,7 +278,7 @@ double creep_depth(const Case& c, double t) {
 /// geometrically towards 1.
 double creep_time_by_quadrature(const Case& c, double d) {
   const double F0 = c.loading.F0, G = c.rheology.G, tau = c.rheology.tau;
-  const double A = F0 / (8.0 * G * std::sqrt(c.indenter.R * d));
+  const double A = F0 / (8.0 * G * std::sqrt(c.indenter.as<Parabola>().R * d));
   auto f = [&](double x) { return 2.0 * tau * d * x * x / (A - (2.0 / 3.0) * d * x * x * x); };
   double t = 0.0, lo = 0.0, width = 0.5;
   for (int k = 0; k < 60; ++k, width *= 0.5) {
@@ -318,7 +318,7 @@ Series row_at(const Case& c, double rtol) {
 /// load at its velocity: d, a1 by d0 and a0; mu by its stationary value, a2
 /// by a0.
 double end_error(const Case& c, const Series& s) {
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R;
   const State ss = load_check::stationary_state(c, c.history.segments.back().w);
   double e = 0.0;
   for (std::size_t k = 0; k < s.size(); ++k) {
@@ -353,12 +353,12 @@ TEST(LoadRowKelvin, ReachesTheStationaryStateUnderLoad) {
 TEST(LoadRowKelvin, TauZeroIsHertzAtOnce) {
   Case c = load_case(1.0, {{0.1, 2.0}, {0.0, 1.0}, {3.0, 2.0}}, 11);
   c.rheology.tau = 0.0;
-  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.R, rtol = 1e-3;
+  const double a0 = c.a0(), d0 = a0 * a0 / c.indenter.as<Parabola>().R, rtol = 1e-3;
   const Series s = row_at(c, rtol);
   double e = 0.0;
   for (std::size_t k = 0; k < s.size(); ++k)
     e = std::max({e, std::abs(s.d[k] / d0 - 1.0), std::abs(s.a1[k] / a0 - 1.0),
-                  std::abs(s.mu[k]) / (a0 / c.indenter.R)});
+                  std::abs(s.mu[k]) / (a0 / c.indenter.as<Parabola>().R)});
   std::printf("[ info ] Hertz, tau 0: largest deviation %.2e\n", e);
   EXPECT_LE(e, rtol);
 }

@@ -28,7 +28,7 @@ namespace {
 Case unit_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
                long samples = 11) {
   Case c;
-  c.indenter.R = 1.0;
+  c.indenter.as<Parabola>().R = 1.0;
   c.rheology.tau = 1.0;
   c.loading.F0 = 16.0 / 3.0;
   c.history.v0 = zeta0;

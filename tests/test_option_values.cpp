@@ -148,8 +148,8 @@ TEST(OptionValues, APartAloneIsReadWithTheWholeCasesMessages) {
   const auto cone = read_case_part(
       {{"profile", OptionValue::of_text("cone")}, {"beta", OptionValue::of_number(10)}},
       Part::Indenter);
-  EXPECT_EQ(cone.c.indenter.profile, mdrmap::Profile::Cone);
-  EXPECT_EQ(cone.c.indenter.beta, 10.0);
+  EXPECT_EQ(cone.c.indenter.profile, mdrmap::Profile::of<mdrmap::Cone>());
+  EXPECT_EQ(cone.c.indenter.as<mdrmap::Cone>().beta, 10.0);
   const auto m = read_case_part({{"G", OptionValue::of_number(1)},
                                  {"tau", OptionValue::of_number(0)},
                                  {"prony", OptionValue::of_pairs({{1, 0.1}})}},

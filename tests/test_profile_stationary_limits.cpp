@@ -27,8 +27,9 @@ const std::vector<Branch> kTwoBranches = {{1.0, 1.0}, {10.0, 0.01}}; // issue 32
 Case profile_case(Profile p, double beta_or_A, double n, double d) {
   Case c;
   c.indenter.profile = p;
-  (p == Profile::Cone ? c.indenter.beta : c.indenter.A) = beta_or_A;
-  c.indenter.n = p == Profile::Power ? n : 0.0;
+  (p == Profile::of<mdrmap::Cone>() ? c.indenter.as<mdrmap::Cone>().beta
+                                    : c.indenter.as<mdrmap::Power>().A) = beta_or_A;
+  c.indenter.as<mdrmap::Power>().n = p == Profile::of<mdrmap::Power>() ? n : 0.0;
   c.loading.d = d;
   c.rheology.G = 1.0;
   c.rheology.tau = 0.0;
@@ -68,11 +69,17 @@ TEST(ProfileStationaryLimits, GlassyLimitKeepsMuTimesVelocity) {
     Case c;
     std::vector<double> v;
   } rows[] = {
-      {"cone 10 deg", profile_case(Profile::Cone, 10.0, 0.0, 0.01), {1e8, 1e12, 1e14, 1e16, 1e18}},
-      {"power n = 1.5", profile_case(Profile::Power, 0.05, 1.5, 0.01), {1e8, 1e12, 1e16, 1e18}},
-      {"power n = 3", profile_case(Profile::Power, 0.5, 3.0, 0.01), {1e8, 1e12, 1e16, 1e18}},
+      {"cone 10 deg",
+       profile_case(Profile::of<mdrmap::Cone>(), 10.0, 0.0, 0.01),
+       {1e8, 1e12, 1e14, 1e16, 1e18}},
+      {"power n = 1.5",
+       profile_case(Profile::of<mdrmap::Power>(), 0.05, 1.5, 0.01),
+       {1e8, 1e12, 1e16, 1e18}},
+      {"power n = 3",
+       profile_case(Profile::of<mdrmap::Power>(), 0.5, 3.0, 0.01),
+       {1e8, 1e12, 1e16, 1e18}},
       {"cone 89.99999999999 deg",
-       profile_case(Profile::Cone, 89.99999999999, 0.0, 0.01),
+       profile_case(Profile::of<mdrmap::Cone>(), 89.99999999999, 0.0, 0.01),
        {100.0, 1e4, 1e10}},
   };
   for (const auto& r : rows) {
@@ -97,10 +104,12 @@ TEST(ProfileStationaryLimits, RelaxedLimitIsTheKelvinContactAndFast) {
     Case c;
     std::vector<double> v;
   } rows[] = {
-      {"cone 0.01 deg", profile_case(Profile::Cone, 0.01, 0.0, 0.01), {1e-6}},
-      {"cone 1e-6 deg", profile_case(Profile::Cone, 1e-6, 0.0, 0.01), {1e-6, 1e-2, 1.0}},
-      {"power n = 1.5", profile_case(Profile::Power, 0.05, 1.5, 0.01), {1e-6, 1e-4}},
-      {"power n = 3", profile_case(Profile::Power, 0.5, 3.0, 0.01), {1e-6, 1e-4}},
+      {"cone 0.01 deg", profile_case(Profile::of<mdrmap::Cone>(), 0.01, 0.0, 0.01), {1e-6}},
+      {"cone 1e-6 deg",
+       profile_case(Profile::of<mdrmap::Cone>(), 1e-6, 0.0, 0.01),
+       {1e-6, 1e-2, 1.0}},
+      {"power n = 1.5", profile_case(Profile::of<mdrmap::Power>(), 0.05, 1.5, 0.01), {1e-6, 1e-4}},
+      {"power n = 3", profile_case(Profile::of<mdrmap::Power>(), 0.5, 3.0, 0.01), {1e-6, 1e-4}},
   };
   const auto start = std::chrono::steady_clock::now();
   for (const auto& r : rows) {
@@ -127,10 +136,10 @@ TEST(ProfileStationaryLimits, RelaxedLimitIsTheKelvinContactAndFast) {
 // parabola's closed form with the same spectrum, across the whole range: at
 // v = 1e16 and beyond the direct friction integral had lost every digit.
 TEST(ProfileStationaryLimits, PowerTwoIsTheParabolaAtEveryVelocity) {
-  Case par = profile_case(Profile::Power, 0.0, 0.0, 0.05);
+  Case par = profile_case(Profile::of<mdrmap::Power>(), 0.0, 0.0, 0.05);
   par.indenter = mdrmap::Indenter{};
-  par.indenter.R = 2.0;
-  Case pow2 = profile_case(Profile::Power, 1.0 / (2.0 * 2.0), 2.0, 0.05);
+  par.indenter.as<mdrmap::Parabola>().R = 2.0;
+  Case pow2 = profile_case(Profile::of<mdrmap::Power>(), 1.0 / (2.0 * 2.0), 2.0, 0.05);
   for (double v : {1e-6, 1e-3, 1.0, 1e3, 1e8, 1e12, 1e16, 1e18}) {
     SCOPED_TRACE("v=" + std::to_string(v));
     const State p = mdrmap::spectrum_stationary(par, v);

@@ -39,19 +39,19 @@ const double kPi = boost::math::constants::pi<double>();
 
 Case cone_case(double beta, double d, double tau, double v, std::vector<Branch> b = {}) {
   Case c = mdrmap::step_case(d, 1.0, tau, v, v, 1.0, 1.0, 11);
-  c.indenter.R = 0.0;
-  c.indenter.profile = Profile::Cone;
-  c.indenter.beta = beta;
+  c.indenter.as<mdrmap::Parabola>().R = 0.0;
+  c.indenter.profile = Profile::of<mdrmap::Cone>();
+  c.indenter.as<mdrmap::Cone>().beta = beta;
   c.rheology.branches = std::move(b);
   return c;
 }
 
 Case power_case(double n, double A, double d, double tau, double v, std::vector<Branch> b = {}) {
   Case c = cone_case(10.0, d, tau, v, std::move(b));
-  c.indenter.profile = Profile::Power;
-  c.indenter.beta = 0.0;
-  c.indenter.n = n;
-  c.indenter.A = A;
+  c.indenter.profile = Profile::of<mdrmap::Power>();
+  c.indenter.as<mdrmap::Cone>().beta = 0.0;
+  c.indenter.as<mdrmap::Power>().n = n;
+  c.indenter.as<mdrmap::Power>().A = A;
   return c;
 }
 
@@ -235,10 +235,10 @@ TEST(ProfileStationary, UnderLoadMeetsTheLoadAndTheDepthState) {
 
 Case as_power(const Case& c) {
   Case p = c;
-  p.indenter.profile = Profile::Power;
-  p.indenter.n = 2.0;
-  p.indenter.A = 1.0 / (2.0 * c.indenter.R);
-  p.indenter.R = 0.0;
+  p.indenter.profile = Profile::of<mdrmap::Power>();
+  p.indenter.as<mdrmap::Power>().n = 2.0;
+  p.indenter.as<mdrmap::Power>().A = 1.0 / (2.0 * c.indenter.as<mdrmap::Parabola>().R);
+  p.indenter.as<mdrmap::Parabola>().R = 0.0;
   return p;
 }
 
@@ -347,7 +347,7 @@ std::string refused(const Case& c) {
 TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
   Case c = cone_case(10.0, 0.1, 1.0, 1.0);
   EXPECT_EQ(refused(c), "");
-  c.indenter.R = 2.0;
+  c.indenter.as<mdrmap::Parabola>().R = 2.0;
   EXPECT_EQ(refused(c), "R");
   for (double beta : {0.0, 90.0, -5.0, 120.0}) {
     c = cone_case(beta, 0.1, 1.0, 1.0);
@@ -358,10 +358,10 @@ TEST(ProfileModel, BadInputIsRefusedNamingTheOption) {
   p = power_case(1.0, 0.0, 0.1, 1.0, 1.0);
   EXPECT_EQ(refused(p), "A");
   p = power_case(2.0, 1.0, 0.1, 1.0, 1.0);
-  p.indenter.beta = 10.0;
+  p.indenter.as<mdrmap::Cone>().beta = 10.0;
   EXPECT_EQ(refused(p), "beta");
   Case par = mdrmap::step_case(0.1, 2.0, 1.0, 1.0, 1.0);
-  par.indenter.n = 2.0;
+  par.indenter.as<mdrmap::Power>().n = 2.0;
   EXPECT_EQ(refused(par), "n");
 }
 

@@ -54,7 +54,7 @@ TEST(RowKelvinCaseSet, SetSpansTheHardRanges) {
     const Case& c = nc.c;
     ASSERT_EQ(c.history.size(), 1u) << nc.name;
     ASSERT_EQ(c.sampling.samples, 201) << nc.name; // the default protocol
-    const double dr = c.loading.d / c.indenter.R;
+    const double dr = c.loading.d / c.indenter.as<Parabola>().R;
     if (c.rheology.tau == 0)
       tau0 = true;
     else
@@ -167,7 +167,7 @@ TEST(RowKelvinSimilarity, DimensionlessResultsDependOnZetaOnly) {
   o.rtol = 1e-12; // the trailing edge located to 1e-14 a1
   o.estimate_error = false;
   const auto r0 = run_spectrum(base, o);
-  const double d0 = base.loading.d, R0 = base.indenter.R, G0 = base.rheology.G;
+  const double d0 = base.loading.d, R0 = base.indenter.as<Parabola>().R, G0 = base.rheology.G;
   const double tau0 = base.rheology.tau, a10 = analytic::a1(base);
   const double scales[][4] = {{1e-4, 3.0, 7.0, 1e3}, {1e3, 1e-2, 1e6, 1e-3}, {0.3, 20.0, 2.0, 5.0}};
   for (const auto& k : scales) {
@@ -217,7 +217,7 @@ TEST(RowKelvinHardCases, NoNaNNoBlowUp) {
   const Case base = scene(1.0, 0.5);
   for (double v1 : {0.0, 0.01, 10.0}) {
     // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
-    const Case c = step_case(base.loading.d, base.indenter.R, 0.0, base.history.v0, v1,
+    const Case c = step_case(base.loading.d, base.indenter.as<Parabola>().R, 0.0, base.history.v0, v1,
                              base.rheology.G, 0.0, 11);
     testing::expect_row_hertz_throughout(c);
   }

@@ -104,7 +104,7 @@ TEST(RowKelvinHistoryTangency, ContactGrowsFromTheTangencyAfterAHoldStarts) {
   Case c = history(1.0, {{0.0, 1.0}}, 41);
   c.sampling.spacing = Spacing::Log;
   c.sampling.decades = 8.0;
-  const long double R = c.indenter.R, a1 = c.a1(), tau = c.rheology.tau;
+  const long double R = c.indenter.as<Parabola>().R, a1 = c.a1(), tau = c.rheology.tau;
   const long double L = c.history.v0 * c.rheology.tau;
   const long double a2 = analytic::a2_stationary(c, c.history.v0), ha2 = (a1 - a2) * (a1 + a2) / R;
   SpectrumOptions o;

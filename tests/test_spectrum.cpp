@@ -473,7 +473,8 @@ TEST(SpectrumShift, TheShiftedMaterialIsTheTwinAtScaledVelocities) {
   const auto set = spectrum_case_set();
   std::vector<Case> cases = {set[1].c, set[6].c, testing::history_case(1.0, {{0.1, 2.0}}, 21)};
   Case load = set[0].c;
-  load.loading.F0 = 16.0 / 3.0 * load.rheology.G * std::pow(load.a1(), 3) / load.indenter.R;
+  load.loading.F0 =
+      16.0 / 3.0 * load.rheology.G * std::pow(load.a1(), 3) / load.indenter.as<Parabola>().R;
   load.loading.d = 0.0;
   cases.push_back(load);
   for (const Case& c : cases)

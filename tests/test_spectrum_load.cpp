@@ -43,9 +43,9 @@ Rheology six_terms() { // tau = 0, six equal terms a decade apart, 1e-3 .. 1e2
 /// segments (w / v0, T / t_ref); t_ref = 1 (tau_1 of the SLS, tau of Kelvin).
 Case load_case(const Rheology& r, double zeta0, const Segs& segs, long samples = 21) {
   Case c;
-  c.indenter.R = 2.0;
+  c.indenter.as<Parabola>().R = 2.0;
   c.rheology = r;
-  c.loading.F0 = 1e-3 * r.G * c.indenter.R * c.indenter.R;
+  c.loading.F0 = 1e-3 * r.G * c.indenter.as<Parabola>().R * c.indenter.as<Parabola>().R;
   c.history.v0 = zeta0 * c.a0();
   for (const auto& [w, T] : segs)
     c.history.segments.push_back(Segment{w * c.history.v0, T});
@@ -265,7 +265,7 @@ TEST(DISABLED_SpectrumLoadBench, MillisecondsPerCase) {
 // element's work past its budget.
 TEST(SpectrumLoadBudget, AStiffBranchStopsWithinItsBudget) {
   Case c;
-  c.indenter.R = 10.0;
+  c.indenter.as<Parabola>().R = 10.0;
   c.rheology = material(1.0, 0.0, {{1e12, 1.0}});
   c.loading.F0 = 0.05;
   c.history.v0 = 1.0;

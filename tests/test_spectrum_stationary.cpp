@@ -41,7 +41,7 @@ Rheology rheology(double G, double tau, std::vector<Branch> b) {
 
 Case depth_case(const Rheology& r, double d = 0.02, double R = 3.0) {
   Case c;
-  c.indenter.R = R;
+  c.indenter.as<mdrmap::Parabola>().R = R;
   c.rheology = r;
   c.loading.d = d;
   return c;
@@ -49,7 +49,7 @@ Case depth_case(const Rheology& r, double d = 0.02, double R = 3.0) {
 
 Case load_case(const Rheology& r, double F0 = 0.7, double R = 3.0) {
   Case c;
-  c.indenter.R = R;
+  c.indenter.as<mdrmap::Parabola>().R = R;
   c.rheology = r;
   c.loading.F0 = F0;
   return c;
@@ -105,7 +105,7 @@ struct Reference {
   Reference(const Case& c, double w) {
     const Rheology r = c.rheology.shifted();
     a1 = static_cast<ld>(c.a1());
-    R = c.indenter.R;
+    R = c.indenter.as<mdrmap::Parabola>().R;
     G = r.G;
     L = static_cast<ld>(w) * static_cast<ld>(r.tau);
     Ge = G;
@@ -262,7 +262,7 @@ TEST(SpectrumStationary, ClosedFormMatchesQuadrature) {
 TEST(SpectrumStationary, ElasticLimits) {
   for (const Rheology& r : spectra()) {
     const Case c = depth_case(r);
-    const double a1 = c.a1(), R = c.indenter.R, d = c.loading.d;
+    const double a1 = c.a1(), R = c.indenter.as<mdrmap::Parabola>().R, d = c.loading.d;
     const double hertz = 16.0 / 3.0 * std::sqrt(R) * std::pow(d, 1.5);
     // at rest the branches have relaxed: elastic with G
     const State rest = mdrmap::spectrum_stationary(c, 0.0);
@@ -296,7 +296,7 @@ TEST(SpectrumStationary, NoSecondContactBehindTheTrailingEdge) {
   for (const Rheology& r : spectra())
     for (double zeta : {0.03, 0.3, 3.0}) {
       const Case c = depth_case(r);
-      const double a1 = c.a1(), R = c.indenter.R;
+      const double a1 = c.a1(), R = c.indenter.as<mdrmap::Parabola>().R;
       const double w = zeta * a1 / r.branches[0].tau;
       const State st = mdrmap::spectrum_stationary(c, w);
       const std::size_t N = r.branches.size();
@@ -374,7 +374,7 @@ TEST(SpectrumStationary, UnderLoad) {
       const double w = std::pow(10.0, e) * c.a0() / r.branches[0].tau;
       const State st = mdrmap::spectrum_stationary_load(c, w);
       EXPECT_LT(rel(st.FN, c.loading.F0), 4e-15) << "e = " << e;
-      EXPECT_LT(rel(st.a1, std::sqrt(c.indenter.R * st.d)), 1e-15);
+      EXPECT_LT(rel(st.a1, std::sqrt(c.indenter.as<mdrmap::Parabola>().R * st.d)), 1e-15);
     }
 }
 
@@ -413,7 +413,7 @@ TEST(Creep, StandardLinearSolidIsTheTextbookFormula) {
 
 TEST(Creep, KelvinDepthIsTheSeedFormula) {
   Case c = load_case(rheology(1.3, 0.7, {}));
-  const double d0 = c.a0() * c.a0() / c.indenter.R;
+  const double d0 = c.a0() * c.a0() / c.indenter.as<mdrmap::Parabola>().R;
   for (double t : {1e-8, 0.1, 0.7, 5.0, 50.0}) {
     const double want = d0 * std::cbrt(std::pow(-std::expm1(-t / 0.7), 2.0));
     EXPECT_LT(rel(mdrmap::creep_depth(c, t), want), 4e-15) << "t = " << t;
@@ -483,7 +483,7 @@ struct Peak {
 
 Peak friction_peak(const Rheology& r, double tau_ref) {
   const Case c = load_case(r);
-  const double a0 = c.a0(), scale = a0 / c.indenter.R;
+  const double a0 = c.a0(), scale = a0 / c.indenter.as<mdrmap::Parabola>().R;
   auto neg_mu = [&](double lg) {
     const double w = std::pow(10.0, lg) * a0 / tau_ref;
     const double mu = r.kelvin() ? mdrmap::stationary_under_load(c, w).mu

@@ -39,11 +39,11 @@ Case steady_case(const Family& f, double zeta) {
   c.rheology = f.three_terms ? material(1.0, 0.05, {{3.0, 1.0}, {3.0, 0.1}, {3.0, 0.01}})
                              : material(1.0, 0.0, {{9.0, 1.0}});
   if (f.power) {
-    c.indenter.profile = Profile::Power;
-    c.indenter.n = 3.0;
-    c.indenter.A = 0.01;
+    c.indenter.profile = Profile::of<Power>();
+    c.indenter.as<Power>().n = 3.0;
+    c.indenter.as<Power>().A = 0.01;
   } else {
-    c.indenter.R = 10.0;
+    c.indenter.as<Parabola>().R = 10.0;
   }
   const double d = 0.1;
   const double a1 = c.indenter.contact_radius(d);

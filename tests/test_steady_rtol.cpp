@@ -35,10 +35,10 @@ Case steady_case(const Material& m, bool power, bool load, double zeta) {
   Case c = step_case(0.1, 10.0, m.tau, 1.0, 1.0);
   c.rheology.branches = m.branches;
   if (power) {
-    c.indenter.profile = Profile::Power;
-    c.indenter.R = 0.0;
-    c.indenter.n = 3.0;
-    c.indenter.A = 0.1;
+    c.indenter.profile = Profile::of<Power>();
+    c.indenter.as<Parabola>().R = 0.0;
+    c.indenter.as<Power>().n = 3.0;
+    c.indenter.as<Power>().A = 0.1;
   }
   const double a1 = c.a1();
   c.history.v0 = zeta * a1; // the branches' tau_k = 1 sets v tau_k / a1

@@ -128,9 +128,9 @@ std::string case_usage(bool history) {
     if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
   }
   std::string alternatives;
-  for (const Profile kind : kProfiles) {
+  for (const Profile kind : all_profiles()) {
     std::string alt =
-        kind == Profile::Parabola ? "" : std::string("--profile ") + profile_name(kind);
+        kind == Profile::of<Parabola>() ? "" : std::string("--profile ") + profile_name(kind);
     for (const auto& p : case_parameters())
       if (p.required && p.profile && std::string(p.profile) == profile_name(kind))
         alt += (alt.empty() ? "--" : " --") + std::string(p.name) + " " + p.symbol;

@@ -290,7 +290,7 @@ void require_one_of_each_group(const Values& o) {
 /// default_step_duration of any profile: 6 tau, or for tau = 0 six contact
 /// half-widths a at the slower speed (the parabola's arithmetic as the seed's).
 double default_window(const Indenter& ind, double a, double d, double tau, double v, double v1) {
-  if (ind.parabolic()) return default_step_duration(d, ind.R, tau, v, v1);
+  if (ind.parabolic()) return default_step_duration(d, ind.as<Parabola>().R, tau, v, v1);
   if (tau > 0.0) return 6.0 * tau;
   return 6.0 * a / ((v1 > 0.0) ? std::min(v, v1) : v);
 }
@@ -545,7 +545,8 @@ OptionValues canonical_values(const OptionValues& values,
 }
 
 CaseInput read_canonical(const Values& o) {
-  const Profile profile = o.has("profile") ? parse_profile(o.text("profile")) : Profile::Parabola;
+  const Profile profile =
+      o.has("profile") ? parse_profile(o.text("profile")) : Profile::of<Parabola>();
   require_options(o, profile);
   CaseInput in;
   in.c.indenter.profile = profile;
@@ -601,7 +602,8 @@ CaseInput read_part(const Values& o, const OptionValues& given, Part part) {
   CaseInput in;
   Case& c = in.c;
   if (part == Part::Indenter) {
-    c.indenter.profile = o.has("profile") ? parse_profile(o.text("profile")) : Profile::Parabola;
+    c.indenter.profile =
+        o.has("profile") ? parse_profile(o.text("profile")) : Profile::of<Parabola>();
     require_profile_options(o, c.indenter.profile);
   }
   const auto in_part = [&](const ParamSpec& p) {

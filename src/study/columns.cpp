@@ -373,7 +373,7 @@ void order_columns(std::vector<Axis>& axes, const std::string& where, Profile pr
     if (!at[slot_rank(r)] && slots()[r].required(profile))
       throw ConfigError(std::string("grid.") + slots()[r].params.front()->name,
                         where + "no " + slots()[r].names() + "; " + needed(profile) +
-                            (profile == Profile::Parabola
+                            (profile == Profile::of<Parabola>()
                                  ? std::string()
                                  : std::string(" (the ") + profile_name(profile) + ")"));
   check_spectrum(at, where);

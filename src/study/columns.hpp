@@ -57,7 +57,7 @@ std::vector<std::string> history_names(std::size_t k);
 /// every segment 1..K exactly one velocity and one duration. `where` locates
 /// a message. Throws ConfigError naming the column.
 void order_columns(std::vector<Axis>& axes, const std::string& where,
-                   Profile profile = Profile::Parabola);
+                   Profile profile = Profile::of<Parabola>());
 
 /// The shape text "F0 3 x R 1 x ..." of a grid.
 std::string grid_shape(const StudyConfig& c);

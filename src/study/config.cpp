@@ -233,7 +233,7 @@ std::string canonical_run(const RunSettings& r) {
          (r.wlf ? "wlf = " + format_wlf(*r.wlf) + unit_suffix(r.wlf_unit) + "\n"
                 : std::string()) + // where given only
          (r.allow_large_shift ? "allow_large_shift = true\n" : std::string()) +
-         (r.profile != Profile::Parabola
+         (r.profile != Profile::of<Parabola>()
               ? std::string("profile = ") + profile_name(r.profile) + "\n"
               : std::string()) + // the parabola's config as before
          canonical_card(r.material_text);

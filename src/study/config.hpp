@@ -111,13 +111,14 @@ struct RunSettings {
   double rtol = 1e-4;
   std::string solver = "auto";
   bool timeseries = false;
-  std::optional<Wlf> wlf;              ///< the WLF constants of a temperature column
-  TempUnit wlf_unit = TempUnit::None;  ///< TREF's (and the temperature column's) unit
-  bool allow_large_shift = false;      ///< take |log10 aT| > 12 of a temperature
-  Profile profile = Profile::Parabola; ///< the indenter of every case; its parameters are columns
-  std::string material;      ///< [run] material: the card's path, resolved ("" without one)
-  std::string material_text; ///< the card's text (the map's /provenance/material_card)
-  bool card_wlf = false;     ///< wlf is the card's *TRS (no [run] wlf of its own)
+  std::optional<Wlf> wlf;             ///< the WLF constants of a temperature column
+  TempUnit wlf_unit = TempUnit::None; ///< TREF's (and the temperature column's) unit
+  bool allow_large_shift = false;     ///< take |log10 aT| > 12 of a temperature
+  Profile profile =
+      Profile::of<Parabola>(); ///< the indenter of every case; its parameters are columns
+  std::string material;        ///< [run] material: the card's path, resolved ("" without one)
+  std::string material_text;   ///< the card's text (the map's /provenance/material_card)
+  bool card_wlf = false;       ///< wlf is the card's *TRS (no [run] wlf of its own)
 };
 
 struct StudyConfig {

@@ -105,7 +105,7 @@ std::vector<ConfigKey> run_keys() {
   const ParamSpec& decades = *find_parameter("log-decades");
   const ParamSpec& G = *find_parameter("G");
   const std::string solvers = choices(kSolverKinds, solver_name);
-  const std::string profiles = choices(kProfiles, profile_name);
+  const std::string profiles = choices(all_profiles(), profile_name);
   return {
       {"run", "samples", "N", "count", "an integer from 2 to " + format_number(kMaxRunSamples),
        "default " + std::to_string(d.samples), "output instants per segment"},

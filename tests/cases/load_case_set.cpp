@@ -15,10 +15,11 @@ namespace {
 NamedCase history(const std::string& name, double zeta0, double F0_over_GR2,
                   const std::vector<std::pair<double, double>>& segs, double tau, long samples) {
   Case c;
-  c.indenter.R = 2.0;
+  c.indenter.as<Parabola>().R = 2.0;
   c.rheology.G = 1.0;
   c.rheology.tau = tau;
-  c.loading.F0 = F0_over_GR2 * c.rheology.G * c.indenter.R * c.indenter.R;
+  c.loading.F0 =
+      F0_over_GR2 * c.rheology.G * c.indenter.as<Parabola>().R * c.indenter.as<Parabola>().R;
   const double a0 = c.a0();
   c.history.v0 = tau > 0.0 ? zeta0 * a0 / tau : 1.0;
   const double t_unit = tau > 0.0 ? tau : a0 / c.history.v0;

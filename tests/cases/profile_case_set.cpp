@@ -18,15 +18,10 @@ struct NamedProfile {
 };
 
 std::vector<NamedProfile> profiles() {
-  Indenter cone10, cone45, n15, n3;
-  cone10.profile = cone45.profile = Profile::Cone;
-  cone10.beta = 10.0;
-  cone45.beta = 45.0;
-  n15.profile = n3.profile = Profile::Power;
-  n15.n = 1.5;
-  n3.n = 3.0;
-  n15.A = n3.A = 1.0;
-  return {{"cone 10deg", cone10}, {"cone 45deg", cone45}, {"power n=1.5", n15}, {"power n=3", n3}};
+  return {{"cone 10deg", Cone{10.0}},
+          {"cone 45deg", Cone{45.0}},
+          {"power n=1.5", Power{1.5, 1.0}},
+          {"power n=3", Power{3.0, 1.0}}};
 }
 
 /// The history (w / v0, T / t_ref) at zeta0 on the profile and material.
@@ -65,7 +60,7 @@ std::vector<NamedCase> profile_case_set(long samples) {
       add("Kelvin step up 10x", kelvin, 0.03, {{10.0, 2.0}});
       add("Kelvin drop-hold-reslide", kelvin, 0.3, three);
       add("SLS G0/G=10 drop-hold-reslide", sls, 0.3, three);
-      if (ind.profile == Profile::Cone && ind.beta == 10.0) {
+      if (ind.is<Cone>() && ind.as<Cone>().beta == 10.0) {
         // across v tau = a1: the rear face in contact at 0.3, free at 3
         add("Kelvin step down 10x across v tau = a", kelvin, 3.0, {{0.1, 3.0}});
         add("Kelvin step up 10x across v tau = a", kelvin, 0.3, {{10.0, 2.0}});

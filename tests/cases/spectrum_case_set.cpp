@@ -19,12 +19,12 @@ Rheology material(double G, double tau, const std::vector<std::pair<double, doub
 Case spectrum_history(const Rheology& r, bool load, double zeta0,
                       const std::vector<std::pair<double, double>>& segs, long samples) {
   Case c;
-  c.indenter.R = 2.0;
+  c.indenter.as<Parabola>().R = 2.0;
   c.rheology = r;
   if (load)
-    c.loading.F0 = 1e-3 * r.G * c.indenter.R * c.indenter.R;
+    c.loading.F0 = 1e-3 * r.G * c.indenter.as<Parabola>().R * c.indenter.as<Parabola>().R;
   else
-    c.loading.d = 1e-3 * c.indenter.R;
+    c.loading.d = 1e-3 * c.indenter.as<Parabola>().R;
   const double t_ref = r.longest_time() / r.aT;
   c.history.v0 = zeta0 * c.edge_scale() / t_ref;
   for (const auto& [w, T] : segs)

@@ -88,9 +88,10 @@ part_limit() {
   code=0
   (
     # 16 MiB (Open MPI itself needs some: its shared-memory files obey the
-    # limit too); the map with time series needs about 88 MiB
+    # limit too); the map with time series of 1001 samples needs far more
     ulimit -f 16384
-    "$MPIEXEC" -np 2 "$MDRMAP" study --quiet --config "$config" --output "$out" --timeseries true
+    "$MPIEXEC" -np 2 "$MDRMAP" study --quiet --config "$config" --output "$out" --timeseries true \
+      --samples 1001
   ) 2>"$dir/limited.err" || code=$?
   line=$(mdrmap_lines "$dir/limited.err")
   [[ $code == 2 ]] || fail "ulimit -f: exit $code (expected 2): $(cat "$dir/limited.err")"
@@ -108,14 +109,15 @@ part_small_fs() {
     exit 77
   fi
   trap 'umount "$mnt" 2>/dev/null || true' EXIT
-  # a map that cannot fit (the reference config with time series: ~90 MiB)
+  # a map that cannot fit (the reference config with time series of 1001
+  # samples: far more than 16 MiB)
   out="$mnt/too_big.h5"
-  run "$out" "$dir/too_big.err" 2 -- --timeseries true
+  run "$out" "$dir/too_big.err" 2 -- --timeseries true --samples 1001
   line=$(mdrmap_lines "$dir/too_big.err")
   [[ $code == 2 ]] || fail "small fs: exit $code (expected 2): $(cat "$dir/too_big.err")"
   grep -q "free" <<<"$line" || fail "small fs: message: $line"
   [[ -z $(ls -A "$mnt") ]] || fail "small fs: files written: $(ls -A "$mnt")"
-  echo "16 MiB file system, 90 MiB map: $line"
+  echo "16 MiB file system, a larger map: $line"
   # a map that fits, stopped by a fault, then the disk fills up
   out="$mnt/filled.h5"
   run "$out" "$dir/filled.err" 2 -x LD_PRELOAD="$shim" -x MDRMAP_FAULT_PATH="$out" -x MDRMAP_FAULT_SKIP=300 --

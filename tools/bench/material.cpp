@@ -53,7 +53,7 @@ Case stretched(Case c, double stretch) {
 
 Case elastomer(double F0, double d, std::vector<Segment> segments) {
   Case c;
-  c.indenter.R = 0.05;
+  c.indenter.as<Parabola>().R = 0.05;
   c.rheology.G = 1.0;
   c.rheology.tau = 0.0;
   for (int k = -9; k <= 1; ++k)
@@ -90,7 +90,7 @@ std::vector<Branch> read_prony(const std::string& path) {
 
 Case pib(const std::vector<Branch>& terms, bool load) {
   Case c;
-  c.indenter.R = 1e-3;
+  c.indenter.as<Parabola>().R = 1e-3;
   c.rheology.G = 1e5;
   c.rheology.tau = 0.0;
   c.rheology.branches = terms;

@@ -48,7 +48,7 @@ struct Scene {
 Case three_segments(double tau, std::vector<Branch> branches) {
   Case c;
   c.loading.d = 0.1;
-  c.indenter.R = 10.0; // a1 = 1
+  c.indenter.as<Parabola>().R = 10.0; // a1 = 1
   c.rheology.G = 1.0;
   c.rheology.tau = tau;
   c.rheology.branches = std::move(branches);

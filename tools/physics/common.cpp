@@ -52,7 +52,7 @@ Rheology read_pib(const std::string& path, double G) {
 
 Case make_case(const Rheology& r, bool load) {
   Case c;
-  c.indenter.R = 1.0;
+  c.indenter.as<mdrmap::Parabola>().R = 1.0;
   c.rheology = r;
   if (load)
     c.loading.F0 = 16.0 / 3.0 * r.G;

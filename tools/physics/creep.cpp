@@ -75,7 +75,7 @@ double hereditary_error(const Case& c, double C, double lo, double hi, int per) 
 
 void creep_row(const char* name, const Rheology& r, std::ostream& csv) {
   const Case c = make_case(r, true);
-  const double C = 3.0 * c.loading.F0 / (16.0 * std::sqrt(c.indenter.R));
+  const double C = 3.0 * c.loading.F0 / (16.0 * std::sqrt(c.indenter.as<mdrmap::Parabola>().R));
   const double lo = 1e-4 * r.branches.front().tau, hi = 1e4 * r.branches.back().tau;
   const std::vector<double> t = logspace(lo, hi, 400);
   const std::vector<double> X = hereditary_X(r, C, t);

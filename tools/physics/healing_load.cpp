@@ -110,7 +110,7 @@ void material(const char* name, const std::string& label, const Rheology& r, dou
   for (int i = kLo * kPer; i <= kHi * kPer; ++i) {
     Hold p;
     p.t = std::pow(10.0, static_cast<double>(i) / kPer);
-    p.a1_creep = std::sqrt(load.indenter.R * creep_depth(load, p.t));
+    p.a1_creep = std::sqrt(load.indenter.as<mdrmap::Parabola>().R * creep_depth(load, p.t));
     p.depth = timed_shs(depth, p.t, rtol);
     p.load = timed_shs(load, p.t, rtol);
     csv_row(csv, label, "depth", p, p.depth);

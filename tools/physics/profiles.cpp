@@ -26,24 +26,15 @@ namespace {
 const double kBetas[] = {5.0, 10.0, 30.0};
 
 Indenter cone(double beta) {
-  Indenter i;
-  i.profile = Profile::Cone;
-  i.beta = beta;
-  return i;
+  return mdrmap::Cone{beta};
 }
 
 Indenter power(double n) {
-  Indenter i;
-  i.profile = Profile::Power;
-  i.n = n;
-  i.A = 1.0;
-  return i;
+  return mdrmap::Power{n, 1.0};
 }
 
 Indenter parabola() {
-  Indenter i;
-  i.R = 1.0;
-  return i;
+  return mdrmap::Parabola{1.0};
 }
 
 /// The Kelvin foundation G = tau = 1 at depth d = 1 or under F0 = 1.
@@ -157,7 +148,7 @@ void power_row(const Indenter& ind, double n, const std::vector<double>& x, std:
   for (bool load : {false, true}) {
     const Case c = kelvin_case(ind, load);
     std::ostringstream label;
-    label << (ind.profile == Profile::Parabola ? "parabola," : "power,") << n;
+    label << (ind.is<mdrmap::Parabola>() ? "parabola," : "power,") << n;
     const std::vector<double> mu = curve(c, x, csv, label.str());
     const auto [xs, ms] = maximum(c, x, mu);
     const Point p = std::isnan(xs) ? Point{NAN, NAN, NAN} : at(c, xs);

@@ -26,10 +26,10 @@ State contact_forces(const Case& c, double a2, double a1_minus_a2, double w) {
   State st;
   st.a2 = a2;
   // corrected eq. (9): 4G [ d (a1 + a2) - (a1^3 + a2^3)/(3R) + w tau (a1^2 - a2^2)/R ]
-  st.FN = 4.0 * c.rheology.G / c.indenter.R *
+  st.FN = 4.0 * c.rheology.G / c.indenter.as<Parabola>().R *
           ((2.0 / 3.0) * A * A * A + A * A * a2 - a2 * a2 * a2 / 3.0 + L * diff2);
   // corrected eq. (10): 8G/R^2 [ R d/2 (a1^2 - a2^2) - (a1^4 - a2^4)/4 + 2 w tau/3 (a1^3 + a2^3) ]
-  st.Fx = 8.0 * c.rheology.G / (c.indenter.R * c.indenter.R) *
+  st.Fx = 8.0 * c.rheology.G / (c.indenter.as<Parabola>().R * c.indenter.as<Parabola>().R) *
           (0.25 * diff2 * diff2 + (2.0 / 3.0) * L * (A * A * A + a2 * a2 * a2));
   st.mu = st.Fx / st.FN;
   st.d = c.loading.d;
@@ -42,21 +42,21 @@ State stationary(const Case& c, double w) {
 }
 
 double FN_inf(const Case& c, double w) {
-  const double d = c.loading.d, R = c.indenter.R, tau = c.rheology.tau;
+  const double d = c.loading.d, R = c.indenter.as<Parabola>().R, tau = c.rheology.tau;
   return 4.0 * c.rheology.G * ((2.0 / 3.0) * std::sqrt(R) * std::pow(d, 1.5) + tau * w * d);
 }
 
 double Fx_inf(const Case& c, double w) {
-  const double d = c.loading.d, R = c.indenter.R, tau = c.rheology.tau;
+  const double d = c.loading.d, R = c.indenter.as<Parabola>().R, tau = c.rheology.tau;
   return 4.0 * c.rheology.G * (0.5 * d * d + (4.0 / 3.0) * tau * w * d * std::sqrt(d / R));
 }
 
 double mu_inf(const Case& c) {
-  return (4.0 / 3.0) * std::sqrt(c.loading.d / c.indenter.R);
+  return (4.0 / 3.0) * std::sqrt(c.loading.d / c.indenter.as<Parabola>().R);
 }
 
 double mu_post_drop_limit(const Case& c) {
-  return 0.75 * std::sqrt(c.loading.d / c.indenter.R);
+  return 0.75 * std::sqrt(c.loading.d / c.indenter.as<Parabola>().R);
 }
 
 State jump(const Case& c, double v, double w) {
@@ -72,7 +72,7 @@ double a2_start_stop(const Case& c, double t) {
 
 double depth_at(const Case& c, double x) {
   const double A = a1(c);
-  return (A - x) * (A + x) / c.indenter.R;
+  return (A - x) * (A + x) / c.indenter.as<Parabola>().R;
 }
 
 } // namespace mdrmap::analytic

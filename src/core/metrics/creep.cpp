@@ -125,7 +125,7 @@ double creep_compliance(const Rheology& r, double t) {
 
 double creep_depth(const Case& c, double t) {
   const double J = creep_compliance(c.rheology, t);
-  const double x = 3.0 * c.loading.F0 * J / (16.0 * std::sqrt(c.indenter.R));
+  const double x = 3.0 * c.loading.F0 * J / (16.0 * std::sqrt(c.indenter.as<Parabola>().R));
   return std::cbrt(x * x);
 }
 

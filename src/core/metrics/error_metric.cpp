@@ -61,8 +61,9 @@ void load_errors(const Series& run, const Series& ref, const Case& c, CaseError&
 // difference of a cone or a power law)
 double friction_scale(const Case& c) {
   if (!c.indenter.parabolic()) return scales(c).friction;
-  const double d_scale = c.loading.by_force() ? c.a0() * c.a0() / c.indenter.R : c.loading.d;
-  return std::sqrt(d_scale / c.indenter.R);
+  const double d_scale =
+      c.loading.by_force() ? c.a0() * c.a0() / c.indenter.as<Parabola>().R : c.loading.d;
+  return std::sqrt(d_scale / c.indenter.as<Parabola>().R);
 }
 
 bool friction_resolved(const Case& c, double mu_max, double rtol) {

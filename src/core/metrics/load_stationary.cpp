@@ -61,7 +61,7 @@ double stationary_depth(const Case& c, double w) {
   const double a0 = c.a0();
   const double alpha = stationary_alpha(w * c.rheology.tau / a0);
   const double a1 = alpha * a0;
-  return a1 * (a1 / c.indenter.R);
+  return a1 * (a1 / c.indenter.as<Parabola>().R);
 }
 
 Case at_depth(const Case& c, double d) {

@@ -158,13 +158,13 @@ State at_edge(const Case& c, double a1, double w, profile::Budget& budget, bool 
 
 /// Power law with n = 2 and the parabola: g = c x^2, the parabola of R = 1/c.
 bool quadratic(const Indenter& i) {
-  return i.parabolic() || (i.profile == Profile::Power && i.n == 2.0);
+  return i.visit([](const auto& s) { return s.quadratic(); });
 }
 
 Case as_parabola(const Case& c) {
   Case p = c;
-  p.indenter = Indenter{};
-  p.indenter.R = c.indenter.parabolic() ? c.indenter.R : 1.0 / c.indenter.coefficient();
+  p.indenter = Parabola{c.indenter.parabolic() ? c.indenter.as<Parabola>().R
+                                               : 1.0 / c.indenter.coefficient()};
   return p;
 }
 
@@ -187,7 +187,8 @@ double cone_kelvin_edge(const Case& c, double w) {
 
 /// The leading edge of stationary sliding under load: F_N grows with a1.
 double load_edge(const Case& c, double w, profile::Budget& budget) {
-  if (c.indenter.profile == Profile::Cone && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
+  const bool linear = c.indenter.visit([](const auto& s) { return s.linear(); });
+  if (linear && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
   const double F0 = c.loading.F0;
   auto f = [&](double a1) { return at_edge(c, a1, w, budget, false).FN / F0 - 1.0; };
   double lo = c.a0(), hi = lo;

@@ -198,14 +198,14 @@ void check_velocity(double w) {
 
 State spectrum_stationary(const Case& c, double w) {
   check_velocity(w);
-  State st = solve(c.rheology.shifted(), c.indenter.R, c.a1(), w);
+  State st = solve(c.rheology.shifted(), c.indenter.as<Parabola>().R, c.a1(), w);
   st.d = c.loading.d;
   return st;
 }
 
 double spectrum_stationary_depth(const Case& c, double w) {
   check_velocity(w);
-  const double F0 = c.loading.F0, R = c.indenter.R;
+  const double F0 = c.loading.F0, R = c.indenter.as<Parabola>().R;
   if (!(F0 > 0.0) || !std::isfinite(F0))
     throw std::invalid_argument("spectrum_stationary_depth: the case needs a load F0 > 0");
   const Rheology r = c.rheology.shifted();

@@ -165,12 +165,9 @@ void check_velocities(const Case& c, double a) {
 /// before the contact radius of the case's loading and profile.
 std::string contact_radius_words(const Case& c) {
   const bool load = c.loading.by_force();
-  if (c.indenter.parabolic())
-    return load ? "with R and G gives a Hertz radius a0 = "
-                : "with R gives a contact radius sqrt(R d) = ";
-  const std::string p = c.indenter.profile == Profile::Cone ? "beta" : "n and A";
-  return load ? "with G and the profile's " + p + " gives a Hertz radius a0 = "
-              : "with the profile's " + p + " gives a contact radius a1 = ";
+  return c.indenter.visit([load](const auto& s) -> std::string {
+    return load ? s.load_radius_words : s.depth_radius_words;
+  });
 }
 
 // Derived scales must be representable: the contact radius a (a1 = sqrt(R d),
@@ -298,7 +295,7 @@ Case step_case(double d, double R, double tau, double v, double v1, double G, do
                long samples) {
   Case c;
   c.loading.d = d;
-  c.indenter.R = R;
+  c.indenter = Parabola{R};
   c.rheology.tau = tau;
   c.rheology.G = G;
   c.history.v0 = v;

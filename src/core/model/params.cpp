@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 namespace mdrmap {
 namespace {
@@ -16,30 +18,6 @@ double get_d(const Case& c) {
 }
 void set_d(Case& c, double x) {
   c.loading.d = x;
-}
-double get_R(const Case& c) {
-  return c.indenter.R;
-}
-void set_R(Case& c, double x) {
-  c.indenter.R = x;
-}
-double get_beta(const Case& c) {
-  return c.indenter.beta;
-}
-void set_beta(Case& c, double x) {
-  c.indenter.beta = x;
-}
-double get_n(const Case& c) {
-  return c.indenter.n;
-}
-void set_n(Case& c, double x) {
-  c.indenter.n = x;
-}
-double get_A(const Case& c) {
-  return c.indenter.A;
-}
-void set_A(Case& c, double x) {
-  c.indenter.A = x;
 }
 double get_tau(const Case& c) {
   return c.rheology.tau;
@@ -83,6 +61,39 @@ double get_F0(const Case& c) {
 void set_F0(Case& c, double x) {
   c.loading.F0 = x;
 }
+// A shape's parameter I, read and set whatever the case's profile.
+template <class S, std::size_t I> double get_shape(const Case& c) {
+  return c.indenter.as<S>().*(S::parameters()[I].member);
+}
+template <class S, std::size_t I> void set_shape(Case& c, double x) {
+  c.indenter.as<S>().*(S::parameters()[I].member) = x;
+}
+
+template <class S, std::size_t... I>
+void add_shape(std::vector<ParamSpec>& table, std::index_sequence<I...>) {
+  constexpr auto ps = S::parameters();
+  (table.push_back(ParamSpec{ps[I].name, ps[I].symbol, Part::Indenter, ps[I].dim, ps[I].lo,
+                             ps[I].lo_inclusive, ps[I].hi, true, nullptr, 0.0, ps[I].meaning,
+                             get_shape<S, I>, set_shape<S, I>, S::name, ps[I].hi_inclusive}),
+   ...);
+}
+
+/// The parameters of the shapes numbered from..to-1, in the table's order.
+template <std::size_t... K>
+void add_shapes(std::vector<ParamSpec>& table, std::size_t from, std::size_t to,
+                std::index_sequence<K...>) {
+  auto add = [&](auto shape, std::size_t k) {
+    using S = decltype(shape);
+    if (k >= from && k < to)
+      add_shape<S>(table, std::make_index_sequence<S::parameters().size()>());
+  };
+  (add(std::tuple_element_t<K, Shapes>{}, K), ...);
+}
+
+void add_shapes(std::vector<ParamSpec>& table, std::size_t from, std::size_t to) {
+  add_shapes(table, from, to, std::make_index_sequence<kShapeCount>());
+}
+
 double no_get(const Case&) {
   return 0.0;
 }
@@ -132,41 +143,38 @@ void ParamSpec::refuse(double x) const {
 }
 
 const std::vector<ParamSpec>& case_parameters() {
-  static const std::vector<ParamSpec> table = {
-      {"d", "D", Part::Loading, Dim::Length, 0.0, false, kInf, false, "loading", 0.0,
-       "indentation depth (depth control)", get_d, set_d},
-      {"F0", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
-       "prescribed normal load (load control: the depth follows it)", get_F0, set_F0},
-      {"R", "R", Part::Indenter, Dim::Length, 0.0, false, kInf, true, nullptr, 0.0,
-       "radius of curvature of the parabolic indenter (--profile parabola)", get_R, set_R,
-       "parabola"},
-      {"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, nullptr, 0.0,
-       "relaxation time eta/G of the foundation's dashpot; 0 is the purely elastic limit (with "
-       "--prony: no parallel dashpot)",
-       get_tau, set_tau},
-      {"G", "G", Part::Material, Dim::Stress, 0.0, false, kInf, false, nullptr, 1.0,
-       "long-term shear modulus of the foundation (with --prony: the rubbery modulus)", get_G,
-       set_G},
-      {"aT", "A", Part::Material, Dim::Number, 0.0, false, kInf, false, nullptr, 1.0,
-       "time-temperature shift factor: multiplies tau and every relaxation time of --prony", get_aT,
-       set_aT},
-      {"v", "V0", Part::History, Dim::Velocity, 0.0, false, kInf, true, nullptr, 0.0,
-       "sliding velocity of the stationary sliding before t = 0", get_v0, set_v0},
-      {"beta", "DEG", Part::Indenter, Dim::Number, 0.0, false, 90.0, true, nullptr, 0.0,
-       "angle between the cone's surface and the plane, in degrees (--profile cone)", get_beta,
-       set_beta, "cone", false},
-      {"n", "N", Part::Indenter, Dim::Number, 1.0, true, 100.0, true, nullptr, 0.0,
-       "exponent of the power-law profile f(r) = A r^n (--profile power)", get_n, set_n, "power"},
-      {"A", "A", Part::Indenter, Dim::Number, 0.0, false, kInf, true, nullptr, 0.0,
-       "coefficient of the power-law profile f(r) = A r^n, in length^(1-n) (--profile power)",
-       get_A, set_A, "power"},
-      {"samples", "N", Part::Sampling, Dim::Count, 2.0, true, static_cast<double>(kMaxSamples),
-       false, nullptr, 201.0, "output instants per segment, from its start to its end", get_samples,
-       set_samples},
-      {"log-decades", "D", Part::Sampling, Dim::Number, 0.0, false, 300.0, false, nullptr, 4.0,
-       "with --spacing log: the first instant after a segment's start is T 10^-D", get_decades,
-       set_decades},
-  };
+  // the loading, the first shape's parameters (the seed's d, R, tau, v), the
+  // material and the history, the other shapes', the sampling
+  static const std::vector<ParamSpec> table = [] {
+    std::vector<ParamSpec> t = {
+        {"d", "D", Part::Loading, Dim::Length, 0.0, false, kInf, false, "loading", 0.0,
+         "indentation depth (depth control)", get_d, set_d},
+        {"F0", "F0", Part::Loading, Dim::Force, 0.0, false, kInf, false, "loading", 0.0,
+         "prescribed normal load (load control: the depth follows it)", get_F0, set_F0}};
+    add_shapes(t, 0, 1);
+    t.insert(t.end(),
+             {{"tau", "TAU", Part::Material, Dim::Time, 0.0, true, kInf, true, nullptr, 0.0,
+               "relaxation time eta/G of the foundation's dashpot; 0 is the purely elastic limit "
+               "(with --prony: no parallel dashpot)",
+               get_tau, set_tau},
+              {"G", "G", Part::Material, Dim::Stress, 0.0, false, kInf, false, nullptr, 1.0,
+               "long-term shear modulus of the foundation (with --prony: the rubbery modulus)",
+               get_G, set_G},
+              {"aT", "A", Part::Material, Dim::Number, 0.0, false, kInf, false, nullptr, 1.0,
+               "time-temperature shift factor: multiplies tau and every relaxation time of --prony",
+               get_aT, set_aT},
+              {"v", "V0", Part::History, Dim::Velocity, 0.0, false, kInf, true, nullptr, 0.0,
+               "sliding velocity of the stationary sliding before t = 0", get_v0, set_v0}});
+    add_shapes(t, 1, kShapeCount);
+    t.insert(t.end(),
+             {{"samples", "N", Part::Sampling, Dim::Count, 2.0, true,
+               static_cast<double>(kMaxSamples), false, nullptr, 201.0,
+               "output instants per segment, from its start to its end", get_samples, set_samples},
+              {"log-decades", "D", Part::Sampling, Dim::Number, 0.0, false, 300.0, false, nullptr,
+               4.0, "with --spacing log: the first instant after a segment's start is T 10^-D",
+               get_decades, set_decades}});
+    return t;
+  }();
   return table;
 }
 

@@ -12,10 +12,6 @@
 
 namespace mdrmap {
 
-/// Physical dimension, in the user's consistent units.
-/// WallClock: wall-clock time in seconds (an output's, never a case parameter's).
-enum class Dim { Length, Time, Velocity, Stress, Force, Count, Number, WallClock };
-
 /// "length", "time", "length/time", "force/length^2", "count", "number",
 /// "wall-clock time".
 const char* dim_name(Dim d);
@@ -63,8 +59,9 @@ struct ParamSpec {
   [[noreturn]] void refuse(double x) const;
 };
 
-/// The scalar parameters of a case: the loading, the parabola's R and the
-/// material, the history's v0, the other profiles' parameters (beta, n, A),
+/// The scalar parameters of a case: the loading, the first shape's (the
+/// parabola's R) and the material, the history's v0, the other shapes'
+/// parameters (beta, n, A: each shape declares its own, core/model/shapes/),
 /// then the sampling. (The help texts group them by `part`, in this order
 /// within a part.)
 const std::vector<ParamSpec>& case_parameters();

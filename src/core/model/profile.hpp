@@ -1,81 +1,157 @@
 #pragma once
-// The indenter: a rigid axisymmetric profile f(r) = A r^n and its MDR image
-// g(x) = kappa_n A |x|^n, kappa_n = sqrt(pi) Gamma(n/2 + 1) / Gamma(n/2 + 1/2)
-// (docs/design.md, "Indenter profiles"). Three kinds:
-//   parabola  f = r^2 / 2R (n = 2, A = 1/(2R)): g = x^2 / R, as the seed
-//   cone      beta the angle between its surface and the plane (n = 1,
-//             A = tan beta): g = (pi/2) tan(beta) |x|
-//   power     n >= 1, A > 0
-// The parabola's arithmetic is the seed's (x * x / R, sqrt(R) sqrt(d)), bit
-// for bit; the other kinds use c = kappa_n A and the exponent n.
-#include <cmath>
+// The indenter: a rigid axisymmetric profile and its MDR image g(x)
+// (docs/design.md, "Indenter profiles"). Each shape is one class in one file
+// of core/model/shapes/ (its name, its parameters with their ranges and help
+// texts, and its image(): g, g', the contact radius, the elastic force and
+// its radius, the kink at the tip and the integrals the element row needs);
+// the table below lists them, and everything else asks the indenter (or
+// visits its shape) instead of naming a shape.
+#include <array>
+#include <cstddef>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "core/model/shapes/cone.hpp"
+#include "core/model/shapes/parabola.hpp"
+#include "core/model/shapes/power.hpp"
 
 namespace mdrmap {
 
-enum class Profile { Parabola, Cone, Power };
+/// The shapes, in the order of the help text; the first is the default.
+using Shapes = std::tuple<Parabola, Cone, Power>;
+inline constexpr std::size_t kShapeCount = std::tuple_size_v<Shapes>;
 
-/// Every kind, in the order of the help text.
-inline constexpr Profile kProfiles[] = {Profile::Parabola, Profile::Cone, Profile::Power};
+template <class S, class T = Shapes> struct is_shape;
+template <class S, class... T>
+struct is_shape<S, std::tuple<T...>> : std::disjunction<std::is_same<S, T>...> {};
+/// Whether S is one of the table's shapes.
+template <class S> inline constexpr bool is_shape_v = is_shape<S>::value;
+
+/// The MDR images of the shapes (a shape's image(): the parabola itself, the
+/// cone's and the power law's g = c |x|^n), each type once: what the element
+/// row holds and visits.
+template <class V, class T> struct WithImage;
+template <class... U, class T> struct WithImage<std::variant<U...>, T> {
+  using type =
+      std::conditional_t<(std::is_same_v<T, U> || ...), std::variant<U...>, std::variant<U..., T>>;
+};
+template <class V, class T> struct ImagesOf;
+template <class V> struct ImagesOf<V, std::tuple<>> { using type = V; };
+template <class V, class S, class... R> struct ImagesOf<V, std::tuple<S, R...>> {
+  using image = std::decay_t<decltype(std::declval<S>().image())>;
+  using type = typename ImagesOf<typename WithImage<V, image>::type, std::tuple<R...>>::type;
+};
+using ShapeImage = typename ImagesOf<std::variant<>, Shapes>::type;
+
+/// Which shape an indenter has: its index in Shapes.
+class Profile {
+public:
+  constexpr Profile() = default;
+  template <class S> static constexpr Profile of() { return Profile(index_of<S>()); }
+  constexpr std::size_t index() const { return i_; }
+  constexpr bool operator==(Profile o) const { return i_ == o.i_; }
+  constexpr bool operator!=(Profile o) const { return i_ != o.i_; }
+  /// The shape numbered `i` (< kShapeCount).
+  static constexpr Profile at(std::size_t i) { return Profile(i); }
+
+private:
+  constexpr explicit Profile(std::size_t i) : i_(i) {}
+  template <class S, std::size_t I = 0> static constexpr std::size_t index_of() {
+    if constexpr (std::is_same_v<S, std::tuple_element_t<I, Shapes>>)
+      return I;
+    else
+      return index_of<S, I + 1>();
+  }
+  std::size_t i_ = 0;
+};
+
+/// Every kind, in the order of the table.
+std::array<Profile, kShapeCount> all_profiles();
 
 /// "parabola", "cone", "power".
 const char* profile_name(Profile p);
 /// Parses a profile's name; throws InvalidInput("profile").
 Profile parse_profile(const std::string& name);
 
-/// kappa_n = sqrt(pi) Gamma(n/2 + 1) / Gamma(n/2 + 1/2): 2 for n = 2, pi/2 for n = 1.
-double mdr_kappa(double n);
-
-/// x^n (x >= 0) for the profiles' exponents: exact forms where they exist
-/// (the cone's n = 1 and its slope's 0, 2, 1/2 and 3/2), pow otherwise (it
-/// was half the time of a cone's or a power law's case). The indenter and
-/// the element row both use it, so they agree bit for bit.
-inline double profile_pow(double x, double n) {
-  if (n == 1.0) return x;
-  if (n == 0.0) return 1.0;
-  if (n == 2.0) return x * x;
-  if (n == 0.5) return std::sqrt(x);
-  if (n == 1.5) return x * std::sqrt(x);
-  return std::pow(x, n);
-}
-
+/// The chosen shape and every shape's parameters: those of a shape not
+/// chosen are 0 (not given), as the parameter table reads and sets them
+/// whatever the profile, and validation refuses any given.
 struct Indenter {
-  Profile profile = Profile::Parabola;
-  double R = 0.0;    ///< parabola: radius of curvature, > 0
-  double beta = 0.0; ///< cone: angle of the surface to the plane, degrees, (0, 90)
-  double n = 0.0;    ///< power: exponent, >= 1
-  double A = 0.0;    ///< power: coefficient of f(r) = A r^n, > 0
+  Profile profile;
+  Shapes shapes;
 
-  bool parabolic() const { return profile == Profile::Parabola; }
+  /// visit() from the I-th shape on.
+  template <std::size_t I, class F> decltype(auto) visit_from(F&& f) const {
+    if constexpr (I + 1 == kShapeCount)
+      return f(std::get<I>(shapes));
+    else if (profile.index() == I)
+      return f(std::get<I>(shapes));
+    else
+      return visit_from<I + 1>(std::forward<F>(f));
+  }
+
+  template <std::size_t I> ShapeImage image_from() const {
+    if constexpr (I + 1 == kShapeCount)
+      return ShapeImage(std::get<I>(shapes).image());
+    else if (profile.index() == I)
+      return ShapeImage(std::get<I>(shapes).image());
+    else
+      return image_from<I + 1>();
+  }
+
+  Indenter() = default;
+  /// An indenter of shape s.
+  template <class S, class = std::enable_if_t<is_shape_v<S>>>
+  Indenter(const S& s) : profile(Profile::of<S>()) {
+    std::get<S>(shapes) = s;
+  }
+
+  template <class S> bool is() const { return profile == Profile::of<S>(); }
+  /// Shape S's parameters (whether or not it is the chosen one).
+  template <class S> S& as() { return std::get<S>(shapes); }
+  template <class S> const S& as() const { return std::get<S>(shapes); }
+  /// f(shape) of the chosen shape (each shape's f returning the same type).
+  template <class F> decltype(auto) visit(F&& f) const { return visit_from<0>(std::forward<F>(f)); }
+
+  bool parabolic() const { return is<Parabola>(); }
+  /// The chosen shape's image, formed once (its coefficient computed).
+  ShapeImage image() const { return image_from<0>(); }
   /// The exponent n of g: 2, 1 or n.
-  double exponent() const;
+  double exponent() const {
+    return visit([](const auto& s) { return s.image().exponent(); });
+  }
   /// The coefficient c of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A.
-  double coefficient() const;
+  double coefficient() const {
+    return visit([](const auto& s) { return s.image().coefficient(); });
+  }
   double g(double x) const {
-    if (parabolic()) return x * x / R;
-    return coefficient() * profile_pow(std::fabs(x), exponent());
+    return visit([x](const auto& s) { return s.image().g(x); });
   }
   double slope(double x) const {
-    if (parabolic()) return 2.0 * x / R;
-    const double m = exponent(), s = m * coefficient() * profile_pow(std::fabs(x), m - 1.0);
-    return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
+    return visit([x](const auto& s) { return s.image().slope(x); });
   }
   /// Half-width a of the MDR contact at depth d: g(a) = d. (Inline: the
   /// solvers ask for it at every sample.)
   double contact_radius(double d) const {
-    if (parabolic()) return std::sqrt(R) * std::sqrt(d);
-    return profile_pow(d / coefficient(), 1.0 / exponent());
+    return visit([d](const auto& s) { return s.image().contact_radius(d); });
   }
   /// The same as the element-row solvers form it: sqrt(R d) for the parabola
   /// (their arithmetic since the seed, bit for bit), contact_radius otherwise.
-  double leading_edge(double d) const { return parabolic() ? std::sqrt(R * d) : contact_radius(d); }
+  double leading_edge(double d) const {
+    return visit([d](const auto& s) { return s.image().leading_edge(d); });
+  }
   /// Elastic normal force of the full contact [-a, a] at depth g(a) on a
-  /// foundation of modulus G: 4 G int (g(a) - g) = 8 G c n/(n + 1) a^(n + 1)
-  /// (the parabola: 16/3 G a^3 / R).
-  double elastic_force(double a, double G) const;
-  /// The radius a of that force: elastic_force(a, G) = F (the parabola:
-  /// cbrt(3 F R / (16 G)), as the seed).
-  double hertz_radius(double F, double G) const;
+  /// foundation of modulus G: 4 G int (g(a) - g).
+  double elastic_force(double a, double G) const {
+    return visit([a, G](const auto& s) { return s.image().elastic_force(a, G); });
+  }
+  /// The radius a of that force: elastic_force(a, G) = F.
+  double hertz_radius(double F, double G) const {
+    return visit([F, G](const auto& s) { return s.image().hertz_radius(F, G); });
+  }
 };
 
 } // namespace mdrmap

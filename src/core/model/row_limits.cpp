@@ -60,15 +60,16 @@ void check_spectrum_limits(const Rheology& r) {
 }
 
 void check_profile_limits(const Indenter& i) {
-  if (i.parabolic()) return;
-  const double c = i.coefficient();
-  if (within(c, kMinCoefficient, kMaxCoefficient)) return;
-  const bool cone = i.profile == Profile::Cone;
-  throw InvalidInput(cone ? "beta" : "A",
-                     std::string("gives the profile's coefficient c = ") +
-                         (cone ? "(pi/2) tan(beta) = " : "kappa_n A = ") + format_number(c) +
-                         ", outside [1e-100, 1e100] where the contact's lengths stay "
-                         "representable; rescale the units");
+  i.visit([](const auto& s) {
+    if (!s.coefficient_option) return; // (checked through the scales)
+    const double c = s.image().coefficient();
+    if (within(c, kMinCoefficient, kMaxCoefficient)) return;
+    throw InvalidInput(s.coefficient_option,
+                       std::string("gives the profile's coefficient c = ") + s.coefficient_words +
+                           format_number(c) +
+                           ", outside [1e-100, 1e100] where the contact's lengths stay "
+                           "representable; rescale the units");
+  });
 }
 
 void check_element_row(const Case& c) {

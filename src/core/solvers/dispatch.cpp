@@ -48,7 +48,7 @@ ModelNeeds model_needs(const Case& c) {
 
 bool solver_handles(SolverKind kind, const ModelNeeds& needs) {
   if (kind != SolverKind::Exact) return true; // auto, row and baseline: every case
-  return !needs.by_force && !needs.spectrum && needs.profile == Profile::Parabola;
+  return !needs.by_force && !needs.spectrum && needs.profile == Profile::of<Parabola>();
 }
 
 namespace {
@@ -86,7 +86,7 @@ namespace {
 void require_handled(SolverKind kind, const Case& c) {
   const ModelNeeds needs = model_needs(c);
   if (solver_handles(kind, needs)) return;
-  if (needs.profile != Profile::Parabola)
+  if (needs.profile != Profile::of<Parabola>())
     throw InvalidInput("profile", std::string("solver ") + solver_name(kind) +
                                       " solves the parabola only; this case's profile is " +
                                       profile_name(needs.profile) +

@@ -31,9 +31,9 @@ const char* solver_name(SolverKind k);
 /// Maxwell branches (a relaxation spectrum) beyond the Kelvin element, and
 /// its indenter profile.
 struct ModelNeeds {
-  bool by_force = false;               ///< load control (else a fixed depth)
-  bool spectrum = false;               ///< Maxwell branches (else the Kelvin foundation)
-  Profile profile = Profile::Parabola; ///< the indenter's profile
+  bool by_force = false;                     ///< load control (else a fixed depth)
+  bool spectrum = false;                     ///< Maxwell branches (else the Kelvin foundation)
+  Profile profile = Profile::of<Parabola>(); ///< the indenter's profile
 };
 ModelNeeds model_needs(const Case& c);
 
@@ -44,7 +44,7 @@ ModelNeeds model_needs(const Case& c);
 bool solver_handles(SolverKind kind, const ModelNeeds& needs);
 /// The same for a loading alone, on the Kelvin foundation.
 inline bool solver_handles(SolverKind kind, bool by_force) {
-  return solver_handles(kind, ModelNeeds{by_force, false, Profile::Parabola});
+  return solver_handles(kind, ModelNeeds{by_force, false, Profile::of<Parabola>()});
 }
 
 /// Runs one case (its relaxation times shifted by aT). `Auto` picks the

@@ -117,7 +117,7 @@ ExactSolution::ExactSolution(const Case& c, int bits, const RunControl* control)
     p.hi = kInf;
     p.xa = a2;
     p.a1_minus_xa = analytic::a1_minus_a2_stationary(c, v0);
-    p.A = 2.0 * a2 * L / c.indenter.R;
+    p.A = 2.0 * a2 * L / c.indenter.as<Parabola>().R;
     p.lam = L;
     tail.push_back(p);
   }
@@ -162,7 +162,8 @@ SegmentStart ExactSolution::make_start(double w, std::vector<TailPiece> tail, do
         p.kind == TailPiece::Kind::Exp && p.hi == kInf && w * c_.rheology.tau <= p.lam;
     // gap = c0 - c1 y - y^2 (1/R + A phi2(y/lam)/lam^2), y <= Y: |c0| <= |c0| + |A| at the start
     // (h falls outward, A decays), |c1 y| <= (g'(a1) + A/lam) Y, y^2 A phi2/lam^2 <= A Y/lam
-    const double Y = std::max(0.0, seg.cap - p.xa), R = c_.indenter.R, A = std::abs(p.A);
+    const double Y = std::max(0.0, seg.cap - p.xa), R = c_.indenter.as<Parabola>().R,
+                 A = std::abs(p.A);
     seg.cap_margin =
         1e-9 * (std::abs(p.c0) + A + (2.0 * a1_ / R + 2.0 * A / p.lam) * Y + Y * Y / R);
   }
@@ -170,7 +171,7 @@ SegmentStart ExactSolution::make_start(double w, std::vector<TailPiece> tail, do
 }
 
 ExactSolution::Edge ExactSolution::front(const SegmentStart& seg, double offset) const {
-  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const Frame f{a1_, c_.indenter.as<Parabola>().R, c_.rheology.tau};
   const Edge at_cap{seg.cap, seg.a1_minus_cap, true};
   last_bracket_ = 0.0;
   // the walk below would stop at the first piece
@@ -217,7 +218,7 @@ double ExactSolution::edge(std::size_t k, double offset) const {
 
 double ExactSolution::max_gap_beyond_edge(std::size_t k, double offset, int points) const {
   const SegmentStart& seg = starts_[k];
-  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const Frame f{a1_, c_.indenter.as<Parabola>().R, c_.rheology.tau};
   const Edge fr = front(seg, offset);
   const bool at_cap = fr.at_cap;
   const double e = fr.e;
@@ -242,7 +243,7 @@ double ExactSolution::max_gap_beyond_edge(std::size_t k, double offset, int poin
 // touching (gap h(x) > 0): the sign changes where it arrives, if the front
 // sat on it.
 double ExactSolution::arrival(const SegmentStart& seg, double x, double T, int bits) const {
-  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const Frame f{a1_, c_.indenter.as<Parabola>().R, c_.rheology.tau};
   if (seg.tail.empty() || seg.tail.front().lo >= x) return 0.0;
   auto gap_at_x = [&](double dt) {
     for (const TailPiece& p0 : seg.tail) {
@@ -271,7 +272,7 @@ double ExactSolution::arrival_time(const SegmentStart& seg, double x, double T, 
   if (p == nullptr || p->kind != TailPiece::Kind::Exp || p->hi != kInf)
     return arrival(seg, x, T, bits);
   if (p->lo >= x) return 0.0;
-  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const Frame f{a1_, c_.indenter.as<Parabola>().R, c_.rheology.tau};
   const double g0 = exp_gap(*p, f, x - p->xa);
   if (g0 >= 0.0) return 0.0;
   const double h = (p->a1_minus_xa - (x - p->xa)) * (a1_ + x) / f.R;
@@ -284,7 +285,7 @@ double ExactSolution::arrival_time(const SegmentStart& seg, double x, double T, 
 // The start of the next segment (velocity w_next) from the end of `seg`.
 SegmentStart ExactSolution::next_start(const SegmentStart& seg, double T, double w_next) const {
   if (!(c_.rheology.tau > 0.0)) return make_start(w_next, {}, seg.cap);
-  const Frame f{a1_, c_.indenter.R, c_.rheology.tau};
+  const Frame f{a1_, c_.indenter.as<Parabola>().R, c_.rheology.tau};
   const Edge fr = front(seg, T);
   const bool at_cap = fr.at_cap;
   const double e = fr.e;
@@ -304,7 +305,7 @@ SegmentStart ExactSolution::next_start(const SegmentStart& seg, double T, double
     p.lo = p.xa = seg.cap;
     p.a1_minus_xa = seg.a1_minus_cap;
     p.hi = consumed;
-    p.A = 2.0 * seg.cap * L / c_.indenter.R; // h(cap) by the force-zero condition
+    p.A = 2.0 * seg.cap * L / c_.indenter.as<Parabola>().R; // h(cap) by the force-zero condition
     p.lam = L;
     tail.insert(tail.begin(), p);
   }
@@ -361,7 +362,7 @@ double relative_error(const Case& c, const Series& s, const State& err) {
     fx = std::max(fx, std::abs(s.Fx[k]));
     mu = std::max(mu, std::abs(s.mu[k]));
   }
-  const double scale_mu = std::sqrt(c.loading.d / c.indenter.R);
+  const double scale_mu = std::sqrt(c.loading.d / c.indenter.as<Parabola>().R);
   if (fx == 0.0) fx = fn * scale_mu;
   if (mu == 0.0) mu = scale_mu;
   return std::max({err.FN / fn, err.Fx / fx, err.mu / mu, err.a2 / c.a1()});

@@ -156,7 +156,7 @@ State hertz(const Case& c) {
   st.FN = c.loading.F0;
   st.a2 = a0;
   st.a1 = a0;
-  st.d = a0 * (a0 / c.indenter.R);
+  st.d = a0 * (a0 / c.indenter.as<Parabola>().R);
   return st;
 }
 

@@ -37,8 +37,8 @@ template <class F> double bracketed_root(F f, double lo, double hi, double flo, 
 } // namespace
 
 LoadRow::LoadRow(const Case& c, double dx, double A, double phase, const RunControl& control)
-    : c_(c), control_(control), R_(c.indenter.R), G_(c.rheology.G), tau_(c.rheology.tau),
-      F0_(c.loading.F0), a0_(c.a0()), dx_(dx), A_(A), phase_(phase) {
+    : c_(c), control_(control), R_(c.indenter.as<Parabola>().R), G_(c.rheology.G),
+      tau_(c.rheology.tau), F0_(c.loading.F0), a0_(c.a0()), dx_(dx), A_(A), phase_(phase) {
   if (!(tau_ > 0.0)) throw std::invalid_argument("LoadRow: tau must be > 0 (tau = 0 is Hertz)");
   cap_ = static_cast<std::size_t>(std::ceil(2.0 * A / dx)) + 8;
   lnU_.assign(cap_, kNoMemory);

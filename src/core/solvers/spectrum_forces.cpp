@@ -196,7 +196,7 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
     profile_piece_forces(pts, l, vl, r, vr, FN, Fx);
   };
   const Layer none;
-  if (parab_) return across_seams(ja, jb, xl, pl, e, pe, false, leading, layer, p_piece);
+  if (smooth_) return across_seams(ja, jb, xl, pl, e, pe, false, leading, layer, p_piece);
   const double bl = leading ? -lead : node_rest(ja); // fresh material: q_k = 0
   const long long jt = last_before_tip();
   if (ja <= jt && jt < jb) {
@@ -234,7 +234,8 @@ void Row::run_forces(long long ja, long long jb, double& FN, double& Fx, double&
 // reslide, made the companion disagree (docs/design.md, "Leading-edge layers").
 void Row::entry_layers(double w, double dd, BranchLayer* out) const {
   const double a1 = a1_now();
-  const double c = w + (d_ > 0.0 ? a1 / (gn_ * d_) * dd : 0.0);
+  const double c =
+      w + (d_ > 0.0 ? shape([&](const auto& i) { return i.radius_rate(a1, d_); }) * dd : 0.0);
   const double r = dd + lift(a1, w), bend = curvature(a1) * w * w; // u' and -u'' at entry
   for (std::size_t k = 0; k < law_.branches(); ++k) {
     out[k] = BranchLayer{};
@@ -316,7 +317,7 @@ double Row::Layer::integral() const {
 // from b0 at the tip to be at e (int_0^e x g' = e g(e) - int_0^e g).
 void Row::sliver_forces(double e, double b0, double be, double& FN, double& Fx) const {
   const KnownForces k = known_forces(0.0, e);
-  const double ge = g(e), Ig = gc_ * profile_pow(e, gn_ + 1.0) / (gn_ + 1.0);
+  const double ge = g(e), Ig = shape([e](const auto&i) { return i.integral_g(e); });
   FN += k.N + 0.5 * e * (b0 + be);
   Fx += k.X - (b0 * ge + (be - b0) * (ge - Ig / e));
 }
@@ -368,8 +369,7 @@ void Row::profile_piece_forces(const Points& pts, double xl, double bl, double x
 
 // g'(x), at the tip its limit from `side`.
 double Row::side_slope(double x, int side) const {
-  if (x != 0.0) return slope(x);
-  return gn_ == 1.0 ? side * gc_ : 0.0;
+  return shape([&](const auto& i) { return i.side_slope(x, side); });
 }
 
 // A(x) = G0 h + G tau (dd - w g') (per 4), at the tip from `side`.
@@ -381,13 +381,9 @@ double Row::known_p(double x, int side) const {
 // antiderivatives of g = c|x|^n and g'^2 = c^2 n^2 |x|^(2n-2) (continuous
 // through the tip), int g' = g(r) - g(l), int g g' = (g(r)^2 - g(l)^2)/2.
 Row::KnownForces Row::known_forces(double l, double r) const {
-  const double n = gn_, c = gc_;
-  auto G1 = [&](double t) {
-    return std::copysign(c * profile_pow(std::fabs(t), n + 1.0) / (n + 1.0), t);
-  };
+  auto G1 = [&](double t) { return shape([t](const auto& i) { return i.integral_g(t); }); };
   auto G2 = [&](double t) {
-    return std::copysign(c * c * n * n * profile_pow(std::fabs(t), 2.0 * n - 1.0) / (2.0 * n - 1.0),
-                         t);
+    return shape([t](const auto& i) { return i.integral_slope_squared(t); });
   };
   const double L = r - l, gl = g(l), gr = g(r);
   const double Ig = G1(r) - G1(l), Igp = gr - gl, Iggp = 0.5 * (gr * gr - gl * gl),
@@ -433,8 +429,9 @@ double Row::tip_pressure(long long jt, int side) const {
 // 2 G tau c w (the branches' states and u are continuous); other profiles'
 // slopes are continuous.
 double Row::past_tip(double p_ahead) const {
-  if (parab_ || gn_ != 1.0) return p_ahead;
-  return p_ahead - 2.0 * law_.tau() * law_.G() * gc_ * w_;
+  const double kink = shape([](const auto& i) { return i.apex_slope(); });
+  if (kink == 0.0) return p_ahead;
+  return p_ahead - 2.0 * law_.tau() * law_.G() * kink * w_;
 }
 
 State Row::measure(Edge edge) const {

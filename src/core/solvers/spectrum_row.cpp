@@ -78,9 +78,8 @@ Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, doubl
 
 Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, double phase,
          double sub_travel, double edge_tol, const RunControl& control, const char* name)
-    : law_(law), control_(control), name_(name), parab_(c.indenter.parabolic()),
-      gc_(c.indenter.coefficient()), gn_(c.indenter.exponent()),
-      exact_force_(parab_ || gn_ == 1.0 || gn_ == 2.0), R_(c.indenter.R), d_(d), dx_(dx),
+    : law_(law), control_(control), name_(name), img_(c.indenter.image()), smooth_(smooth()),
+      exact_force_(shape([](const auto& i) { return i.exact_forcing(); })), d_(d), dx_(dx),
       aw_(a_win), phase_(phase), sub_travel_(sub_travel) {
   const double cells = aw_ / dx_;
   cap_ = static_cast<std::size_t>(std::floor(2.0 * cells)) + 8 + static_cast<std::size_t>(kPast);
@@ -331,7 +330,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
     const long long i = std::max(0LL, ceil_count((dt - t) / g.D) - 1);
     double tn = dt - static_cast<double>(i) * g.D;
     if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
-    const double cut = parab_ ? tn : next_cut(xe - w * dt, t, tn, w);
+    const double cut = smooth_ ? tn : next_cut(xe - w * dt, t, tn, w);
     const bool whole = cut == tn;
     tn = cut;
     const double h = tn - t;
@@ -631,7 +630,7 @@ double Row::trailing_edge(long long jb, double& pe, Edge edge) const {
   };
   const double tol = edge_tol_ * a1 / dx_;
   double lo = 0.0, hi = 1.0, slo = std::max(node_p(jb), 0.0) / law_.G0() + 1e-300, shi = s1;
-  if (!parab_ && xb < 0.0 && xb + dx_ > 0.0) { // the tip inside the edge cell
+  if (!smooth_ && xb < 0.0 && xb + dx_ > 0.0) { // the tip inside the edge cell
     const double p_left = tip_pressure(jb, -1), p_right = past_tip(p_left);
     if (!(p_right > 0.0)) { // the pressure turns negative across the tip: the rear face is free
       pe = std::max(p_left, 0.0);
@@ -668,7 +667,7 @@ double Row::trailing_edge(long long jb, double& pe, Edge edge) const {
 // at a re-touch front comes from a replayed point.)
 bool Row::predicted_only(long long jb, double& e, double& pe) const {
   const double xb = xi(jb);
-  if (!parab_ && xb < 0.0 && xb + dx_ > 0.0) return false;
+  if (!smooth_ && xb < 0.0 && xb + dx_ > 0.0) return false;
   const double tc = predicted_edge(jb, true);
   if (!(tc >= 0.0 && tc <= 1.0)) return false;
   e = xb + tc * dx_;
@@ -680,15 +679,7 @@ bool Row::predicted_only(long long jb, double& e, double& pe) const {
 // (exact), a cone's or n = 2's on the sub-step's side of the tip (exact),
 // else the quadratic through u at 0, h/2 and h.
 Row::Forcing Row::forcing(double x, double w, double h, const Path& q) const {
-  if (parab_) return {depth(x, q.d), q.r - lift(x, w), q.k - w * w / R_};
-  const double c = gc_;
-  if (!(w > 0.0)) return {depth(x, q.d), q.r, q.k};
-  if (exact_force_ && gn_ == 1.0)
-    return {depth(x, q.d), q.r - (x + 0.5 * w * h < 0.0 ? -c : c) * w, q.k};
-  if (exact_force_) return {depth(x, q.d), q.r - 2.0 * c * x * w, q.k - c * w * w};
-  const double u0 = depth(x, q.d), um = depth(x + 0.5 * w * h, q.at(0.5 * h)),
-               u1 = depth(x + w * h, q.at(h));
-  return {u0, (4.0 * um - 3.0 * u0 - u1) / h, 2.0 * (u0 - 2.0 * um + u1) / (h * h)};
+  return shape([&](const auto& i) { return i.template forcing<Forcing>(x, w, h, q); });
 }
 
 // The end of a sub-step from t to tn of a point at x0 + w t: tn, or the time

@@ -284,25 +284,37 @@ private:
   double tip_pressure(long long jt, int side) const;
   double past_tip(double p_ahead) const;
 
-  // The profile (the parabola's arithmetic as the seed's, bit for bit).
-  double depth(double x) const { return depth(x, d_); }
-  double depth(double x, double d) const { return parab_ ? d - x * x / R_ : d - g(x); }
-  /// g'(x) w: how fast the indenter rises under a point at x moving at w.
-  double lift(double x, double w) const { return parab_ ? 2.0 * x * w / R_ : slope(x) * w; }
-  double radius(double d) const {
-    return parab_ ? std::sqrt(R_ * d) : profile_pow(d / gc_, 1.0 / gn_);
+  // The profile: the shape's image (core/model/shapes/), visited here, out of
+  // the loops of the callers (the parabola's arithmetic as the seed's, bit
+  // for bit).
+  template <class F> decltype(auto) shape(F&& f) const {
+    return std::visit(std::forward<F>(f), img_);
   }
-  bool inside(double x, double d) const { return parab_ ? x * x <= R_ * d : g(x) <= d; }
-  /// Another profile's g = c |x|^n and g' (Indenter::g, slope, bit for bit,
-  /// with c and n formed once: the hot path asks at every sub-step).
-  double g(double x) const { return gc_ * profile_pow(std::fabs(x), gn_); }
+  double depth(double x) const { return depth(x, d_); }
+  double depth(double x, double d) const {
+    return shape([&](const auto& i) { return i.depth(x, d); });
+  }
+  /// g'(x) w: how fast the indenter rises under a point at x moving at w.
+  double lift(double x, double w) const {
+    return shape([&](const auto& i) { return i.lift(x, w); });
+  }
+  double radius(double d) const {
+    return shape([&](const auto& i) { return i.leading_edge(d); });
+  }
+  bool inside(double x, double d) const {
+    return shape([&](const auto& i) { return i.inside(x, d); });
+  }
+  double g(double x) const {
+    return shape([&](const auto& i) { return i.g(x); });
+  }
   /// g''(x) (x != 0).
   double curvature(double x) const {
-    return parab_ ? 2.0 / R_ : gn_ * (gn_ - 1.0) * gc_ * profile_pow(std::fabs(x), gn_ - 2.0);
+    return shape([&](const auto& i) { return i.curvature(x); });
   }
-  double slope(double x) const {
-    const double s = gn_ * gc_ * profile_pow(std::fabs(x), gn_ - 1.0);
-    return x < 0.0 ? -s : (x > 0.0 ? s : 0.0);
+  /// Whether the image is smooth through the tip x = 0 (the parabola): no
+  /// sub-step or run is cut there.
+  bool smooth() const {
+    return shape([](const auto& i) { return i.smooth_apex(); });
   }
   /// The largest travel of a sub-step where the contact is a: sub_travel a,
   /// and at most kSubCells dx where the forcing is interpolated.
@@ -316,10 +328,10 @@ private:
   const Law& law_;
   const RunControl& control_;
   const char* name_;
-  bool parab_;       // the parabola: Taylor forcing, no tip
-  double gc_, gn_;   // the profile's g = gc_ |x|^gn_ (Indenter::coefficient, exponent)
+  ShapeImage img_;   // the indenter's g (Indenter::image)
+  bool smooth_;      // img_'s smooth(): the parabola's Taylor forcing, no tip
   bool exact_force_; // u quadratic in t on either side of the tip (no interpolation error)
-  double R_, d_, dx_, aw_, phase_, sub_travel_;
+  double d_, dx_, aw_, phase_, sub_travel_;
   double layer_dx_ = dx_; // set_layer_width
   double dd_ = 0.0;       // depth rate now (load control)
   std::size_t cap_, stride_;
