@@ -201,7 +201,7 @@ bg bad ts_no_timeseries "rerun the study with \`--timeseries true\`" py "$TS" "$
   -o "$W/x.png"
 bg bad ts_case_range "the map has 36 cases (0..35)" py "$TS" "$W/grid.h5" --case 99 -o "$W/x.png"
 bg bad ts_select_name "unknown parameter 'speed'" py "$TS" "$W/grid.h5" --select speed=1 -o "$W/x.png"
-bg bad pm_unknown "unknown quantity 'mu_jmp'; valid: FN_" py "$PM" "$W/grid.h5" mu_jmp -o "$W/x.png"
+bg bad pm_unknown "unknown quantity 'mu_jmp'; valid: D_c_0, FN_after_0" py "$PM" "$W/grid.h5" mu_jmp -o "$W/x.png"
 bg bad pm_slice_value "--slice tau=abc: 'abc' is not a number" py "$PM" "$W/grid.h5" --slice tau=abc \
   -o "$W/x.png"
 bg bad pm_slice_axis "no grid axis 'foo'" py "$PM" "$W/grid.h5" --slice foo=1 -o "$W/x.png"
