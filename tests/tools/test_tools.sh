@@ -310,7 +310,7 @@ start = head[: len(params) + 1]
 if start[0] != "case" or sorted(start[1:]) != sorted(params) or \
         head[len(start): len(start) + 4] != ["w1", "T1", "zeta", "status"] or head[-1] != "message":
     sys.exit(f"{path}: header {head[:12]} ... {head[-1]}")
-for col in ["FN_pre", "mu_pre", "mu_after_0", "mu_peak_0", "a_0", "d_c_0", "error_estimate",
+for col in ["FN_pre", "mu_pre", "mu_after_0", "mu_peak_0", "a_0", "D_c_0", "error_estimate",
             "analytic_mu_jump", "analytic_mu_ss_0", "residual_mu_jump", "residual_mu_end_0"]:
     if col not in head:
         sys.exit(f"{path}: no column {col}")
