@@ -57,7 +57,8 @@ struct Row {
     updates += static_cast<long>(hi - lo);
     for (std::size_t i = lo; i < hi; ++i) {
       const double x = xi(i, s), hx = h(x);
-      double* qi = &q[i * N];
+      // (not &q[i * N]: without branches q is empty)
+      double* qi = q.data() + i * N;
       if (!contact[i]) { // implicit force balance with the relaxed branches
         double num = r.G * r.tau * u[i] / dt, den = r.G + r.G * r.tau / dt;
         for (std::size_t k = 0; k < N; ++k) {
