@@ -124,16 +124,6 @@ int run(const StationaryArgs& a) {
 
 // --- Help ----------------------------------------------------------------------
 
-/// The profile and the table's geometry and loading parameters, as
-/// simulate's help gives them.
-std::vector<HelpEntry> geometry_entries() {
-  std::vector<HelpEntry> e = {profile_entry(false)};
-  for (const Part part : {Part::Loading, Part::Indenter})
-    for (auto& p : parameter_entries(part))
-      e.push_back(p);
-  return e;
-}
-
 std::vector<HelpEntry> velocity_entries() {
   const ParamSpec& v = *find_parameter("v");
   const std::string unit = std::string("(") + dim_name(v.dim) + ") ", range = v.allowed();
@@ -150,13 +140,10 @@ std::vector<HelpEntry> velocity_entries() {
 /// The options of stationary, in groups: the short help gives their labels,
 /// the full help their entries.
 std::vector<HelpSection> sections() {
-  std::vector<HelpEntry> material = parameter_entries(Part::Material);
-  for (auto& e : rheology_entries())
-    material.push_back(e);
-  return {{"geometry", "Case geometry and loading", geometry_entries()},
+  return {{"geometry", "Case geometry and loading", geometry_entries(false)},
           {"material",
            "Material (no --prony: the Kelvin foundation; --T and --wlf: the temperature)",
-           material},
+           material_entries()},
           {"velocity", "Velocities (exactly one of --v, --v-list, --v-range)", velocity_entries(),
            "Each velocity must pass the checks of --v in mdrmap simulate: v tau / a1 (a0\n"
            "under --F0) and the stationary contact at v representable in doubles.\n"},
