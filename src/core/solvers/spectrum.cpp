@@ -178,7 +178,8 @@ template <class F> double increasing_root(F f, double x0, double& k, double tol,
 // (tools/bench/spectrum.cpp) and the case set: the time error then stays
 // below the space error of both runs of the estimate; the first step of a
 // reslide after a hold needs first <= 0.1 (at 1: 2.0e-4 at a/dx 32 on the
-// SLS G0/G = 100 case, estimate 7.8e-5).
+// SLS G0/G = 100 case, estimate 7.8e-5). Under load the steps are also cut at
+// a lattice of each segment, never at the samples (LoadRun::reach).
 struct StepRule {
   double factor, first;
 };
@@ -246,31 +247,101 @@ public:
     row_.change_velocity(w, dd);
   }
 
-  /// Advance by T, t_seg the time since the change before; a segment that
-  /// has reached its stationary state keeps it (see Watch).
-  void advance(double T, double& t_seg) {
-    double left = T;
-    while (left > 0.0 && !watch_.frozen()) {
-      double h = std::min(std::max(eps_ * t_seg, first_ * eps_ * t_min), h_err_);
-      const double n = std::ceil(left / h);
-      h = n > 1.0 ? left / n : left;
-      if (!step(h)) continue;
-      t_seg += h;
-      probe(t_seg);
-      left = n > 1.0 ? left - h : 0.0;
-      watch(h);
-    }
-    if (!(left > 0.0)) return;
-    t_seg += left; // (frozen: the state stays)
-    probe(t_seg);
+  /// The segment's step grid (its duration T): the step rule's steps cut at
+  /// the lattice T j / kLattice, j = 1 .. kLattice, and at nothing else.
+  void begin(double T) {
+    undo_side();
+    lattice_T_ = T;
+    j_ = 0;
+    left_ = 0.0;
+    t_seg_ = 0.0;
+  }
+
+  /// The row at offset s of the segment (from the offset reached last): the
+  /// grid's steps up to s and, where s falls strictly inside one, a side step
+  /// to it from the grid's last step end (balanced as the grid's steps are;
+  /// the next reach() or begin() returns to the grid as if it never
+  /// happened). A segment that has reached its stationary state keeps it
+  /// (see Watch).
+  void reach(double s) {
+    walk(s);
+    check_window();
   }
   double t_min = 0.0;
-  /// Where every accepted step's end and its mu go (the event metrics'
-  /// probes: the steps do not depend on the samples but where they cut
-  /// them), or nowhere.
+  double a_max = 0.0; ///< the largest leading edge the row's window holds
+  /// Where every grid step's end and its mu go (the event metrics' probes:
+  /// the grid does not depend on the samples), or nowhere.
   Probes* probes = nullptr;
 
 private:
+  /// reach() but for the window.
+  void walk(double s) {
+    undo_side();
+    for (;;) {
+      const double pos = lattice(j_) - left_;
+      if (near(s, pos) || (j_ == kLattice && !(left_ > 0.0))) return;
+      if (!(left_ > 0.0)) {
+        check_window(); // (at every lattice point, whatever the samples)
+        ++j_;
+        left_ = lattice(j_) - lattice(j_ - 1);
+        continue;
+      }
+      if (watch_.frozen()) { // (the state stays)
+        if (s < lattice(j_) && !near(s, lattice(j_))) return;
+        t_seg_ += left_;
+        left_ = 0.0;
+        probe(t_seg_);
+        continue;
+      }
+      double h = std::min(std::max(eps_ * t_seg_, first_ * eps_ * t_min), h_err_);
+      const double n = std::ceil(left_ / h);
+      h = n > 1.0 ? left_ / n : left_;
+      const double end = n > 1.0 ? pos + h : lattice(j_);
+      if (s < end && !near(s, end)) return side_step(s - pos);
+      if (!step(h)) continue;
+      t_seg_ += h;
+      probe(t_seg_);
+      left_ = n > 1.0 ? left_ - h : 0.0;
+      watch(h);
+    }
+  }
+  /// The row's contact within its window, else the run is abandoned.
+  void check_window() const {
+    if (row_.a1_now() > a_max)
+      throw CaseAbandoned("row: under load the contact grew past its window (a1 = " +
+                          format_number(row_.a1_now()) + ")");
+  }
+  /// The lattice's points: the offsets of kLattice + 1 linear samples (the
+  /// same formula: such samples, and those of 5, 21, 41 or 101, fall on them).
+  static constexpr long kLattice = 200;
+  static Sampling lattice_sampling() {
+    Sampling s;
+    s.samples = kLattice + 1; // (linear)
+    return s;
+  }
+  double lattice(long j) const { return lattice_.offset(j, lattice_T_); }
+  /// a and b the same instant (a few ulps apart: the lattice's points as
+  /// other samplings compute them).
+  static bool near(double a, double b) {
+    return std::abs(a - b) <=
+           4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
+  }
+  /// One balanced step of h off the grid (no error control, no node pushed).
+  void side_step(double h) {
+    side_k_ = k_;
+    side_at_ = at_;
+    side_ = true;
+    step(h, true);
+  }
+  /// Back to the grid's last step end (step() saved it in snap_).
+  void undo_side() {
+    if (!side_) return;
+    row_.restore(snap_);
+    k_ = side_k_;
+    at_ = side_at_;
+    side_ = false;
+  }
+
   void probe(double t) {
     if (probes == nullptr) return; // (the state the balance accepted: measured last)
     probes->t.push_back(t);
@@ -288,7 +359,7 @@ private:
                  (at_.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
   }
 
-  bool step(double h) {
+  bool step(double h, bool side = false) {
     row_.renumber();
     row_.save(snap_);
     if (n_ == 0) restart();
@@ -315,6 +386,7 @@ private:
     at_ = row_.measure(edge);
     fx = at_.FN - F0;
     balance(f, x, fx, x, d0);
+    if (side) return true;
     if (n_ >= kOrder) { // the predictor's miss against eps^3 d (see StepRule)
       // (at least 100 times the balance's own noise, and never below the
       // shortest step: a miss made of the secant's tolerance shortens nothing)
@@ -405,6 +477,12 @@ private:
   StationaryWatch watch_;
   StationaryStates& states_;
   double watch_w_ = 0.0;
+  Sampling lattice_ = lattice_sampling();
+  double lattice_T_ = 0.0, left_ = 0.0, t_seg_ = 0.0; ///< left_: to the lattice point j_
+  long j_ = 0;
+  bool side_ = false; ///< the row is at a side step's end
+  double side_k_ = 0.0;
+  State side_at_;
 };
 
 // The pre-state: stationary sliding at the depth where the row's F_N is F0
@@ -440,15 +518,16 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
               StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);
   run.t_min = geo.t_min;
-  double t_seg = 0.0; // since the segment's start
+  run.a_max = a_win - 2.0 * dx;
   ResolutionRun out;
   out.probes.assign(c.history.size(), Probes{});
-  std::size_t k = 0;
+  std::size_t k = 0; // the segment's (after its change)
+  long j = 0;        // its next sample
   out.series = sample_history(
       c, control,
       [&](double w) {
+        run.begin(c.history.segments[k].T);
         run.change(w);
-        t_seg = 0.0;
         run.probes = nullptr; // (no change: the samples suffice)
         if (c.history.before(k) != w) {
           run.probes = &out.probes[k];
@@ -456,12 +535,10 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
           run.probes->mu.push_back(row.measure().mu);
         }
         ++k;
+        j = 0;
       },
-      [&](double dt, double) {
-        run.advance(dt, t_seg);
-        if (row.a1_now() > a_win - 2.0 * dx)
-          throw CaseAbandoned("row: under load the contact grew past its window (a1 = " +
-                              format_number(row.a1_now()) + ")");
+      [&](double, double) {
+        run.reach(c.sampling.offset(k - 1, j++, c.history.segments[k - 1].T));
       },
       [&] { return row.measure(); });
   out.elements = static_cast<long>(row.capacity());
