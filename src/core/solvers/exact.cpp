@@ -370,10 +370,6 @@ double relative_error(const Case& c, const Series& s, const State& err) {
 
 } // namespace
 
-RunResult run_exact(const Case& c, double rtol, const RunControl& control) {
-  return run_exact(CheckedCase(c), rtol, control);
-}
-
 RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& control) {
   const Case& c = checked.get();
   require_depth_control(c, "exact");

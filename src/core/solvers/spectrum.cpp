@@ -486,8 +486,8 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
 
 } // namespace
 
-RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
-  validate(given);
+RunResult run_spectrum(const CheckedCase& checked, const SpectrumOptions& o) {
+  const Case& given = checked.get();
   const bool adaptive = !(o.cells_per_a1 > 0.0);
   if (adaptive) validate_rtol(o.rtol);
   if (!(o.sub_travel > 0.0) || !(o.sub_travel <= 2.0))
