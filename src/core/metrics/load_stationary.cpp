@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/analytic.hpp"
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
@@ -50,11 +49,9 @@ double stationary_alpha(double zeta0) {
   if (!(residual(lo, zeta0) <= 0.0) || !(residual(hi, zeta0) >= 0.0))
     throw std::domain_error("stationary_alpha: no bracket at zeta0 = " + std::to_string(zeta0));
   if (lo == hi) return lo;
-  std::uintmax_t iters = 200;
-  const auto r =
-      boost::math::tools::toms748_solve([&](double a) { return residual(a, zeta0); }, lo, hi,
-                                        boost::math::tools::eps_tolerance<double>(52), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748([&](double a) { return residual(a, zeta0); }, lo, hi,
+                           numerics::bits_tolerance(52), {"stationary_alpha"})
+      .mid();
 }
 
 double stationary_depth(const Case& c, double w) {

@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/root.hpp"
 
 // Derivation (docs/design.md, "Materials with a relaxation spectrum"). With
 // s = x + a1, h = s (2 a1 - s) / R and the branch's equation
@@ -132,10 +131,7 @@ struct Edge {
 };
 
 template <class F> double root(F f, double lo, double hi) {
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      f, lo, hi, boost::math::tools::eps_tolerance<double>(50), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748(f, lo, hi, numerics::bits_tolerance(50), {"spectrum_stationary"}).mid();
 }
 
 Edge trailing_edge(const Contact& k) {

@@ -6,9 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
@@ -28,10 +27,10 @@ double phi(double x) {
 template <class F> double bracketed_root(F f, double lo, double hi, double flo, double fhi) {
   if (flo == 0.0) return lo;
   if (fhi == 0.0) return hi;
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      f, lo, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(50), iters);
-  return 0.5 * (r.first + r.second);
+  // (charged by the caller, with the walk: kRootWork)
+  return numerics::toms748(f, lo, hi, flo, fhi, numerics::bits_tolerance(50),
+                           {"kelvin_load: front"})
+      .mid();
 }
 
 } // namespace

@@ -1,0 +1,113 @@
+// The core's numerics floor (src/core/numerics): the bracketed root finder
+// against roots known in closed form, its refusal of a non-bracket, its work
+// charge against a count of the evaluations made.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/numerics/root.hpp"
+
+namespace {
+
+using mdrmap::RunControl;
+using mdrmap::numerics::Bracket;
+using mdrmap::numerics::NoBracket;
+using mdrmap::numerics::RootSearch;
+
+TEST(Root, CubeRootToTheRequestedBits) {
+  auto f = [](double x) { return x * x * x - 2.0; };
+  const double root = std::cbrt(2.0);
+  for (int bits : {20, 40, 52}) {
+    const Bracket r =
+        mdrmap::numerics::toms748(f, 0.0, 2.0, mdrmap::numerics::bits_tolerance(bits), {"cube"});
+    EXPECT_LE(r.lo, root);
+    EXPECT_GE(r.hi, root);
+    EXPECT_LE(std::abs(r.mid() - root), std::ldexp(root, 2 - bits)) << bits;
+  }
+}
+
+TEST(Root, WidthToleranceBoundsTheBracket) {
+  auto f = [](double x) { return std::exp(x) - 3.0; };
+  const Bracket r = mdrmap::numerics::toms748(f, 0.0, 2.0, -2.0, std::exp(2.0) - 3.0,
+                                              mdrmap::numerics::WidthTolerance{1e-9}, {"log 3"});
+  EXPECT_LE(r.width(), 1e-9);
+  EXPECT_LE(r.lo, std::log(3.0));
+  EXPECT_GE(r.hi, std::log(3.0));
+}
+
+TEST(Root, ZeroEndIsTheRoot) {
+  auto f = [](double x) { return x - 1.0; };
+  const Bracket r =
+      mdrmap::numerics::toms748(f, 1.0, 2.0, 0.0, 1.0, mdrmap::numerics::bits_tolerance(52), {"z"});
+  EXPECT_EQ(r.lo, 1.0);
+  EXPECT_EQ(r.hi, 1.0);
+}
+
+void expect_no_bracket(double fa, double fb) {
+  auto f = [](double x) { return x; };
+  try {
+    mdrmap::numerics::toms748(f, 0.0, 1.0, fa, fb, mdrmap::numerics::bits_tolerance(52),
+                              {"the named search"});
+    ADD_FAILURE() << "no throw for f(a) = " << fa << ", f(b) = " << fb;
+  } catch (const NoBracket& e) {
+    EXPECT_NE(std::string(e.what()).find("the named search"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Root, RefusesValuesOfOneSignOrNotFinite) {
+  expect_no_bracket(1.0, 2.0);
+  expect_no_bracket(-1.0, -2.0);
+  expect_no_bracket(std::numeric_limits<double>::quiet_NaN(), 1.0);
+  expect_no_bracket(-1.0, std::numeric_limits<double>::infinity());
+}
+
+TEST(Root, ChargesEveryEvaluation) {
+  for (const bool ends_given : {true, false}) {
+    int calls = 0;
+    auto f = [&](double x) {
+      ++calls;
+      return std::sin(x) - 0.5; // root pi/6 in [0, 1]
+    };
+    RunControl control;
+    const RootSearch s{"sin", 200, &control, 3.0};
+    const auto tol = mdrmap::numerics::bits_tolerance(52);
+    const Bracket r =
+        ends_given ? mdrmap::numerics::toms748(f, 0.0, 1.0, -0.5, std::sin(1.0) - 0.5, tol, s)
+                   : mdrmap::numerics::toms748(f, 0.0, 1.0, tol, s);
+    EXPECT_NEAR(r.mid(), std::acos(-1.0) / 6.0, 1e-15);
+    EXPECT_EQ(r.evaluations, static_cast<std::uintmax_t>(calls)) << ends_given;
+    EXPECT_EQ(control.spent(), 3.0 * calls) << ends_given;
+  }
+}
+
+TEST(Root, BudgetEndsTheSearch) {
+  RunControl control;
+  control.max_work = 5.0;
+  auto f = [](double x) { return std::tanh(x - 0.3); };
+  EXPECT_THROW(mdrmap::numerics::toms748(f, 0.0, 1.0, mdrmap::numerics::bits_tolerance(52),
+                                         {"tanh", 200, &control, 1.0}),
+               mdrmap::CaseAbandoned);
+}
+
+TEST(Root, IncreasingRootWidensToTheBracket) {
+  // a guess of the slope 1000 times too large: the secant step falls short,
+  // widened by 4 until it brackets the root ln 5 (on either side of x0)
+  for (const double x0 : {-3.0, 5.0}) {
+    double k = 5000.0;
+    auto f = [](double x) { return std::exp(x) - 5.0; };
+    const double x = mdrmap::numerics::increasing_root(f, x0, k, 1e-12, -1e300, {"exp", 100});
+    EXPECT_NEAR(x, std::log(5.0), 1e-12) << x0;
+    EXPECT_GT(k, 0.0);
+  }
+}
+
+TEST(Root, IncreasingRootWithoutRootThrows) {
+  double k = 1.0;
+  auto f = [](double x) { return 2.0 + std::atan(x); }; // increasing, > 0.4
+  EXPECT_THROW(mdrmap::numerics::increasing_root(f, 0.0, k, 1e-12, -1e300, {"atan", 100}),
+               NoBracket);
+}
+
+} // namespace
