@@ -1,12 +1,16 @@
 // The core's numerics floor (src/core/numerics): the bracketed root finder
 // against roots known in closed form, its refusal of a non-bracket, its work
-// charge against a count of the evaluations made.
+// charge against a count of the evaluations made; the phi functions against a
+// long-double evaluation and their limits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
+#include "core/numerics/phi.hpp"
 #include "core/numerics/root.hpp"
 
 namespace {
@@ -111,3 +115,84 @@ TEST(Root, IncreasingRootWithoutRootThrows) {
 }
 
 } // namespace
+
+// ---- phi functions ----------------------------------------------------------
+
+namespace {
+
+/// phi_n(z) in long double: the series (summed smallest first) for |z| <= 1,
+/// else phi_1 from expm1l and the recurrence upward (|z| > 1: each step loses
+/// at most a factor n + 1 of its 64 bits).
+long double phi_reference(int n, long double z) {
+  if (n == 0) return std::exp(-z);
+  if (std::fabs(z) <= 1.0L) {
+    long double terms[64], t = 1.0L;
+    for (int k = 1; k <= n; ++k)
+      t /= static_cast<long double>(k);
+    for (int j = 0; j < 64; ++j) {
+      terms[j] = t;
+      t *= -z / static_cast<long double>(j + n + 1);
+    }
+    long double s = 0.0L;
+    for (int j = 63; j >= 0; --j)
+      s += terms[j];
+    return s;
+  }
+  long double p = -std::expm1(-z) / z, f = 1.0L;
+  for (int k = 1; k < n; ++k) {
+    f /= static_cast<long double>(k);
+    p = (f - p) / z;
+  }
+  return p;
+}
+
+} // namespace
+
+TEST(Phi, AgainstLongDoubleFromTinyToLarge) {
+  // 10 points a decade over [1e-12, 1e3], and their negatives down to -30
+  // (phi_n(-z) grows like e^z: no cancellation there, the same bound)
+  double worst = 0.0;
+  for (int i = 0; i <= 150; ++i) {
+    const double x = std::pow(10.0, -12.0 + 0.1 * i);
+    for (const double z : {x, -x}) {
+      if (z < -30.0) continue;
+      double all[6], four[4];
+      mdrmap::numerics::phi_all(z, all);
+      mdrmap::numerics::phi_all(z, four);
+      for (int n = 0; n < 6; ++n) {
+        const double ref = static_cast<double>(phi_reference(n, z));
+        if (ref == 0.0) { // (phi_0 = e^-z underflows past z = 745)
+          EXPECT_EQ(all[n], 0.0) << "n=" << n << " z=" << z;
+          continue;
+        }
+        // phi(n, z) alone, and with the others: 6 of them, or 4
+        for (const double got : {mdrmap::numerics::phi(n, z), all[n], n < 4 ? four[n] : all[n]}) {
+          const double err = std::abs(got - ref) / std::abs(ref);
+          worst = std::max(worst, err);
+          // Horner's rule on the alternating series: its rounding grows with
+          // sum |term| / |sum| = phi_n(-|z|) / phi_n(|z|) <= e^|z| (<= 7.4 for
+          // |z| <= 2), the recurrences' with their error factors (< 2.5 a
+          // step): 16 ulps bound either
+          EXPECT_LE(err, 16.0 * std::numeric_limits<double>::epsilon()) << "n=" << n << " z=" << z;
+        }
+      }
+    }
+  }
+  std::printf("phi: worst relative error %.3g eps over [1e-12, 1e3]\n",
+              worst / std::numeric_limits<double>::epsilon());
+}
+
+TEST(Phi, ClosedFormsAndRecurrence) {
+  // where the closed forms do not cancel (z >= 4): phi_1, phi_2 as written
+  for (const double z : {4.0, 10.0, 100.0}) {
+    EXPECT_NEAR(mdrmap::numerics::phi(1, z), (1.0 - std::exp(-z)) / z, 1e-15 / z);
+    EXPECT_NEAR(mdrmap::numerics::phi(2, z), (std::exp(-z) - 1.0 + z) / (z * z), 1e-15 / z);
+  }
+  // z -> 0: phi_n -> 1/n!, with slope -1/(n+1)!
+  const double z = 1e-9;
+  double f = 1.0;
+  for (int n = 0; n < 6; ++n) {
+    if (n > 0) f /= n;
+    EXPECT_NEAR(mdrmap::numerics::phi(n, z), f - z * f / (n + 1), 1e-18) << n;
+  }
+}

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/phi.hpp"
 #include "core/numerics/root.hpp"
 
 // Derivation (docs/design.md, "Materials with a relaxation spectrum"). With
@@ -35,40 +36,7 @@
 // the single interval [-a1, a2].
 
 namespace mdrmap {
-namespace spectrum_detail {
-
-void phi_functions(double z, double (&phi)[6]) {
-  static constexpr double kInvFact[6] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0};
-  phi[0] = std::exp(-z);
-  if (z <= 2.0) {
-    // alternating series, terms shrink from j > z: 34 terms reach 2^34/34! < 1e-25
-    for (int n = 1; n <= 5; ++n) {
-      double term = kInvFact[n], sum = 0.0;
-      double tail[40];
-      int m = 0;
-      for (int j = 0; j < 40; ++j) {
-        tail[m++] = term;
-        term *= -z / static_cast<double>(j + n + 1);
-        if (std::fabs(term) < 1e-40) break;
-      }
-      for (int j = m - 1; j >= 0; --j) // smallest first
-        sum += tail[j];
-      phi[n] = sum;
-    }
-    return;
-  }
-  // phi_1 = (1 - e^-z) / z exactly; the recurrence's error factor
-  // phi_n / (z phi_(n+1)) is below 2.5 for z > 2, n < 5
-  phi[1] = -std::expm1(-z) / z;
-  for (int n = 1; n < 5; ++n)
-    phi[n + 1] = (kInvFact[n] - phi[n]) / z;
-}
-
-} // namespace spectrum_detail
-
 namespace {
-
-using spectrum_detail::phi_functions;
 
 struct Term {
   double G;   // branch modulus
@@ -107,7 +75,7 @@ struct Point {
 
 double glassy_D(double a1, double s, double lam) {
   double phi[6];
-  phi_functions(s / lam, phi);
+  numerics::phi_all(s / lam, phi);
   return s * (s / lam) * (a1 * phi[2] - s * phi[3]);
 }
 
@@ -158,7 +126,7 @@ State forces(const Contact& k, const Edge& e, double R) {
   double X = k.Ge * 0.25 * dS * dS + k.G * (2.0 / 3.0) * k.L * cubes;
   for (const Term& t : k.glassy) {
     double phi[6];
-    phi_functions(S / t.lam, phi);
+    numerics::phi_all(S / t.lam, phi);
     const double c = S * S * (S / t.lam);
     N -= 2.0 * t.G * c * (A * phi[3] - S * phi[4]);
     X -= 2.0 * t.G * c * (S * S * (phi[4] - phi[5]) - A * a2 * phi[3]);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/numerics/phi.hpp"
 #include "core/numerics/root.hpp"
 
 namespace mdrmap {
@@ -12,19 +13,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// phi2(z) = (exp(-z) - 1 + z) / z^2, evaluated without cancellation.
-// For small z the direct form loses digits (numerator ~ z^2/2), so use the
-// series sum_{n>=0} (-z)^n / (n+2)!; truncation error < 1e-20 for |z| < 0.1.
+// phi2(z) = (exp(-z) - 1 + z) / z^2 (numerics/phi.hpp).
 double phi2(double z) {
-  if (std::abs(z) < 0.1) {
-    double term = 0.5, sum = 0.5; // n = 0: 1/2!
-    for (int n = 1; n <= 10; ++n) {
-      term *= -z / static_cast<double>(n + 2);
-      sum += term;
-    }
-    return sum;
-  }
-  return (std::expm1(-z) + z) / (z * z);
+  return numerics::phi(2, z);
 }
 
 /// Geometry and material the tail arithmetic needs.

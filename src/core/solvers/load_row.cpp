@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/phi.hpp"
 #include "core/numerics/root.hpp"
 
 namespace mdrmap {
@@ -16,11 +17,10 @@ constexpr double kNoMemory = -std::numeric_limits<double>::infinity(); // ln 0: 
 constexpr long long kNoElement = std::numeric_limits<long long>::min();
 constexpr double kRootWork = 16.0; // work units of one evaluation of the edge
 
-/// phi(x) = 1 - (1 - exp(-x)) / x, the weight of D's change over a step of
-/// x = h / tau (series where the difference would cancel).
+/// phi(x) = 1 - (1 - exp(-x)) / x = x phi_2(x) (numerics/phi.hpp), the weight
+/// of D's change over a step of x = h / tau.
 double phi(double x) {
-  if (x < 1e-3) return x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0 - x / 120.0)));
-  return 1.0 + std::expm1(-x) / x;
+  return x * numerics::phi(2, x);
 }
 
 // Root of f on [lo, hi] with f(lo) and f(hi) of opposite signs.
