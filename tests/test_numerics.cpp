@@ -107,6 +107,23 @@ TEST(Root, IncreasingRootWidensToTheBracket) {
   }
 }
 
+TEST(Root, ScaledRootFromFarAboveAndBelow) {
+  // cube roots from 1 of r = 1e-30 and 1e30: 33 halvings or doublings, each
+  // bracket's ends the scaled start's, with their values
+  for (const double r : {1e-30, 1.0, 1e30}) {
+    auto f = [r](double x) { return std::cbrt(x) - std::cbrt(r); };
+    const mdrmap::numerics::ScaledBracket e = mdrmap::numerics::scaled_bracket(f, 1.0, 4000);
+    EXPECT_LE(e.flo, 0.0);
+    EXPECT_GE(e.fhi, 0.0);
+    EXPECT_EQ(e.flo, f(e.lo));
+    EXPECT_EQ(e.fhi, f(e.hi));
+    EXPECT_TRUE(e.lo == e.hi || e.hi == 1.0 || e.lo == 1.0) << r; // one side moves
+    const double x =
+        mdrmap::numerics::scaled_root(f, 1.0, 4000, mdrmap::numerics::bits_tolerance(52), {"cbrt"});
+    EXPECT_NEAR(x, r, 1e-14 * r) << r;
+  }
+}
+
 TEST(Root, IncreasingRootWithoutRootThrows) {
   double k = 1.0;
   auto f = [](double x) { return 2.0 + std::atan(x); }; // increasing, > 0.4

@@ -187,12 +187,8 @@ double load_edge(const Case& c, double w, profile::Budget& budget) {
   if (linear && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
   const double F0 = c.loading.F0;
   auto f = [&](double a1) { return at_edge(c, a1, w, budget, false).FN / F0 - 1.0; };
-  double lo = c.a0(), hi = lo;
-  for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
-    lo *= 0.5;
-  for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
-    hi *= 2.0;
-  return lo == hi ? lo : root(f, lo, hi);
+  return numerics::scaled_root(f, c.a0(), 4000, numerics::bits_tolerance(52),
+                               {"profile_stationary: load"});
 }
 
 void check_velocity(double w) {

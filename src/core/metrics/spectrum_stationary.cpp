@@ -175,12 +175,8 @@ double spectrum_stationary_depth(const Case& c, double w) {
   const Rheology r = c.rheology.shifted();
   // FN grows strictly with a1 (in s = x + a1, dP/da1 > 0 at every s): one root
   auto f = [&](double a1) { return solve(r, R, a1, w).FN / F0 - 1.0; };
-  double lo = c.a0(), hi = lo;
-  for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
-    lo *= 0.5;
-  for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
-    hi *= 2.0;
-  const double a1 = lo == hi ? lo : root(f, lo, hi);
+  const double a1 = numerics::scaled_root(f, c.a0(), 4000, numerics::bits_tolerance(50),
+                                          {"spectrum_stationary: load"});
   return a1 * (a1 / R);
 }
 

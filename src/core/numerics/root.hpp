@@ -4,8 +4,9 @@
 // known, with a stopping rule and an evaluation cap of the caller's; a bracket
 // that is not one (values of one sign, or not finite) throws NoBracket naming
 // the search, never Boost's own message; the evaluations are charged to the
-// case's RunControl when one is given. increasing_root finds the bracket of an
-// increasing function first (secant steps, widened).
+// case's RunControl when one is given. Two ways to the bracket of an
+// increasing function: scaled_bracket (halving and doubling from a start),
+// increasing_root (secant steps, widened, then the root).
 #include <algorithm>
 #include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
@@ -91,6 +92,32 @@ Bracket toms748(F&& f, double a, double b, Tol tol, const RootSearch& s) {
   r.evaluations += 2;
   if (s.control != nullptr) s.control->charge(2.0 * s.units, s.what);
   return r;
+}
+
+/// A bracket of an increasing f from x0 > 0 by scaling: lo halved while
+/// f(lo) > 0, hi doubled while f(hi) < 0 (at most max_steps times each, from
+/// lo = hi = x0), with the values there. It brackets unless a bound stopped a
+/// loop or f is NaN: the caller checks flo <= 0 <= fhi.
+struct ScaledBracket {
+  double lo, hi, flo, fhi;
+};
+template <class F> ScaledBracket scaled_bracket(F&& f, double x0, int max_steps) {
+  ScaledBracket e{x0, x0, f(x0), 0.0};
+  e.fhi = e.flo;
+  for (int i = 0; i < max_steps && e.flo > 0.0; ++i)
+    e.flo = f(e.lo *= 0.5);
+  for (int i = 0; i < max_steps && e.fhi < 0.0; ++i)
+    e.fhi = f(e.hi *= 2.0);
+  return e;
+}
+
+/// The root of an increasing f: scaled_bracket from x0 (max_steps), then
+/// toms748 (x0 itself where f(x0) = 0 or is NaN).
+template <class F, class Tol>
+double scaled_root(F&& f, double x0, int max_steps, Tol tol, const RootSearch& s) {
+  const ScaledBracket e = scaled_bracket(f, x0, max_steps);
+  if (e.lo == e.hi) return e.lo;
+  return toms748(f, e.lo, e.hi, e.flo, e.fhi, tol, s).mid();
 }
 
 /// Root of an increasing f from x0: a secant step with the expected slope k
