@@ -24,9 +24,9 @@
 namespace mdrmap::spectrum {
 
 /// Per-step coefficients of a contact update over dt: for branch k,
-/// q(dt) = e q0 + (1 - e) h0 + a h1 + b h2 (z = dt/tau_k, e = exp(-z),
-/// a = dt z phi_2(z), b = 2 dt^2 z phi_3(z): numerics/phi.hpp); and the modal
-/// factors exp(L_i dt) of a free update.
+/// q(dt) = e q0 + (1 - e) h0 + a h1 + b h2 (e = exp(-dt/tau_k),
+/// a = dt phi_a(dt/tau_k), b = dt^2 phi_b(dt/tau_k)); and the modal factors
+/// exp(L_i dt) of a free update.
 /// Which coefficients a StepCoef holds.
 enum class Part { Both, Contact, Free };
 
