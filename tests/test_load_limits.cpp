@@ -17,8 +17,8 @@
 
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/run_control.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {

@@ -11,8 +11,8 @@
 #include "case/text.hpp"
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/dispatch.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap::cases {
 namespace {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The floors of src/core (docs/design/code.md, "Architecture"): each file
 includes only the core's headers of its own floor and the floors below,
-model < metrics < solvers < outputs, and nothing of the layers above the core
+model < numerics < metrics < solvers < outputs, and nothing of the layers above the core
 (case, study, io, app, material, fit, python).
 
     python3 tests/structure/core_floors.py SOURCE_DIR
@@ -14,7 +14,7 @@ import pathlib
 import re
 import sys
 
-FLOORS = ["model", "metrics", "solvers", "outputs"]
+FLOORS = ["model", "numerics", "metrics", "solvers", "outputs"]
 INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*"([^"]+)"', re.M)
 
 

@@ -26,9 +26,9 @@
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/transient.hpp"
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 

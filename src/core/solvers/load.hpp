@@ -7,10 +7,10 @@
 // (spectrum.hpp) solves those cases too, at several times its CPU time
 // (tools/bench/kelvin_load.cpp).
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/checked_case.hpp"
 #include "core/solvers/load_row.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 

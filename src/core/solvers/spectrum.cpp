@@ -10,10 +10,9 @@
 #include <string>
 #include <utility>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/stationary.hpp"
+#include "core/numerics/root.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
@@ -131,35 +130,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
 // decides where a point lets go) is second order too. Steps grow geometrically
 // from each velocity change (relative step eps = 1 / cells: the companion at
 // half the cells has twice the step, so its difference sees the time error).
-
-/// Root of an increasing f from x0: a secant step with the expected slope k
-/// (> 0) past the root, widened (times 4) until it brackets, then TOMS 748 to
-/// |b - a| <= tol; lo_limit bounds the search below. k receives the slope of
-/// the final bracket (the next call's guess).
-template <class F> double increasing_root(F f, double x0, double& k, double tol, double lo_limit) {
-  double a = x0, fa = f(x0);
-  if (fa == 0.0) return x0;
-  double step = -1.2 * fa / k, b = a, fb = fa;
-  for (int n = 0; fa * fb > 0.0; ++n) {
-    if (n > 60 || !std::isfinite(step))
-      throw CaseAbandoned("row: the load balance has no root near " + format_number(x0));
-    a = b;
-    fa = fb;
-    b = std::max(a + step, 0.5 * (a + lo_limit));
-    fb = f(b);
-    step *= 4.0;
-  }
-  if (fb == 0.0) return b;
-  if (a > b) {
-    std::swap(a, b);
-    std::swap(fa, fb);
-  }
-  std::uintmax_t iters = 100;
-  const auto r = boost::math::tools::toms748_solve(
-      f, a, b, fa, fb, [tol](double l, double h) { return h - l <= tol; }, iters);
-  if (fb > fa) k = (fb - fa) / (b - a);
-  return 0.5 * (r.first + r.second);
-}
+// The balance's root: numerics::increasing_root (each evaluation runs the row,
+// which charges its own work).
+const numerics::RootSearch kBalance{"row: the load balance", 100};
 
 // Time steps. The relative step eps = factor / (a_ref/dx) after a change,
 // starting at first eps t_min, whatever the travel (a cap of 16 dx of travel
@@ -255,7 +228,8 @@ public:
       return row_.measure().FN - F0;
     };
     double k = 4.0 * c_.rheology.G * c_.rheology.tau * row_.a1_now(); // dF_N/dd, one interval
-    const double dd = increasing_root(f, row_.rate_now(), k, 1e-9 * d / c_.rheology.tau, -1e300);
+    const double dd = numerics::increasing_root(f, row_.rate_now(), k, 1e-9 * d / c_.rheology.tau,
+                                                -1e300, kBalance);
     row_.restore(snap_);
     row_.change_velocity(w, dd);
   }
@@ -356,7 +330,7 @@ private:
       fx = fn;
     }
     if (std::abs(fx) > ftol) {
-      x = increasing_root(f, from, k_, tol_ * d0, 0.0);
+      x = numerics::increasing_root(f, from, k_, tol_ * d0, 0.0, kBalance);
       fx = f(x);
     }
   }

@@ -10,9 +10,9 @@
 // (Kelvin) cases too, as a check of the specialised solvers. Expects a
 // shifted case (aT folded in; an unshifted one is shifted here).
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 

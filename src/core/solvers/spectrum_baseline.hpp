@@ -10,9 +10,9 @@
 // (core/model/profile.hpp): an element in contact follows h = d - g(x), the
 // contact spans [-a1, a1] at most, g(a1) = d.
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
