@@ -79,7 +79,7 @@ inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
   SpectrumOptions o;
   o.rtol = rtol;
   try {
-    return run_spectrum(c, o);
+    return run_spectrum(CheckedCase(c), o);
   } catch (const CaseAbandoned& e) {
     ++abandoned;
     std::printf("[ info ] abandoned at rtol %.0e: %s (%s)\n", rtol, what.c_str(), e.what());
@@ -91,9 +91,9 @@ inline std::optional<RunResult> row_or_abandoned(const Case& c, double rtol,
 /// depth: finite, Hertz (F_N = 16/3 G sqrt(R) d^1.5) and mu = 0 at every
 /// sample, whatever the history.
 inline void expect_row_hertz_throughout(const Case& c) {
-  const RunResult r = run_spectrum(c, SpectrumOptions{});
-  const double hertz =
-      16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.as<Parabola>().R) * std::pow(c.loading.d, 1.5);
+  const RunResult r = run_spectrum(CheckedCase(c), SpectrumOptions{});
+  const double hertz = 16.0 / 3.0 * c.rheology.G * std::sqrt(c.indenter.as<Parabola>().R) *
+                       std::pow(c.loading.d, 1.5);
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     ASSERT_TRUE(std::isfinite(r.series.FN[k]) && std::isfinite(r.series.mu[k])) << k;
     EXPECT_NEAR(r.series.FN[k] / hertz, 1.0, 1e-12);

@@ -493,9 +493,9 @@ TEST(cli, SimulateValuesEqualTheLibrary) {
   expect_time_grid(p, 201, default_window(s));
   EXPECT_GT(std::stol(p.run.at("root_solves")), 0L) << "scene should have a transient";
   // Same call as the command (auto at the default rtol): identical to the last digit printed.
-  expect_matches_series(p, mdrmap::run_exact(c, 1e-4).series, 1e-15);
+  expect_matches_series(p, mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-4).series, 1e-15);
   // And within rtol of the tightly solved continuum solution.
-  expect_matches_series(p, mdrmap::run_exact(c, 1e-12).series, 1e-4);
+  expect_matches_series(p, mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12).series, 1e-4);
 }
 
 TEST(cli, SimulateExplicitOptionsAreHonoured) {
@@ -510,7 +510,8 @@ TEST(cli, SimulateExplicitOptionsAreHonoured) {
   EXPECT_EQ(to_double(p.case_line.at("G")), 2.5);
   expect_time_grid(p, 11, 2.0);
   const Step s{0.2, 5, 0.5, 3, 1, 2.5};
-  expect_matches_series(p, mdrmap::run_exact(step_case(s, 11, 2.0), 1e-6).series, 1e-15);
+  expect_matches_series(
+      p, mdrmap::run_exact(mdrmap::CheckedCase(step_case(s, 11, 2.0)), 1e-6).series, 1e-15);
 }
 
 // wall_seconds is the only field that may differ between two runs.
@@ -706,7 +707,8 @@ TEST(cli, SimulateEdgeScenesAreValid) {
     const double t_end = default_window(c.scene);
     EXPECT_EQ(history_of(p), (std::vector<std::pair<double, double>>{{c.scene.v1, t_end}}));
     expect_time_grid(p, 41, t_end);
-    expect_matches_series(p, mdrmap::run_exact(step_case(c.scene, 41), 1e-4).series, 1e-15);
+    expect_matches_series(
+        p, mdrmap::run_exact(mdrmap::CheckedCase(step_case(c.scene, 41)), 1e-4).series, 1e-15);
     if (c.scene.v1 == c.scene.v) { // nothing changes: every row is the state before the step
       for (const auto& row : p.rows) {
         EXPECT_NEAR(row[kFN], to_double(p.pre.at("FN")), 1e-14 * std::abs(row[kFN]));
@@ -1676,7 +1678,7 @@ TEST(cli, SimulateThreeSegmentHistory) {
   // The same case in the library, the same call: identical to the last digit.
   mdrmap::Case c = mdrmap::step_case(0.1, 10, 1, 1, 0.1, 1.0, 0.5, N);
   c.history.segments = {{0.1, 0.5}, {0.2, 3.0}, {1.0, 2.0}};
-  const mdrmap::RunResult run = mdrmap::run_exact(c, 1e-4);
+  const mdrmap::RunResult run = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-4);
   const mdrmap::Series& ref = run.series;
   expect_matches_series(p, ref, 1e-15);
 
@@ -1775,7 +1777,7 @@ TEST(cli, SimulateLogSpacingGivesTheDocumentedInstants) {
     c.history.segments = {{1.0, 2.0}, {0.0, 1000.0}, {1.0, 5.0}};
     c.sampling.spacing = mdrmap::Spacing::Log;
     c.sampling.decades = D;
-    expect_matches_series(p, mdrmap::run_exact(c, 1e-4).series, 1e-15);
+    expect_matches_series(p, mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-4).series, 1e-15);
   }
 }
 
@@ -2067,7 +2069,8 @@ TEST(cli, SimulateUnderLoadHasTheLoadColumnsAndPhysics) {
   c.loading = {0.0, kF0};
   c.history.segments = {{0.1, 40.0}, {1.0, 40.0}};
   c.sampling.spacing = mdrmap::Spacing::Log;
-  const mdrmap::Series lib = mdrmap::run_case(c, mdrmap::SolverKind::Auto, 1e-3).series;
+  const mdrmap::Series lib =
+      mdrmap::run_case(mdrmap::CheckedCase(c), mdrmap::SolverKind::Auto, 1e-3).series;
   ASSERT_EQ(lib.size(), p.rows.size());
   for (std::size_t i = 0; i < lib.size(); ++i) {
     EXPECT_EQ(p.rows[i][kFN], lib.FN[i]);

@@ -51,7 +51,7 @@ Case sampled(Case c, int variant) {
 }
 
 std::vector<EventMetrics> events_of(const Case& c) {
-  const RunResult r = run_case(c, SolverKind::Auto, 1e-5);
+  const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, 1e-5);
   EXPECT_EQ(r.transients.size(), c.history.size());
   return event_metrics(c, r.series, r.transients);
 }
@@ -181,7 +181,7 @@ TEST(EventsFromTheSolution, NoiseIsNoTransient) {
   c.indenter.profile = Profile::of<Cone>();
   c.indenter.as<Parabola>().R = 0.0;
   c.indenter.as<Cone>().beta = 1e-10;
-  const RunResult r = run_case(c, SolverKind::Auto, 1e-3);
+  const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, 1e-3);
   const EventMetrics e =
       event_metrics(c, r.series, r.transients, r.info.error_estimate, r.probes)[0];
   EXPECT_EQ(e.overshoot, 0.0);
@@ -204,7 +204,7 @@ Case spectrum_case(bool load, const std::vector<std::pair<double, double>>& segs
 
 std::vector<EventMetrics> spectrum_events(const Case& c, double rtol, Series* dense = nullptr,
                                           SolverKind kind = SolverKind::Auto) {
-  const RunResult r = run_case(c, kind, rtol);
+  const RunResult r = run_case(CheckedCase(c), kind, rtol);
   if (dense != nullptr) *dense = r.series;
   return event_metrics(c, r.series, r.transients, r.info.error_estimate, r.probes);
 }
@@ -316,8 +316,9 @@ TEST(EventsFromTheSolution, BaselineMetricsDoNotDependOnTheSamplesKelvin) {
   o.cells_per_a1 = 100;
   for (bool load : {false, true}) {
     SCOPED_TRACE(load ? "load" : "depth");
-    expect_solver_metrics_agree(event_case(load, 1.0, {{0.1, 6.0}}),
-                                [&](const Case& s) { return run_spectrum_baseline(s, o); });
+    expect_solver_metrics_agree(event_case(load, 1.0, {{0.1, 6.0}}), [&](const Case& s) {
+      return run_spectrum_baseline(CheckedCase(s), o);
+    });
   }
 }
 
@@ -343,8 +344,8 @@ TEST(EventsFromTheSolution, SpectrumBaselineMetricsDoNotDependOnTheSamples) {
   o.cells_per_a1 = 50;
   for (bool load : {false, true}) {
     SCOPED_TRACE(load ? "load" : "depth");
-    expect_solver_metrics_agree(three_terms(load),
-                                [&](const Case& s) { return run_spectrum_baseline(s, o); });
+    expect_solver_metrics_agree(
+        three_terms(load), [&](const Case& s) { return run_spectrum_baseline(CheckedCase(s), o); });
   }
 }
 TEST(EventsFromTheSolution, RowMetricsDoNotDependOnTheSamplesSpectrumDepth) {

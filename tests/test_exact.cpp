@@ -363,7 +363,7 @@ TEST(ExactSimilarity, DimensionlessCurvesCollapse) {
   };
   for (const Base& b : bases) {
     auto dimless = [&](const Case& c) {
-      const auto r = mdrmap::run_exact(c, 1e-12);
+      const auto r = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12);
       const double a1 = analytic::a1(c),
                    sdr = std::sqrt(c.loading.d / c.indenter.as<mdrmap::Parabola>().R);
       std::vector<std::vector<double>> out(4);
@@ -499,7 +499,7 @@ mdrmap::Series reference_series(const Case& c) {
 TEST(ExactRunExact, ErrorEstimateAndLooseTolerance) {
   for (const Regime& g : kRegimes) {
     const Case c = scene_z(g.zeta, g.ratio); // 201 samples over 6 tau
-    const auto tight = mdrmap::run_exact(c, 1e-12);
+    const auto tight = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12);
     EXPECT_LT(tight.info.error_estimate, 1e-10) << g.zeta << " " << g.ratio;
     EXPECT_EQ(tight.info.solver, "exact");
     ASSERT_EQ(tight.series.size(), 201u);
@@ -511,7 +511,7 @@ TEST(ExactRunExact, ErrorEstimateAndLooseTolerance) {
     const double a1 = analytic::a1(c);
     const auto ref = reference_series(c);
     EXPECT_LT(mdrmap::case_error(tight.series, ref, a1).max(), 1e-12) << g.zeta << " " << g.ratio;
-    const auto loose = mdrmap::run_exact(c, 1e-3);
+    const auto loose = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-3);
     EXPECT_LT(mdrmap::case_error(loose.series, tight.series, a1).max(), 1e-3)
         << g.zeta << " " << g.ratio;
     EXPECT_LT(mdrmap::case_error(loose.series, ref, a1).max(), 1e-3) << g.zeta << " " << g.ratio;
@@ -527,7 +527,7 @@ TEST(ExactRunExact, ErrorEstimateBoundsActualError) {
   for (const Regime& g : kRegimes)
     for (double rtol : {1e-3, 1e-6, 1e-9}) {
       const Case c = scene_z(g.zeta, g.ratio); // 201 samples over 6 tau
-      const auto run = mdrmap::run_exact(c, rtol);
+      const auto run = mdrmap::run_exact(mdrmap::CheckedCase(c), rtol);
       const auto err = mdrmap::case_error(run.series, reference_series(c), analytic::a1(c));
       EXPECT_LE(err.max(), run.info.error_estimate + 1e-14)
           << "zeta=" << g.zeta << " v1/v=" << g.ratio << " rtol=" << rtol << ": FN " << err.FN
@@ -541,7 +541,7 @@ TEST(ExactRunExact, TimePerSample) {
   for (const Regime& g : kRegimes) {
     const Case c = scene_z(g.zeta, g.ratio, 1e-3, 0.05, 2e-3, 1e6, 20001);
     const auto t0 = std::chrono::steady_clock::now();
-    const auto r = mdrmap::run_exact(c, 1e-12);
+    const auto r = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12);
     const auto t1 = std::chrono::steady_clock::now();
     const double us = std::chrono::duration<double, std::micro>(t1 - t0).count();
     std::cout << "[ info ] run_exact zeta=" << g.zeta << " v1/v=" << g.ratio << ": "

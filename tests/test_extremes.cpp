@@ -144,7 +144,8 @@ TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
     EXPECT_EQ(refused_option(r.c), r.option);
   }
   // the Kelvin parabola asked of the spectrum solver: the same limits
-  EXPECT_THROW(run_case(depth_case({{1e155, 1e-170}}), SolverKind::Row, 1e-3), InvalidInput);
+  EXPECT_THROW(run_case(CheckedCase(depth_case({{1e155, 1e-170}})), SolverKind::Row, 1e-3),
+               InvalidInput);
 }
 
 // At the edges of that range the row runs, finite: the SLS sliding at
@@ -153,13 +154,13 @@ TEST(Extremes, ElementRowLimitsAreRefusedNamingTheirOption) {
 TEST(Extremes, ElementRowRunsAtTheEdgesOfItsRange) {
   const Case fast = sls_case({{1e149, 1e-150}}, 1e149);
   ASSERT_EQ(refused_option(fast), "");
-  const RunResult r = run_case(fast, SolverKind::Auto, 1e-3);
+  const RunResult r = run_case(CheckedCase(fast), SolverKind::Auto, 1e-3);
   ASSERT_TRUE(all_finite(r.series));
   const double glassy = 16.0 / 3.0 * 2.0 / 10.0;
   EXPECT_NEAR(r.series.FN.back(), glassy, 1e-3 * glassy);
   const Case slow = sls_case({{1e-139, 1.0}}, 1e-139); // fully relaxed: G = 1
   ASSERT_EQ(refused_option(slow), "");
-  const RunResult s = run_case(slow, SolverKind::Auto, 1e-3);
+  const RunResult s = run_case(CheckedCase(slow), SolverKind::Auto, 1e-3);
   ASSERT_TRUE(all_finite(s.series));
   EXPECT_NEAR(s.series.FN.back(), glassy / 2.0, 1e-3 * glassy);
 }
@@ -178,7 +179,7 @@ TEST(Extremes, HoldsNearTheLargestDoubleAreFiniteAndRight) {
   // 201 samples of a hold of 1e306: j T overflowed (rows of inf and nan)
   const Case c = depth_case({{0.0, 1e306}, {1.0, 1.0}});
   ASSERT_EQ(refused_option(c), "");
-  const RunResult r = run_case(c, SolverKind::Auto, 1e-6);
+  const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, 1e-6);
   ASSERT_TRUE(all_finite(r.series));
   for (std::size_t k = 1; k < r.series.size(); ++k)
     EXPECT_LE(r.series.t[k - 1], r.series.t[k]) << k;
@@ -186,7 +187,7 @@ TEST(Extremes, HoldsNearTheLargestDoubleAreFiniteAndRight) {
   // after a hold of 1000 tau (exp(-1000) = 0) the state no longer depends on
   // the hold's length: every later hold sample, and the reslide, are the same
   const Case ref_case = depth_case({{0.0, 1e3}, {1.0, 1.0}});
-  const RunResult ref = run_case(ref_case, SolverKind::Auto, 1e-6);
+  const RunResult ref = run_case(CheckedCase(ref_case), SolverKind::Auto, 1e-6);
   for (long j = 1; j < 201; ++j) {
     const auto k = static_cast<std::size_t>(j);
     EXPECT_NEAR(r.series.FN[k], ref.series.FN[200], 1e-14 * ref.series.FN[200]) << j;
@@ -202,7 +203,7 @@ TEST(Extremes, TheLargestRepresentableSpeedsGiveTheirLimits) {
   // zeta = w tau / a1 = 3e299: the limits of eqs. (12)-(14) to rounding
   const Case c = depth_case({{1e308, 1.0}}, 1e-3, 1.0, 1e-10);
   ASSERT_EQ(refused_option(c), "");
-  const RunResult r = run_case(c, SolverKind::Auto, 1e-6);
+  const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, 1e-6);
   ASSERT_TRUE(all_finite(r.series));
   const double w = 1e308;
   EXPECT_NEAR(r.series.FN.back(), analytic::FN_inf(c, w), 1e-12 * analytic::FN_inf(c, w));
@@ -240,7 +241,7 @@ TEST(Extremes, EverySolverStopsAtItsWorkBudget) {
     RunControl small;
     small.max_work = 100;
     try {
-      run_case(budget_case(s.load), s.kind, s.rtol, small);
+      run_case(CheckedCase(budget_case(s.load)), s.kind, s.rtol, small);
       ADD_FAILURE() << "no CaseAbandoned";
     } catch (const CaseAbandoned& e) {
       const std::string what = e.what();
@@ -248,7 +249,7 @@ TEST(Extremes, EverySolverStopsAtItsWorkBudget) {
       EXPECT_NE(what.find("budget"), std::string::npos) << what;
     }
     RunControl enough; // and the default budget runs it
-    EXPECT_NO_THROW(run_case(budget_case(s.load), s.kind, s.rtol, enough));
+    EXPECT_NO_THROW(run_case(CheckedCase(budget_case(s.load)), s.kind, s.rtol, enough));
     EXPECT_GT(enough.spent(), 100.0);
   }
 }
@@ -259,7 +260,7 @@ TEST(Extremes, EverySolverStopsOnAStopRequest) {
     SCOPED_TRACE(s.name);
     RunControl control;
     control.stop = &stop;
-    EXPECT_THROW(run_case(budget_case(s.load), s.kind, 1e-3, control), Interrupted);
+    EXPECT_THROW(run_case(CheckedCase(budget_case(s.load)), s.kind, 1e-3, control), Interrupted);
   }
 }
 
@@ -268,14 +269,14 @@ TEST(Extremes, EverySolverStopsOnAStopRequest) {
 TEST(Extremes, RowFailsACaseItCannotResolveToRtol) {
   const Case& c = budget_case(false);
   try {
-    run_case(c, SolverKind::Row, 1e-15);
+    run_case(CheckedCase(c), SolverKind::Row, 1e-15);
     ADD_FAILURE() << "no CaseAbandoned";
   } catch (const CaseAbandoned& e) {
     EXPECT_NE(std::string(e.what()).find("stays above rtol 1.0000000000000001e-15"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_LE(run_case(c, SolverKind::Row, 1e-6).info.error_estimate, 1e-6);
+  EXPECT_LE(run_case(CheckedCase(c), SolverKind::Row, 1e-6).info.error_estimate, 1e-6);
 }
 
 // The fixed-step baseline reports its estimate like every solver and, like
@@ -286,14 +287,14 @@ TEST(Extremes, BaselineFailsACaseWhoseEstimateIsAboveRtol) {
   Case under_load = depth_case({{0.1, 3.0}, {3.0, 3.0}}, 0.0, 10.0, 1.0, 1.0, 5);
   under_load.loading.F0 = 0.05;
   try {
-    const RunResult r = run_case(under_load, SolverKind::Baseline, 0.1);
+    const RunResult r = run_case(CheckedCase(under_load), SolverKind::Baseline, 0.1);
     ADD_FAILURE() << "done with the estimate " << r.info.error_estimate << " at rtol 0.1";
   } catch (const CaseAbandoned& e) {
     EXPECT_NE(std::string(e.what()).find("is above rtol 0.1"), std::string::npos) << e.what();
   }
   // at depth its resolution follows rtol: a1/dx 70 at rtol 1e-2 gave 0.056
   const Case at_depth = depth_case({{0.1, 3.0}, {3.0, 3.0}}, 0.1, 10.0, 1.0, 1.0, 5);
-  EXPECT_LE(run_case(at_depth, SolverKind::Baseline, 1e-2).info.error_estimate, 1e-2);
+  EXPECT_LE(run_case(CheckedCase(at_depth), SolverKind::Baseline, 1e-2).info.error_estimate, 1e-2);
 }
 
 // The friction integral's rounding (issue 32): a needle cone (beta
@@ -307,7 +308,7 @@ TEST(Extremes, AFrictionWithinRoundingIsRefused) {
                              Profile::of<Cone>(), 89.999999999);
   needle.rheology.branches = {{1.0, 1.0}, {10.0, 0.01}};
   try {
-    const RunResult r = run_case(needle, SolverKind::Auto, 1e-3);
+    const RunResult r = run_case(CheckedCase(needle), SolverKind::Auto, 1e-3);
     ADD_FAILURE() << "done with pre mu " << r.series.pre.mu << " (stationary "
                   << stationary_state(needle, 1e4).mu << ")";
   } catch (const CaseAbandoned& e) {
@@ -320,7 +321,7 @@ TEST(Extremes, AFrictionWithinRoundingIsRefused) {
         with_profile(depth_case({{v, 1e-12}}, 0.01, 1.0, 0.0, v, 3), Profile::of<Cone>(), 10.0);
     cone.rheology.branches = needle.rheology.branches;
     const double mu_ss = stationary_state(cone, v).mu;
-    EXPECT_NEAR(run_case(cone, SolverKind::Auto, 1e-3).series.pre.mu, mu_ss,
+    EXPECT_NEAR(run_case(CheckedCase(cone), SolverKind::Auto, 1e-3).series.pre.mu, mu_ss,
                 1e-3 * std::max(mu_ss, kNegligibleFriction))
         << v;
   }

@@ -102,7 +102,7 @@ std::string make_record(const Files& f, const std::string& name, const Scene& sc
   OptionTexts texts = truth;
   texts["history-file"] = f.write(name + ".hist.csv", hist);
   const auto in = mdrmap::cases::read_case_input(texts);
-  const auto res = mdrmap::run_case(in.c, in.solver, 1e-7);
+  const auto res = mdrmap::run_case(mdrmap::CheckedCase(in.c), in.solver, 1e-7);
   const auto rows = mdrmap::cases::record_rows(in.c);
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal;

@@ -31,7 +31,7 @@ Series fine_row(const Case& c, double cells = 1600) {
   SpectrumOptions o;
   o.cells_per_a1 = cells;
   o.estimate_error = false;
-  return run_spectrum(c, o).series;
+  return run_spectrum(CheckedCase(c), o).series;
 }
 
 TEST(HistoryClaims, RiseOutOfStationarySlidingIsStationaryAtOnce) {
@@ -40,7 +40,7 @@ TEST(HistoryClaims, RiseOutOfStationarySlidingIsStationaryAtOnce) {
   for (double z : {1e-2, 1.0, 1e2}) {
     const Case c = history(z, {{10.0, 3.0}});
     const State ss = analytic::stationary(c, c.history.segments[0].w);
-    const RunResult r = run_exact(c);
+    const RunResult r = run_exact(CheckedCase(c));
     for (std::size_t i = 0; i < r.series.size(); ++i) {
       EXPECT_NEAR(r.series.mu[i], ss.mu, 1e-13 * ss.mu) << "zeta0 " << z;
       EXPECT_NEAR(r.series.a2[i], ss.a2, 1e-13 * c.a1());
@@ -54,7 +54,7 @@ TEST(HistoryClaims, ReslideAfterAHoldShowsNoPeak) {
   for (double hold : {1e-4, 0.1, 1.0, 10.0, 1e4}) {
     const Case c = history(1.0, {{0.0, hold}, {1.0, 3.0}});
     const State ss = analytic::stationary(c, c.history.v0);
-    const RunResult r = run_exact(c);
+    const RunResult r = run_exact(CheckedCase(c));
     for (std::size_t i = 0; i < r.series.size(); ++i)
       if (r.series.segment[i] == 1) {
         EXPECT_NEAR(r.series.mu[i], ss.mu, 1e-13 * ss.mu) << hold;
@@ -67,7 +67,7 @@ TEST(HistoryClaims, RiseDuringATransientIsNotStationary) {
   // a2(0.2 v0), so mu starts above its stationary value and relaxes to it
   // over about tau (the independent discrete solver agrees)
   const Case c = history(1.0, {{0.0, 0.1}, {0.2, 6.0}}, 121);
-  const RunResult r = run_exact(c);
+  const RunResult r = run_exact(CheckedCase(c));
   const double mu_ss = analytic::stationary(c, c.history.segments[1].w).mu;
   const std::size_t first = 121;
   const double excess = r.series.mu[first] / mu_ss - 1.0;
@@ -83,7 +83,7 @@ TEST(HistoryClaims, RiseDuringATransientIsNotStationary) {
   EXPECT_LT(t_1e, 1.0);
   SpectrumOptions o; // the element row agrees within its rtol
   o.rtol = 1e-6;
-  EXPECT_LT(case_error(run_spectrum(c, o).series, r.series, c).max(), o.rtol);
+  EXPECT_LT(case_error(run_spectrum(CheckedCase(c), o).series, r.series, c).max(), o.rtol);
 }
 
 TEST(HistoryClaims, HoldGrowsTheContactAndRelaxesFriction) {
@@ -91,7 +91,7 @@ TEST(HistoryClaims, HoldGrowsTheContactAndRelaxesFriction) {
   // (F_x > 0 from the asymmetric contact), free material decays in place and
   // touches again, so the edge only grows and F_x only falls
   const Case c = history(1.0, {{0.1, 0.5}, {0.0, 20.0}}, 81);
-  const RunResult r = run_exact(c);
+  const RunResult r = run_exact(CheckedCase(c));
   double prev_a2 = -1.0, prev_fx = std::numeric_limits<double>::infinity();
   for (std::size_t i = 81; i < r.series.size(); ++i) {
     EXPECT_GE(r.series.a2[i], prev_a2);
@@ -145,13 +145,13 @@ TEST(HistoryClaims, SuccessiveDropsLeaveOneExponentialPiecePerEpoch) {
   EXPECT_DOUBLE_EQ(t2[1].lam, c.history.segments[0].w * c.rheology.tau);
   EXPECT_DOUBLE_EQ(t2[2].lam, c.history.v0 * c.rheology.tau);
   // the brute-force fixed-step method converges to it at first order
-  const RunResult ref = run_exact(c);
+  const RunResult ref = run_exact(CheckedCase(c));
   double err[2];
   for (int i = 0; i < 2; ++i) {
     SpectrumBaselineOptions o;
     o.cells_per_a1 = 200.0 * (i + 1);
     o.estimate_error = false;
-    err[i] = case_error(run_spectrum_baseline(c, o).series, ref.series, c).max();
+    err[i] = case_error(run_spectrum_baseline(CheckedCase(c), o).series, ref.series, c).max();
   }
   const double order = std::log2(err[0] / err[1]);
   EXPECT_GT(order, 0.8);
@@ -184,7 +184,7 @@ TEST(HistoryClaims, AgreesWithTheDiscreteSolverOnTheHistorySet) {
   // time integration); at a1/dx = 1600 it agrees with the continuum solution
   int checked = 0;
   for (const auto& nc : history_case_set(21)) {
-    const RunResult ex = run_exact(nc.c);
+    const RunResult ex = run_exact(CheckedCase(nc.c));
     const double err = case_error(fine_row(nc.c), ex.series, nc.c, 1e-12).max();
     EXPECT_LT(err, 1e-4) << nc.name;
     ++checked;
@@ -215,7 +215,7 @@ TEST(HistorySampling, StatesDoNotDependOnTheSampling) {
   Case a = history(1.0, {{0.1, 1.0}, {0.0, 2.0}, {0.5, 2.0}}, 11);
   Case b = a;
   b.sampling.samples = 21; // every second sample of b is a sample of a
-  const RunResult ra = run_exact(a), rb = run_exact(b);
+  const RunResult ra = run_exact(CheckedCase(a)), rb = run_exact(CheckedCase(b));
   for (std::size_t k = 0; k < 3; ++k)
     for (long j = 0; j < 11; ++j) {
       const std::size_t ia = k * 11 + static_cast<std::size_t>(j);
@@ -229,7 +229,7 @@ TEST(HistorySampling, LogSpacingResolvesLongHoldsAndShortReslides) {
   Case c = history(1.0, {{0.0, 1e4}, {0.2, 2.0}}, 9);
   c.sampling.spacing = Spacing::Log;
   c.sampling.decades = 4.0;
-  const RunResult r = run_exact(c);
+  const RunResult r = run_exact(CheckedCase(c));
   EXPECT_EQ(r.series.t[0], 0.0);
   EXPECT_DOUBLE_EQ(r.series.t[1], 1.0); // 1e4 * 1e-4
   EXPECT_DOUBLE_EQ(r.series.t[8], 1e4); // end of the hold
@@ -242,7 +242,7 @@ TEST(HistorySimilarity, ScaledVariablesCollapse) {
   // mu/sqrt(d/R), F_N/(G a1 d), a2/a1 depend on zeta0, the ratios w_k/v0 and
   // T_k/tau only: rescale length, time and stress by unrelated factors
   const Case c = history(0.7, {{0.1, 0.4}, {0.0, 1.0}, {0.3, 1.5}, {3.0, 1.0}}, 17);
-  const RunResult r = run_exact(c);
+  const RunResult r = run_exact(CheckedCase(c));
   Case s = c;
   const double L = 37.0, T = 1e-3, S = 4e6;
   s.loading.d *= L;
@@ -254,7 +254,7 @@ TEST(HistorySimilarity, ScaledVariablesCollapse) {
     seg.w *= L / T;
     seg.T *= T;
   }
-  const RunResult q = run_exact(s);
+  const RunResult q = run_exact(CheckedCase(s));
   for (std::size_t i = 0; i < r.series.size(); ++i) {
     EXPECT_NEAR(q.series.mu[i], r.series.mu[i], 1e-12 * r.series.mu[i]);
     EXPECT_NEAR(q.series.FN[i] / (S * L * L), r.series.FN[i], 1e-12 * r.series.FN[i]);
@@ -264,7 +264,7 @@ TEST(HistorySimilarity, ScaledVariablesCollapse) {
 
 TEST(HistoryHardCases, NoNaNAndStatesInRange) {
   for (const auto& nc : history_case_set(31)) {
-    const RunResult r = run_exact(nc.c);
+    const RunResult r = run_exact(CheckedCase(nc.c));
     const double a1 = nc.c.a1();
     for (std::size_t i = 0; i < r.series.size(); ++i) {
       ASSERT_TRUE(std::isfinite(r.series.mu[i])) << nc.name << " sample " << i;
@@ -282,7 +282,7 @@ TEST(HistoryEvents, RateAndStateParametersOfStepsFromStationarySliding) {
   // mu_ss(w), so the direct effect equals a - b and b = 0; a drop gives a
   // direct effect of the other sign than the later evolution
   const Case c = history(1.0, {{10.0, 5.0}, {1.0, 8.0}}, 201);
-  const RunResult r = run_exact(c);
+  const RunResult r = run_exact(CheckedCase(c));
   const auto ev = event_metrics(c, r.series);
   ASSERT_EQ(ev.size(), 2U);
   EXPECT_NEAR(ev[0].a, ev[0].a_minus_b, 1e-12 * std::abs(ev[0].a));
@@ -311,7 +311,7 @@ TEST(HistoryEvents, RateAndStateParametersOfStepsFromStationarySliding) {
 
 TEST(HistoryEvents, UndefinedWhereALogOfZeroAppears) {
   const Case c = history(1.0, {{0.0, 1.0}, {1.0, 2.0}}, 11);
-  const auto ev = event_metrics(c, run_exact(c).series);
+  const auto ev = event_metrics(c, run_exact(CheckedCase(c)).series);
   EXPECT_TRUE(std::isnan(ev[0].a)); // into a hold
   EXPECT_TRUE(std::isnan(ev[0].b));
   EXPECT_TRUE(std::isnan(ev[0].d_c));

@@ -130,8 +130,9 @@ TEST(LabRecord, ExplicitInstantsGiveTheUniformSamplesWithEverySolver) {
       explicit_case.sampling.at.push_back(at);
     }
     explicit_case.sampling.samples = 201; // (ignored where the instants are given)
-    const mdrmap::Series a = mdrmap::run_case(c, run.kind, run.rtol).series;
-    const mdrmap::Series b = mdrmap::run_case(explicit_case, run.kind, run.rtol).series;
+    const mdrmap::Series a = mdrmap::run_case(mdrmap::CheckedCase(c), run.kind, run.rtol).series;
+    const mdrmap::Series b =
+        mdrmap::run_case(mdrmap::CheckedCase(explicit_case), run.kind, run.rtol).series;
     ASSERT_EQ(a.size(), 15U);
     ASSERT_EQ(b.size(), a.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -251,7 +252,8 @@ TEST(LabRecordCli, SlidingAtTheEndOfALongSegmentIsStationary) {
   Case c = depth_case();
   c.history.v0 = 1.0;
   c.history.segments = {{1.0, 1.0}};
-  const double mu_ss = mdrmap::run_case(c, SolverKind::Exact, 1e-9).series.pre.mu;
+  const double mu_ss =
+      mdrmap::run_case(mdrmap::CheckedCase(c), SolverKind::Exact, 1e-9).series.pre.mu;
   std::vector<double> last;
   std::istringstream in(rows.back());
   for (std::string x; std::getline(in, x, ',');)

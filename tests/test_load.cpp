@@ -49,7 +49,7 @@ Series at(const Case& c, double cells, double time_tol, double dt_over_tau = 0.0
   o.time_tol = time_tol;
   o.dt_over_tau = dt_over_tau;
   o.estimate_error = false;
-  return run_load(c, o).series;
+  return run_load(CheckedCase(c), o).series;
 }
 
 TEST(StationaryUnderLoad, RootOfTheFixedDepthStationaryForce) {
@@ -108,7 +108,7 @@ TEST(RunLoad, NormalForceIsF0AtEverySample) {
     if (nc.name.find("zeta0=1e6") != std::string::npos) continue; // (slow; in the set test)
     LoadOptions o;
     o.rtol = 1e-3;
-    const RunResult r = run_load(nc.c, o);
+    const RunResult r = run_load(CheckedCase(nc.c), o);
     double dev = std::abs(r.series.pre.FN / nc.c.loading.F0 - 1.0);
     for (std::size_t k = 0; k < r.series.size(); ++k)
       dev = std::max(dev, std::abs(r.series.FN[k] / nc.c.loading.F0 - 1.0));
@@ -126,7 +126,7 @@ TEST(RunLoad, LongSegmentReachesTheStationaryStateUnderLoad) {
       const Case c = load_case(z, segs, 5);
       LoadOptions o;
       o.rtol = 1e-4;
-      const RunResult r = run_load(c, o);
+      const RunResult r = run_load(CheckedCase(c), o);
       const State st = stationary_under_load(c, c.history.segments.back().w);
       const std::size_t k = r.series.size() - 1;
       EXPECT_NEAR(r.series.d[k] / st.d, 1.0, 1e-6) << z;
@@ -144,7 +144,7 @@ TEST(RunLoad, EventsUseTheStationaryStatesUnderLoad) {
   const Case c = load_case(0.1, {{10.0, 40.0}, {100.0, 40.0}, {1000.0, 40.0}}, 9);
   LoadOptions o;
   o.rtol = 1e-4;
-  const RunResult r = run_load(c, o);
+  const RunResult r = run_load(CheckedCase(c), o);
   const auto ev = event_metrics(c, r.series);
   ASSERT_EQ(ev.size(), 3u);
   for (const auto& e : ev) {
@@ -171,7 +171,7 @@ TEST(RunLoad, IndentationCreepUnderAStepLoad) {
     LoadOptions o;
     o.rtol = 1e-6;
     o.start = LoadStart::Undeformed;
-    const RunResult r = run_load(c, o);
+    const RunResult r = run_load(CheckedCase(c), o);
     const double d0 = d0_of(c);
     double worst = 0.0;
     for (std::size_t k = 0; k < r.series.size(); ++k) {
@@ -193,7 +193,7 @@ TEST(RunLoad, TauZeroIsHertzAtOnce) {
   Case c = load_case(1.0, {{0.1, 2.0}, {0.0, 1.0}, {10.0, 2.0}}, 11);
   c.rheology.tau = 0.0;
   c.history.v0 = 1.0;
-  const RunResult r = run_load(c, LoadOptions{});
+  const RunResult r = run_load(CheckedCase(c), LoadOptions{});
   const double d0 = d0_of(c), a0 = c.a0();
   for (std::size_t k = 0; k < r.series.size(); ++k) {
     EXPECT_NEAR(r.series.d[k] / d0, 1.0, 1e-15);
@@ -205,7 +205,7 @@ TEST(RunLoad, TauZeroIsHertzAtOnce) {
   // O(zeta0) from the first sample after each change on
   Case s = load_case(1.0, {{0.1, 3.0}, {0.0, 2.0}, {1.0, 3.0}}, 11);
   s.rheology.tau = 1e-9;
-  const RunResult q = run_load(s, LoadOptions{});
+  const RunResult q = run_load(CheckedCase(s), LoadOptions{});
   EXPECT_LT(q.info.steps, 20000);
   for (std::size_t k = 0; k < q.series.size(); ++k) {
     if (k % 11 == 0) continue; // (the instant of a change)
@@ -261,11 +261,11 @@ TEST(RunLoadSet, WithinRtolWithAnHonestEstimate) {
     const bool heavy = nc.name.find("zeta0=1e6") != std::string::npos;
     LoadOptions o;
     o.rtol = 1e-4;
-    const RunResult finest = run_load(nc.c, o);
+    const RunResult finest = run_load(CheckedCase(nc.c), o);
     const Series ref = at(nc.c, 4.0 * finest.info.cells_per_a1, heavy ? 1e-8 : 1e-9);
     for (double rtol : {1e-2, 1e-3, 1e-4}) { // (1e-2: long trial steps)
       o.rtol = rtol;
-      const RunResult r = rtol == finest.info.rtol ? finest : run_load(nc.c, o);
+      const RunResult r = rtol == finest.info.rtol ? finest : run_load(CheckedCase(nc.c), o);
       const double err = case_error(r.series, ref, nc.c, 1e-12).max();
       EXPECT_LE(err, rtol) << nc.name << " rtol " << rtol;
       EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name << " rtol " << rtol;
@@ -283,7 +283,7 @@ TEST(RunLoadSet, HeldOutDropHoldRiseWithinRtol) {
     const Case c = load_case(3.0, {{0.1, 1.0}, {0.0, th}, {up, 1.0}}, 61);
     LoadOptions o;
     o.rtol = 1e-3;
-    const RunResult r = run_load(c, o);
+    const RunResult r = run_load(CheckedCase(c), o);
     const Series ref = at(c, 4.0 * r.info.cells_per_a1, 1e-9);
     const double err = case_error(r.series, ref, c, 1e-12).max();
     EXPECT_LE(err, o.rtol) << "hold " << th << " rise " << up;
@@ -305,14 +305,15 @@ TEST(RunLoadSet, TheFixedStepSolverConvergesToIt) {
     ASSERT_NE(it, set.end()) << name;
     LoadOptions o;
     o.rtol = 1e-6;
-    const RunResult ref = run_load(it->c, o);
+    const RunResult ref = run_load(CheckedCase(it->c), o);
     std::vector<double> cells = {25.0, 50.0, 100.0, 200.0}, err;
     for (double n : cells) {
       SpectrumBaselineOptions b;
       b.cells_per_a1 = n;
       b.estimate_error = false;
       err.push_back(
-          case_error(run_spectrum_baseline(it->c, b).series, ref.series, it->c, 1e-12).max());
+          case_error(run_spectrum_baseline(CheckedCase(it->c), b).series, ref.series, it->c, 1e-12)
+              .max());
     }
     const double order = testing::observed_order(cells, err);
     EXPECT_GT(order, 0.7) << name << ": " << err[0] << " .. " << err[3];
@@ -331,27 +332,27 @@ TEST(RunLoad, WindowFromTheHistoryWidensWhenLeft) {
   const Case c = load_case(1.0, {{1.0, 1.0}, {0.0, 10.0}, {1.0, 3.0}}, 11);
   LoadOptions o;
   o.rtol = 1e-4;
-  const RunResult ref = run_load(c, o);
+  const RunResult ref = run_load(CheckedCase(c), o);
   o.window_a0 = 0.3;
-  const RunResult r = run_load(c, o);
+  const RunResult r = run_load(CheckedCase(c), o);
   EXPECT_LT(case_error(r.series, ref.series, c, 1e-12).max(), 1e-14); // (a0 vs alpha(0) a0)
   EXPECT_EQ(r.info.elements, ref.info.elements);
   const Case fast = load_case(1e6, {{0.1, 0.2}, {1.0, 0.2}}, 5);
   o.window_a0 = 0.0;
-  const RunResult f = run_load(fast, o);
+  const RunResult f = run_load(CheckedCase(fast), o);
   o.window_a0 = 1.0;
-  const RunResult g = run_load(fast, o);
+  const RunResult g = run_load(CheckedCase(fast), o);
   EXPECT_LT(100 * f.info.elements, g.info.elements);
   EXPECT_LT(case_error(f.series, g.series, fast, 1e-12).max(), 1e-12);
 }
 
 TEST(RunLoad, DispatchAndRefusals) {
   const Case c = load_case(1.0, {{0.1, 1.0}}, 5);
-  EXPECT_EQ(run_case(c, SolverKind::Auto, 1e-3).info.solver, "kelvin_load");
-  EXPECT_EQ(run_case(c, SolverKind::Row, 1e-3).info.solver, "row");
-  EXPECT_THROW(run_case(c, SolverKind::Exact, 1e-3), InvalidInput);
+  EXPECT_EQ(run_case(CheckedCase(c), SolverKind::Auto, 1e-3).info.solver, "kelvin_load");
+  EXPECT_EQ(run_case(CheckedCase(c), SolverKind::Row, 1e-3).info.solver, "row");
+  EXPECT_THROW(run_case(CheckedCase(c), SolverKind::Exact, 1e-3), InvalidInput);
   Case fixed = step_case(1e-3, 1.0, 1.0, 1.0, 0.1);
-  EXPECT_THROW(run_load(fixed, LoadOptions{}), InvalidInput);
+  EXPECT_THROW(run_load(CheckedCase(fixed), LoadOptions{}), InvalidInput);
 }
 
 } // namespace

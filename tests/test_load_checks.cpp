@@ -311,7 +311,7 @@ TEST(LoadCreep, ClosedFormAgainstQuadrature) {
 Series row_at(const Case& c, double rtol) {
   SpectrumOptions o;
   o.rtol = rtol;
-  return run_spectrum(c, o).series;
+  return run_spectrum(CheckedCase(c), o).series;
 }
 
 /// Error of the last segment's samples against the stationary state under

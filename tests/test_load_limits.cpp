@@ -17,8 +17,8 @@
 
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/load.hpp"
-#include "core/solvers/run_control.hpp"
 #include "core/solvers/spectrum_baseline.hpp"
 
 namespace mdrmap {
@@ -41,7 +41,7 @@ Case unit_case(double zeta0, const std::vector<std::pair<double, double>>& segs,
 RunResult at_rtol(const Case& c, double rtol) {
   LoadOptions o;
   o.rtol = rtol;
-  return run_load(c, o);
+  return run_load(CheckedCase(c), o);
 }
 
 // After a hold >> tau the state is the Hertz rest state to rounding, so a
@@ -95,23 +95,23 @@ TEST(LoadBudget, PastItsBudgetTheCaseIsAbandoned) {
   LoadOptions o;
   o.rtol = 1e-4;
   o.control = &small;
-  EXPECT_THROW(run_load(c, o), CaseAbandoned);
+  EXPECT_THROW(run_load(CheckedCase(c), o), CaseAbandoned);
   RunControl ample;
   o.control = &ample;
-  EXPECT_NO_THROW(run_load(c, o));
+  EXPECT_NO_THROW(run_load(CheckedCase(c), o));
   EXPECT_GT(ample.spent(), 1e3);
   SpectrumBaselineOptions b;
   RunControl tiny;
   tiny.max_work = 1e4;
   b.control = &tiny;
-  EXPECT_THROW(run_spectrum_baseline(c, b), CaseAbandoned);
+  EXPECT_THROW(run_spectrum_baseline(CheckedCase(c), b), CaseAbandoned);
   volatile std::sig_atomic_t flag = 1;
   RunControl stop;
   stop.stop = &flag;
   o.control = &stop;
-  EXPECT_THROW(run_load(c, o), Interrupted);
+  EXPECT_THROW(run_load(CheckedCase(c), o), Interrupted);
   b.control = &stop;
-  EXPECT_THROW(run_spectrum_baseline(c, b), Interrupted);
+  EXPECT_THROW(run_spectrum_baseline(CheckedCase(c), b), Interrupted);
 }
 
 // A case whose estimate cannot be brought under rtol fails with the
@@ -143,7 +143,7 @@ TEST(LoadSubgrid, AReslideBelowTheGridIsResolved) {
     fine.cells = 4.0 * r.info.cells_per_a1;
     fine.time_tol = 1e-10;
     fine.estimate_error = false;
-    const RunResult ref = run_load(c, fine);
+    const RunResult ref = run_load(CheckedCase(c), fine);
     const double err = case_error(r.series, ref.series, c, 1e-12).max();
     EXPECT_LE(err, rtol) << rtol;
     EXPECT_GE(r.info.error_estimate, err / 3.0) << rtol;
@@ -162,7 +162,7 @@ TEST(LoadRetouch, AHoldAfterADropIsWithinRtol) {
   fine.cells = 1000.0;
   fine.time_tol = 1e-10;
   fine.estimate_error = false;
-  const RunResult ref = run_load(c, fine);
+  const RunResult ref = run_load(CheckedCase(c), fine);
   for (double rtol : {1e-3, 1e-4}) {
     const RunResult r = at_rtol(c, rtol);
     const double err = case_error(r.series, ref.series, c, 1e-12).max();

@@ -372,7 +372,7 @@ TEST(ProfileModel, OnlyTheRowsTakeOtherProfiles) {
     EXPECT_EQ(mdrmap::solver_handles(k, mdrmap::model_needs(c)), takes) << mdrmap::solver_name(k);
     if (takes) continue;
     try {
-      mdrmap::run_case(c, k, 1e-3);
+      mdrmap::run_case(mdrmap::CheckedCase(c), k, 1e-3);
       ADD_FAILURE() << "not refused: " << mdrmap::solver_name(k);
     } catch (const mdrmap::InvalidInput& e) {
       EXPECT_EQ(e.option(), "profile");
@@ -380,7 +380,7 @@ TEST(ProfileModel, OnlyTheRowsTakeOtherProfiles) {
     }
   }
   // the guards at the solvers' own entries
-  EXPECT_THROW(mdrmap::run_exact(c, 1e-3), mdrmap::InvalidInput);
+  EXPECT_THROW(mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-3), mdrmap::InvalidInput);
   EXPECT_TRUE(mdrmap::solver_handles(mdrmap::SolverKind::Exact,
                                      mdrmap::model_needs(mdrmap::step_case(0.1, 1, 1, 1, 1))));
 }
@@ -401,11 +401,12 @@ TEST(ProfileTransient, PowerTwoIsTheParabola) {
     if (nc.c.loading.by_force()) {
       mdrmap::LoadOptions lo;
       lo.rtol = 1e-7;
-      ref = mdrmap::run_load(nc.c, lo);
+      ref = mdrmap::run_load(mdrmap::CheckedCase(nc.c), lo);
     } else {
-      ref = mdrmap::run_exact(nc.c, 1e-12);
+      ref = mdrmap::run_exact(mdrmap::CheckedCase(nc.c), 1e-12);
     }
-    const mdrmap::RunResult r = mdrmap::run_case(p, mdrmap::SolverKind::Auto, 1e-3);
+    const mdrmap::RunResult r =
+        mdrmap::run_case(mdrmap::CheckedCase(p), mdrmap::SolverKind::Auto, 1e-3);
     ASSERT_EQ(r.info.solver, "row");
     const double err = mdrmap::case_error(r.series, ref.series, nc.c).max();
     EXPECT_LE(err, 1e-3) << nc.name;
@@ -422,8 +423,9 @@ TEST(ProfileTransient, PowerTwoIsTheParabola) {
 TEST(ProfileTransient, TheSliverBehindTheTipIsIntegratedExactly) {
   const std::vector<mdrmap::NamedCase> set = mdrmap::history_case_set(21);
   const Case& c = mdrmap::named_case(set, "ratio 1e8 then 1e-8").c;
-  const mdrmap::RunResult ref = mdrmap::run_exact(c, 1e-12);
-  const mdrmap::RunResult r = mdrmap::run_case(as_power(c), mdrmap::SolverKind::Auto, 1e-4);
+  const mdrmap::RunResult ref = mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12);
+  const mdrmap::RunResult r =
+      mdrmap::run_case(mdrmap::CheckedCase(as_power(c)), mdrmap::SolverKind::Auto, 1e-4);
   const double err = mdrmap::case_error(r.series, ref.series, c).max();
   EXPECT_LE(err, 1e-5);
   EXPECT_GE(r.info.error_estimate, err / 3.0);
@@ -436,7 +438,8 @@ TEST(ProfileTransient, TheSliverBehindTheTipIsIntegratedExactly) {
 TEST(ProfileModel, TheEstimatesMetricSeesFrictionOfEveryProfile) {
   for (const Case& c : {cone_case(10.0, 0.01, 1.0, 0.01), power_case(3.0, 1.0, 0.01, 1.0, 0.01),
                         under_load(cone_case(10.0, 0.01, 1.0, 0.01), 1e-3)}) {
-    const mdrmap::RunResult r = mdrmap::run_case(c, mdrmap::SolverKind::Auto, 1e-3);
+    const mdrmap::RunResult r =
+        mdrmap::run_case(mdrmap::CheckedCase(c), mdrmap::SolverKind::Auto, 1e-3);
     mdrmap::Series other = r.series;
     for (std::size_t k = 0; k < other.size(); ++k) {
       other.Fx[k] *= 1.0 + 1e-3;
@@ -463,7 +466,8 @@ TEST(ProfileTransient, ConeRiseAcrossTheTipIsStationaryAtOnce) {
       const double cc = 0.5 * kPi * std::tan(beta * kPi / 180.0), a1 = 0.01 / cc;
       c.history.v0 = 0.3 * a1; // v tau = 0.3 a1: the rear face in contact
       c.history.segments = {mdrmap::Segment{3.0 * a1, 2.0}, mdrmap::Segment{30.0 * a1, 1.0}};
-      const mdrmap::RunResult r = mdrmap::run_case(c, mdrmap::SolverKind::Auto, rtol);
+      const mdrmap::RunResult r =
+          mdrmap::run_case(mdrmap::CheckedCase(c), mdrmap::SolverKind::Auto, rtol);
       ASSERT_EQ(r.info.solver, "row");
       EXPECT_GT(r.series.pre.a2, 0.5 * a1); // in contact behind the tip before the rise
       for (std::size_t k = 0; k < r.series.size(); ++k) {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/refine.hpp"
-#include "core/solvers/run_control.hpp"
 #include "test_case.hpp"
 
 namespace mdrmap {

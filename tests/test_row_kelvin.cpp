@@ -62,7 +62,7 @@ TEST(RowKelvinCaseSet, SetSpansTheHardRanges) {
     if (v1_of(c) == 0) v1zero = true;
     qmax = std::max(qmax, v1_of(c) / c.history.v0);
     drmin = std::min(drmin, dr), drmax = std::max(drmax, dr);
-    const auto ex = run_exact(c);
+    const auto ex = run_exact(CheckedCase(c));
     if (ex.series.pre.mu > 0) mu_drop = std::min(mu_drop, ex.series.mu.back() / ex.series.pre.mu);
   }
   EXPECT_LE(zmin, 1e-4);
@@ -88,8 +88,8 @@ TEST(RowKelvinCaseSet, MeetsTolerancesOnTheHardSet) {
   for (const auto& nc : hard_case_set()) {
     SCOPED_TRACE(nc.name);
     const Case& c = nc.c;
-    const auto ref = run_exact(c, 1e-12);
-    const auto def = run_case(c, SolverKind::Auto, 1e-4);
+    const auto ref = run_exact(CheckedCase(c), 1e-12);
+    const auto def = run_case(CheckedCase(c), SolverKind::Auto, 1e-4);
     EXPECT_LE(case_error(def.series, ref.series, c).max(), 1e-4);
     for (int k = 0; k < 3; ++k) {
       const double rtol = rtols[k];
@@ -117,7 +117,7 @@ TEST(RowKelvinStationary, DiscreteRunMatchesEquations7To10) {
     SpectrumOptions o;
     o.cells_per_a1 = 64;
     o.estimate_error = false;
-    const State pre = run_spectrum(c, o).series.pre;
+    const State pre = run_spectrum(CheckedCase(c), o).series.pre;
     EXPECT_NEAR(pre.FN / an.FN, 1.0, 1e-12) << z;
     EXPECT_NEAR(pre.Fx / an.Fx, 1.0, 1e-9) << z;
     EXPECT_NEAR(pre.a2 / analytic::a1(c), an.a2 / analytic::a1(c), 1e-14) << z;
@@ -133,7 +133,7 @@ TEST(RowKelvinStep, StateJustAfterTheStep) {
     o.cells_per_a1 = 40;
     o.rtol = 1e-12; // the trailing edge located to 1e-14 a1
     o.estimate_error = false;
-    const auto r = run_spectrum(c, o);
+    const auto r = run_spectrum(CheckedCase(c), o);
     const State j = analytic::jump(c, c.history.v0, v1_of(c));
     EXPECT_NEAR(r.series.FN[0] / j.FN, 1.0, 1e-12);
     EXPECT_NEAR(r.series.Fx[0] / j.Fx, 1.0, 1e-9);
@@ -149,7 +149,7 @@ TEST(RowKelvinMemory, IndependentOfTravelAndVelocityRatio) {
   o.estimate_error = false;
   long elements = -1;
   for (const Case& c : {scene(1e8, 1.0), scene(1e-6, 1.0), scene(1e3, 1e-8), scene(1.0, 100.0)}) {
-    const auto r = run_spectrum(c, o);
+    const auto r = run_spectrum(CheckedCase(c), o);
     ASSERT_TRUE(testing::all_finite(r.series));
     if (elements < 0) elements = r.info.elements;
     EXPECT_EQ(r.info.elements, elements);
@@ -166,7 +166,7 @@ TEST(RowKelvinSimilarity, DimensionlessResultsDependOnZetaOnly) {
   o.cells_per_a1 = 60;
   o.rtol = 1e-12; // the trailing edge located to 1e-14 a1
   o.estimate_error = false;
-  const auto r0 = run_spectrum(base, o);
+  const auto r0 = run_spectrum(CheckedCase(base), o);
   const double d0 = base.loading.d, R0 = base.indenter.as<Parabola>().R, G0 = base.rheology.G;
   const double tau0 = base.rheology.tau, a10 = analytic::a1(base);
   const double scales[][4] = {{1e-4, 3.0, 7.0, 1e3}, {1e3, 1e-2, 1e6, 1e-3}, {0.3, 20.0, 2.0, 5.0}};
@@ -177,7 +177,7 @@ TEST(RowKelvinSimilarity, DimensionlessResultsDependOnZetaOnly) {
     Case c = step_case(d, R, tau, 1.0, 1.0, G);
     const double a1 = analytic::a1(c);
     testing::set_velocities(c, zeta0(base) * a1 / tau, zeta1(base) * a1 / tau);
-    const auto r = run_spectrum(c, o);
+    const auto r = run_spectrum(CheckedCase(c), o);
     for (std::size_t i = 0; i < r.series.size(); ++i) {
       EXPECT_NEAR(r.series.t[i] / tau, r0.series.t[i] / tau0, 1e-12);
       EXPECT_NEAR(r.series.FN[i] / (G * a1 * d), r0.series.FN[i] / (G0 * a10 * d0),
@@ -217,8 +217,8 @@ TEST(RowKelvinHardCases, NoNaNNoBlowUp) {
   const Case base = scene(1.0, 0.5);
   for (double v1 : {0.0, 0.01, 10.0}) {
     // elastic limit (tau = 0): valid, Hertz; window 6 a1 / min(v, v1)
-    const Case c = step_case(base.loading.d, base.indenter.as<Parabola>().R, 0.0, base.history.v0, v1,
-                             base.rheology.G, 0.0, 11);
+    const Case c = step_case(base.loading.d, base.indenter.as<Parabola>().R, 0.0, base.history.v0,
+                             v1, base.rheology.G, 0.0, 11);
     testing::expect_row_hertz_throughout(c);
   }
 }
@@ -233,17 +233,17 @@ TEST(RowKelvinBruteForce, ContinuumSolutionWithinTheDiscreteRunsOwnAccuracy) {
                          scene(1.0, 1e-3, 1e-6)};
   for (const Case& c0 : scenes) {
     const Case c = sampled(c0, 61);
-    const auto ex = run_exact(c, 1e-12);
+    const auto ex = run_exact(CheckedCase(c), 1e-12);
     // the fine brute-force run needs more than the default work budget
     RunControl budget_coarse, budget_fine;
     budget_coarse.max_work = budget_fine.max_work = 1e11;
     SpectrumBaselineOptions b;
     b.cells_per_a1 = 400;
     b.control = &budget_coarse;
-    const auto coarse = run_spectrum_baseline(c, b);
+    const auto coarse = run_spectrum_baseline(CheckedCase(c), b);
     b.cells_per_a1 = 1600;
     b.control = &budget_fine;
-    const auto fine = run_spectrum_baseline(c, b);
+    const auto fine = run_spectrum_baseline(CheckedCase(c), b);
     const double own = case_error(coarse.series, fine.series, c).max();
     const double e_fine = case_error(fine.series, ex.series, c).max();
     const double e_coarse = case_error(coarse.series, ex.series, c).max();

@@ -44,7 +44,7 @@ Series row_at(const Case& c, double cells, double phase = 0.5) {
   o.rtol = 1e-12;
   o.phase = phase;
   o.estimate_error = false;
-  return run_spectrum(c, o).series;
+  return run_spectrum(CheckedCase(c), o).series;
 }
 
 // Done-criterion of the history issue, for the row at N = 0: on every
@@ -60,7 +60,8 @@ TEST(RowKelvinHistorySet, WithinRtolWithAnHonestEstimate) {
       const auto r = testing::row_or_abandoned(nc.c, rtol, nc.name, abandoned);
       if (!r) continue;
       ASSERT_TRUE(testing::all_finite(r->series));
-      const double err = case_error(r->series, run_exact(nc.c, 1e-13).series, nc.c).max();
+      const double err =
+          case_error(r->series, run_exact(CheckedCase(nc.c), 1e-13).series, nc.c).max();
       EXPECT_LE(err, rtol) << "rtol " << rtol << " cells " << r->info.cells_per_a1;
       EXPECT_GE(r->info.error_estimate, err / 3.0) << "rtol " << rtol;
     }
@@ -109,7 +110,7 @@ TEST(RowKelvinHistoryTangency, ContactGrowsFromTheTangencyAfterAHoldStarts) {
   const long double a2 = analytic::a2_stationary(c, c.history.v0), ha2 = (a1 - a2) * (a1 + a2) / R;
   SpectrumOptions o;
   o.rtol = 1e-6;
-  const Series s = run_spectrum(c, o).series;
+  const Series s = run_spectrum(CheckedCase(c), o).series;
   double worst = 0.0;
   for (std::size_t i = 1; i < s.size(); ++i) {
     const long double t = s.t[i];
@@ -142,13 +143,13 @@ TEST(RowKelvinHistoryBruteForce, BaselineConvergesAtFirstOrder) {
     SCOPED_TRACE(name);
     Case c = from_set(name);
     c.sampling.samples = 21;
-    const RunResult ref = run_exact(c, 1e-13);
+    const RunResult ref = run_exact(CheckedCase(c), 1e-13);
     std::vector<double> err;
     for (double n : cells) {
       SpectrumBaselineOptions b;
       b.cells_per_a1 = n;
       b.estimate_error = false;
-      const RunResult r = run_spectrum_baseline(c, b);
+      const RunResult r = run_spectrum_baseline(CheckedCase(c), b);
       ASSERT_TRUE(testing::all_finite(r.series));
       err.push_back(case_error(r.series, ref.series, c).max());
     }
@@ -193,7 +194,7 @@ TEST(RowKelvinHistoryHardCases, NoNaNNoBlowUp) {
           EXPECT_GE(r->series.a2[k], -c.a1());
           EXPECT_LE(r->series.a2[k], c.a1() * (1 + 1e-15));
         }
-        EXPECT_LE(case_error(r->series, run_exact(c, 1e-13).series, c).max(), 1e-3);
+        EXPECT_LE(case_error(r->series, run_exact(CheckedCase(c), 1e-13).series, c).max(), 1e-3);
       }
   std::printf("[ info ] %d of 18 hard histories abandoned at rtol 1e-3\n", abandoned);
   Case c = history(1.0, {{0.1, 2.0}, {0.0, 1.0}, {10.0, 2.0}, {0.0, 1e6}}, 11);

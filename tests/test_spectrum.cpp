@@ -79,7 +79,7 @@ RunResult fixed(const Case& c, double cells, double rtol = 1e-9) {
   o.cells_per_a1 = cells;
   o.rtol = rtol;
   o.estimate_error = false;
-  return run_spectrum(c, o);
+  return run_spectrum(CheckedCase(c), o);
 }
 
 // y' = f(y) by classical RK4 with n steps: the plain check of the exact updates.
@@ -229,10 +229,10 @@ TEST(SpectrumLaw, StiffBranchesAreStableAndExact) {
 // least a third of its true error.
 TEST(SpectrumKelvin, AgreesWithExactOnTheHistorySet) {
   for (const auto& nc : history_case_set(21)) {
-    const RunResult ref = run_exact(nc.c, 1e-12);
+    const RunResult ref = run_exact(CheckedCase(nc.c), 1e-12);
     SpectrumOptions o;
     o.rtol = 1e-3;
-    const RunResult r = run_spectrum(nc.c, o);
+    const RunResult r = run_spectrum(CheckedCase(nc.c), o);
     const double err = max_error(r, ref, nc.c);
     EXPECT_LE(err, o.rtol) << nc.name;
     EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name;
@@ -255,7 +255,7 @@ TEST(SpectrumLimits, SlowAndFastBranchesGiveTheElasticAndKelvinFoundations) {
       slow.rheology = material(1.0, 0.0, {{2.0, 1e12 * T}, {0.5, 3e12 * T}, {1.5, 1e13 * T}});
       Case glassy = kelvin;
       glassy.rheology = material(slow.rheology.G0(), 0.0, {});
-      const double err = max_error(fixed(slow, 64), run_exact(glassy, 1e-14), glassy);
+      const double err = max_error(fixed(slow, 64), run_exact(CheckedCase(glassy), 1e-14), glassy);
       EXPECT_LE(err, 1e-8) << "tau_k >> t: elastic with G0";
     }
     // fast: every tau_k 1e-12 of the time an element takes to cross a cell
@@ -264,7 +264,7 @@ TEST(SpectrumLimits, SlowAndFastBranchesGiveTheElasticAndKelvinFoundations) {
     fast.rheology = material(1.0, tau, {{2.0, 1e-12 * cell_time}, {4.0, 3e-13 * cell_time}});
     Case base = kelvin;
     base.rheology = material(1.0, tau, {});
-    const double err = max_error(fixed(fast, 64), run_exact(base, 1e-14), base);
+    const double err = max_error(fixed(fast, 64), run_exact(CheckedCase(base), 1e-14), base);
     EXPECT_LE(err, 1e-8) << "tau_k << dx/w: Kelvin with G, tau = " << tau;
   }
 }
@@ -286,7 +286,7 @@ TEST(SpectrumSeams, TheReslideConvergesPastTheKinkAtAnyPhase) {
     o.phase = phase;
     o.rtol = 1e-9;
     o.estimate_error = false;
-    return run_spectrum(c, o).series;
+    return run_spectrum(CheckedCase(c), o).series;
   };
   const Series ref = run(512, 0.5);
   for (const auto& [cells, tol] : {std::pair{16.0, 3e-4}, std::pair{64.0, 1e-6}})
@@ -313,7 +313,7 @@ TEST(SpectrumCaseSet, MeetsRtolWithAnHonestEstimate) {
     for (double rtol : {1e-3, 1e-4}) {
       SpectrumOptions o;
       o.rtol = rtol;
-      const RunResult r = run_spectrum(nc.c, o);
+      const RunResult r = run_spectrum(CheckedCase(nc.c), o);
       const double err = max_error(r, ref, nc.c);
       EXPECT_LE(err, rtol) << nc.name << " at rtol " << rtol;
       EXPECT_GE(r.info.error_estimate, err / 3.0) << nc.name << " at rtol " << rtol;
@@ -333,7 +333,7 @@ TEST(SpectrumCaseSet, BruteForceConvergesToTheReferenceAtFirstOrder) {
       SpectrumBaselineOptions b;
       b.cells_per_a1 = n;
       b.estimate_error = false;
-      const RunResult r = run_spectrum_baseline(nc.c, b);
+      const RunResult r = run_spectrum_baseline(CheckedCase(nc.c), b);
       EXPECT_EQ(r.info.solver, "baseline");
       err.push_back(max_error(r, ref, nc.c));
     }
@@ -369,13 +369,13 @@ TEST(SpectrumInputs, BadOptionsAreRefusedNamingTheOption) {
   };
   SpectrumOptions o;
   o.sub_travel = 0.0;
-  EXPECT_EQ(option_of([&] { run_spectrum(c, o); }), "sub-travel");
+  EXPECT_EQ(option_of([&] { run_spectrum(CheckedCase(c), o); }), "sub-travel");
   o = SpectrumOptions{};
   o.cells_per_a1 = 1e9;
-  EXPECT_EQ(option_of([&] { run_spectrum(c, o); }), "cells-per-a1");
+  EXPECT_EQ(option_of([&] { run_spectrum(CheckedCase(c), o); }), "cells-per-a1");
   o = SpectrumOptions{};
   o.rtol = 0.5;
-  EXPECT_EQ(option_of([&] { run_spectrum(c, o); }), "rtol");
+  EXPECT_EQ(option_of([&] { run_spectrum(CheckedCase(c), o); }), "rtol");
 }
 
 // Work is charged: a small budget stops the case with CaseAbandoned naming
@@ -387,19 +387,19 @@ TEST(SpectrumBudget, StopsAtItsWorkBudgetAndOnAStopRequest) {
   SpectrumOptions o;
   o.control = &small;
   try {
-    run_spectrum(c, o);
+    run_spectrum(CheckedCase(c), o);
     ADD_FAILURE() << "no CaseAbandoned";
   } catch (const CaseAbandoned& e) {
     EXPECT_EQ(std::string(e.what()).rfind("row", 0), 0U) << e.what();
   }
   SpectrumBaselineOptions b;
   b.control = &small;
-  EXPECT_THROW(run_spectrum_baseline(c, b), CaseAbandoned);
+  EXPECT_THROW(run_spectrum_baseline(CheckedCase(c), b), CaseAbandoned);
   volatile std::sig_atomic_t flag = 1;
   RunControl stop;
   stop.stop = &flag;
   o.control = &stop;
-  EXPECT_THROW(run_spectrum(c, o), Interrupted);
+  EXPECT_THROW(run_spectrum(CheckedCase(c), o), Interrupted);
 }
 
 // Not a test (no timed unit tests): the figures of the report.
@@ -425,19 +425,19 @@ TEST(DISABLED_SpectrumBench, MillisecondsPerCase) {
     SpectrumOptions o;
     o.rtol = 1e-3;
     RunResult r;
-    const double ms = ms_of([&] { r = run_spectrum(nc.c, o); });
+    const double ms = ms_of([&] { r = run_spectrum(CheckedCase(nc.c), o); });
     const double err = max_error(r, ref, nc.c);
     // the brute-force method at 400 cells, and the adaptive one at that accuracy
     SpectrumBaselineOptions b;
     b.cells_per_a1 = 400;
     b.estimate_error = false;
     RunResult br;
-    const double bms = ms_of([&] { br = run_spectrum_baseline(nc.c, b); });
+    const double bms = ms_of([&] { br = run_spectrum_baseline(CheckedCase(nc.c), b); });
     const double berr = max_error(br, ref, nc.c);
     SpectrumOptions same;
     same.rtol = std::min(0.1, berr);
     RunResult sr;
-    const double sms = ms_of([&] { sr = run_spectrum(nc.c, same); });
+    const double sms = ms_of([&] { sr = run_spectrum(CheckedCase(nc.c), same); });
     std::printf(
         "%s: spectrum rtol 1e-3: %.2f ms CPU (median of 7), error %.2e, estimate %.2e, a1/dx "
         "%g\n  baseline a1/dx 400: %.1f ms, error %.2e; spectrum at rtol %.2e: %.2f ms, "
@@ -483,8 +483,8 @@ TEST(SpectrumShift, TheShiftedMaterialIsTheTwinAtScaledVelocities) {
       SCOPED_TRACE(std::to_string(c.rheology.branches.size()) + " terms, load " +
                    std::to_string(c.loading.by_force()) + ", aT " + std::to_string(aT));
       const auto [shifted, twin] = shifted_and_twin(c, aT);
-      const RunResult a = run_case(shifted, SolverKind::Auto, rtol);
-      const RunResult b = run_case(twin, SolverKind::Auto, rtol);
+      const RunResult a = run_case(CheckedCase(shifted), SolverKind::Auto, rtol);
+      const RunResult b = run_case(CheckedCase(twin), SolverKind::Auto, rtol);
       ASSERT_EQ(a.series.size(), b.series.size());
       for (std::size_t k = 0; k < a.series.size(); ++k)
         EXPECT_NEAR(a.series.t[k], b.series.t[k] * aT, 1e-12 * std::abs(a.series.t[k]));
@@ -502,9 +502,9 @@ TEST(SpectrumLongSegments, AStationarySegmentTakesNoFurtherSteps) {
     const Case c = spectrum_case(r, 1.0, {{0.1, 2000.0}, {1.0, 200.0}}, 201);
     SpectrumOptions o;
     o.rtol = 1e-3;
-    const RunResult run = run_spectrum(c, o), ref = reference(c);
+    const RunResult run = run_spectrum(CheckedCase(c), o), ref = reference(c);
     o.keep_stationary = false;
-    const RunResult stepping = run_spectrum(c, o);
+    const RunResult stepping = run_spectrum(CheckedCase(c), o);
     const double err = max_error(run, ref, c);
     std::printf("N = %zu: %ld steps (stepping on: %ld); error %.2e, estimate %.2e\n",
                 r.branches.size(), run.info.steps, stepping.info.steps, err,

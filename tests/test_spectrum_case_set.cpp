@@ -65,10 +65,10 @@ bool known_failure(const std::string& name, double rtol) {
 /// The truth where it is known: N = 0 through the continuum solution (fixed
 /// depth) or the Kelvin load solver at a tight tolerance.
 Series kelvin_truth(const Case& c) {
-  if (!c.loading.by_force()) return run_exact(c, 1e-13).series;
+  if (!c.loading.by_force()) return run_exact(CheckedCase(c), 1e-13).series;
   LoadOptions lo;
   lo.rtol = 1e-7;
-  return run_load(c, lo).series;
+  return run_load(CheckedCase(c), lo).series;
 }
 
 constexpr double kRtols[] = {1e-2, 1e-3, 1e-4};

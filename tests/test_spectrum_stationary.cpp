@@ -22,6 +22,7 @@
 #include "core/metrics/load_stationary.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
 #include "core/model/case.hpp"
+#include "core/numerics/phi.hpp"
 
 namespace {
 
@@ -175,7 +176,7 @@ std::vector<Rheology> spectra() {
 TEST(SpectrumStationary, PhiFunctionsMatchTheirDefinition) {
   for (double z : {0.0, 1e-12, 1e-5, 0.1, 0.9, 1.999, 2.0, 2.001, 3.0, 4.0, 7.5, 30.0, 1e3}) {
     double phi[6];
-    mdrmap::spectrum_detail::phi_functions(z, phi);
+    mdrmap::numerics::phi_all(z, phi);
     const ld Z = z;
     for (int n = 1; n <= 5; ++n) {
       ld want = 0;

@@ -64,7 +64,7 @@ struct Outcome {
 Outcome steady_run(const Case& c, double rtol) {
   SpectrumOptions o;
   o.rtol = rtol;
-  const RunResult r = run_spectrum(c, o);
+  const RunResult r = run_spectrum(CheckedCase(c), o);
   const State st = stationary_state(c, c.history.v0);
   Series ref = r.series;
   for (std::size_t k = 0; k < ref.size(); ++k)

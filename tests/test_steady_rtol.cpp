@@ -74,7 +74,7 @@ void expect_steady_within_rtol(double rtol) {
                                    (load ? ", load" : ", depth") +
                                    ", v tau / a1 = " + std::to_string(zeta);
           SCOPED_TRACE(name);
-          const RunResult r = run_case(c, SolverKind::Auto, rtol);
+          const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, rtol);
           const double err = case_error(r.series, stationary_series(c, r.series), c).max();
           worst = std::max(worst, err / rtol);
           EXPECT_LE(err, rtol);

@@ -18,6 +18,7 @@
 #include "case/prony_input.hpp"
 #include "core/model/row_limits.hpp"
 #include "core/model/scales.hpp"
+#include "core/solvers/checked_case.hpp"
 
 namespace mdrmap::cases {
 

@@ -11,8 +11,8 @@
 #include "case/text.hpp"
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/dispatch.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap::cases {
 namespace {
@@ -347,7 +347,7 @@ FitProblem::run(const std::vector<double>& x) const {
   std::vector<std::map<std::string, std::vector<double>>> out;
   for (std::size_t k = 0; k < scenes_.size(); ++k) {
     const CaseInput in = read_case_input(texts_at(x, k));
-    const RunResult res = run_case(in.c, in.solver, rtol_);
+    const RunResult res = run_case(CheckedCase(in.c), in.solver, rtol_);
     const std::vector<std::size_t> rows = record_rows(in.c);
     std::map<std::string, std::vector<double>> v;
     for (const auto& q : scenes_[k].columns) {

@@ -24,11 +24,12 @@ constexpr double kSpectrumReferenceFloor = 1e-7;
 /// parabola at fixed depth) that solver at 1e-12;
 /// under load, or with a spectrum, the default solver at a much tighter rtol
 /// (docs/design.md, "Error metric").
-void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecord& rec,
-                         const RunControl& control) {
+void add_reference_error(const CaseInput& a, const CheckedCase& checked, const RunResult& res,
+                         SimulateRecord& rec, const RunControl& control) {
   if (solver_handles(SolverKind::Exact, model_needs(a.c))) {
     if (rec.solver == "exact") return;
-    const RunResult ref = run_case(a.c, SolverKind::Exact, kExactReferenceRtol, control.fresh());
+    const RunResult ref =
+        run_case(checked, SolverKind::Exact, kExactReferenceRtol, control.fresh());
     rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
     return;
   }
@@ -36,7 +37,7 @@ void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecor
   rec.reference_rtol = a.c.rheology.kelvin()
                            ? std::max(a.rtol * kLoadReferenceFactor, kLoadReferenceFloor)
                            : std::max(a.rtol * kSpectrumReferenceFactor, kSpectrumReferenceFloor);
-  const RunResult ref = run_case(a.c, SolverKind::Auto, rec.reference_rtol, control.fresh());
+  const RunResult ref = run_case(checked, SolverKind::Auto, rec.reference_rtol, control.fresh());
   rec.reference = ref.info.solver.empty() ? "auto" : ref.info.solver;
   rec.error_vs_exact = case_error(res.series, ref.series, a.c).max();
 }
@@ -45,7 +46,8 @@ void add_reference_error(const CaseInput& a, const RunResult& res, SimulateRecor
 
 Simulation simulate(const CaseInput& in, const RunControl& control) {
   const auto start = std::chrono::steady_clock::now();
-  RunResult res = run_case(in.c, in.solver, in.rtol, control);
+  const CheckedCase checked(in.c); // the one check of this case: both runs take it
+  RunResult res = run_case(checked, in.solver, in.rtol, control);
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -59,7 +61,7 @@ Simulation simulate(const CaseInput& in, const RunControl& control) {
   rec.wall_seconds = wall;
   rec.c = in.c;
   rec.events = event_metrics(in.c, res.series, res.transients, res.info.error_estimate, res.probes);
-  add_reference_error(in, res, rec, control);
+  add_reference_error(in, checked, res, rec, control);
   out.series = std::move(res.series);
   return out;
 }

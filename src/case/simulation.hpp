@@ -14,8 +14,8 @@
 #include "core/metrics/events.hpp"
 #include "core/model/case.hpp"
 #include "core/model/state.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/dispatch.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap::cases {
 

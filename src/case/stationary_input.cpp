@@ -10,6 +10,7 @@
 #include "core/metrics/stationary.hpp"
 #include "core/model/case.hpp"
 #include "core/model/params.hpp"
+#include "core/solvers/checked_case.hpp"
 
 namespace mdrmap::cases {
 

@@ -9,7 +9,7 @@
 
 #include "case/case_input.hpp"
 #include "core/model/state.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 
 namespace mdrmap::cases {
 

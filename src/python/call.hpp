@@ -12,7 +12,7 @@
 
 #include <pybind11/pybind11.h>
 
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 
 namespace mdrmap::python {
 

@@ -50,6 +50,7 @@
 #include "core/model/params.hpp"
 #include "core/model/temperature.hpp"
 #include "core/model/wlf.hpp"
+#include "core/solvers/checked_case.hpp"
 
 namespace mdrmap::study {
 

@@ -27,7 +27,7 @@ RunResult fixed_resolution(const Case& c, double cells) {
   o.rtol = 1e-7; // edge to 1e-9 a1, load balance to 1e-11 F0
   o.estimate_error = false;
   o.control = &reference_budget;
-  return run_spectrum(c, o);
+  return run_spectrum(CheckedCase(c), o);
 }
 
 double run_difference(const Series& coarse, const Series& fine, const Case& c) {
@@ -70,7 +70,7 @@ CheckedRun adaptive_run(const Case& c, double rtol, const Series& reference) {
   CheckedRun out;
   const double t0 = cpu_ms();
   try {
-    const RunResult r = run_spectrum(c, o);
+    const RunResult r = run_spectrum(CheckedCase(c), o);
     out.ms = cpu_ms() - t0;
     out.error = case_error(r.series, reference, c).max();
     out.estimate = r.info.error_estimate;
@@ -90,7 +90,7 @@ std::vector<double> brute_force_errors(const Case& c, const Series& reference,
     SpectrumBaselineOptions b;
     b.cells_per_a1 = n;
     b.estimate_error = false;
-    err.push_back(case_error(run_spectrum_baseline(c, b).series, reference, c).max());
+    err.push_back(case_error(run_spectrum_baseline(CheckedCase(c), b).series, reference, c).max());
   }
   return err;
 }

@@ -119,7 +119,7 @@ std::vector<BenchCase> make_cases(bool with_reference) {
     BenchCase c;
     c.name = set[i].name;
     c.input = set[i].c;
-    if (with_reference) c.ref = run_exact(c.input, 1e-12);
+    if (with_reference) c.ref = run_exact(CheckedCase(c.input), 1e-12);
     c.baseline_updates = baseline_updates(c.input, kBaselineTopCells);
     c.baseline_ok = c.baseline_updates <= kBaselineUpdateBudget;
     out.push_back(std::move(c));
@@ -150,20 +150,21 @@ std::string fmt(const char* f, double x) {
 Setting exact_setting(double rtol) {
   return {"exact", "rtol=" + fmt("%.0e", rtol),
           rtol,    rtol,
-          false,   [rtol](const Case& c) { return run_exact(c, rtol); }};
+          false,   [rtol](const Case& c) { return run_exact(CheckedCase(c), rtol); }};
 }
 
 Setting auto_setting(double rtol) {
-  return {"auto", "rtol=" + fmt("%.0e", rtol),
-          rtol,   rtol,
-          false,  [rtol](const Case& c) { return run_case(c, SolverKind::Auto, rtol); }};
+  return {
+      "auto", "rtol=" + fmt("%.0e", rtol),
+      rtol,   rtol,
+      false,  [rtol](const Case& c) { return run_case(CheckedCase(c), SolverKind::Auto, rtol); }};
 }
 
 Setting row_setting(double rtol) {
   return {"row", "rtol=" + fmt("%.0e", rtol), rtol, rtol, false, [rtol](const Case& c) {
             SpectrumOptions o;
             o.rtol = rtol;
-            return run_spectrum(c, o);
+            return run_spectrum(CheckedCase(c), o);
           }};
 }
 
@@ -172,7 +173,7 @@ Setting baseline_setting(double cells) {
             SpectrumBaselineOptions o; // the method alone: no half-resolution companion
             o.cells_per_a1 = cells;
             o.estimate_error = false;
-            return run_spectrum_baseline(c, o);
+            return run_spectrum_baseline(CheckedCase(c), o);
           }};
 }
 
@@ -325,7 +326,7 @@ RunResult probe_row(const Case& c, double cells) {
     o.cells_per_a1 = cells;
     o.estimate_error = false;
   }
-  return run_spectrum(c, o);
+  return run_spectrum(CheckedCase(c), o);
 }
 
 // steps_per_cell < 1: a coarser time step than the baseline's dx / max(v, v1),
@@ -335,7 +336,7 @@ RunResult probe_baseline(const Case& c, double steps_per_cell = 1.0) {
   o.cells_per_a1 = kBaselineTopCells;
   o.estimate_error = false;
   o.steps_per_cell = steps_per_cell;
-  return run_spectrum_baseline(c, o);
+  return run_spectrum_baseline(CheckedCase(c), o);
 }
 
 std::vector<Probe> make_probes() {

@@ -75,8 +75,10 @@ double baseline_updates(const Case& c, double cells) {
 
 std::vector<Setting> settings(bool quick) {
   std::vector<Setting> out;
-  out.push_back({"exact rtol=1e-6", [](const Case& c) { return mdrmap::run_exact(c, 1e-6); }});
-  out.push_back({"exact rtol=1e-12", [](const Case& c) { return mdrmap::run_exact(c, 1e-12); }});
+  out.push_back({"exact rtol=1e-6",
+                 [](const Case& c) { return mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-6); }});
+  out.push_back({"exact rtol=1e-12",
+                 [](const Case& c) { return mdrmap::run_exact(mdrmap::CheckedCase(c), 1e-12); }});
   for (double rtol : {1e-2, 1e-3, 1e-4}) {
     if (quick && rtol < 1e-3) continue;
     char name[32];
@@ -84,7 +86,7 @@ std::vector<Setting> settings(bool quick) {
     out.push_back({name, [rtol](const Case& c) {
                      mdrmap::SpectrumOptions o;
                      o.rtol = rtol;
-                     return mdrmap::run_spectrum(c, o);
+                     return mdrmap::run_spectrum(mdrmap::CheckedCase(c), o);
                    }});
   }
   if (!quick)
@@ -93,7 +95,7 @@ std::vector<Setting> settings(bool quick) {
                      o.cells_per_a1 = 200;
                      if (baseline_updates(c, o.cells_per_a1) > 3e8)
                        throw std::runtime_error("over the benchmark's budget");
-                     return mdrmap::run_spectrum_baseline(c, o);
+                     return mdrmap::run_spectrum_baseline(mdrmap::CheckedCase(c), o);
                    }});
   return out;
 }
@@ -185,7 +187,7 @@ int main(int argc, char** argv) {
   const auto cases = mdrmap::history_case_set(61);
   std::vector<RunResult> refs;
   for (const auto& nc : cases)
-    refs.push_back(mdrmap::run_exact(nc.c, 1e-12));
+    refs.push_back(mdrmap::run_exact(mdrmap::CheckedCase(nc.c), 1e-12));
   std::vector<CaseRow> rows;
   std::vector<Summary> sums;
   for (const auto& st : settings(quick)) {

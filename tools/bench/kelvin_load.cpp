@@ -47,8 +47,8 @@ Times time_case(const mdrmap::Case& c, double rtol, int reps) {
   lo.rtol = rtol;
   mdrmap::SpectrumOptions so;
   so.rtol = rtol;
-  const auto load = [&] { mdrmap::run_load(c, lo); };
-  const auto row = [&] { mdrmap::run_spectrum(c, so); };
+  const auto load = [&] { mdrmap::run_load(mdrmap::CheckedCase(c), lo); };
+  const auto row = [&] { mdrmap::run_spectrum(mdrmap::CheckedCase(c), so); };
   Times t;
   for (int r = 0; r < reps; ++r) {
     if (r % 2 == 0) {

@@ -382,13 +382,13 @@ int main(int argc, char** argv) {
     try {
       mdrmap::LoadOptions o;
       o.rtol = ref_rtol;
-      const double cells = mdrmap::run_load(nc.c, o).info.cells_per_a1;
+      const double cells = mdrmap::run_load(mdrmap::CheckedCase(nc.c), o).info.cells_per_a1;
       const bool stiff = is_stiff(nc.name);
       mdrmap::LoadOptions r;
       r.cells = 4.0 * cells;
       r.time_tol = stiff ? 1e-8 : 1e-9;
       r.estimate_error = false;
-      refs[i] = mdrmap::run_load(nc.c, r);
+      refs[i] = mdrmap::run_load(mdrmap::CheckedCase(nc.c), r);
       have_ref[i] = true;
       ref_note[i] = fmt("a/dx=%g", r.cells) + " time_tol=" + short_e(r.time_tol);
     } catch (const std::exception& e) {
@@ -409,7 +409,7 @@ int main(int argc, char** argv) {
       o.rtol = rtol;
       Row r = measure(
           "rtol", "load rtol=" + short_e(rtol), nc, ref_of(i),
-          [&] { return mdrmap::run_load(nc.c, o); }, reps);
+          [&] { return mdrmap::run_load(mdrmap::CheckedCase(nc.c), o); }, reps);
       r.rtol = rtol;
       rows.push_back(r);
       std::fprintf(stderr, "bench_load: rtol %-6s %-40s err %.2e est %.2e %9.3f ms%s\n",
@@ -438,7 +438,8 @@ int main(int argc, char** argv) {
     for (const auto& ls : load_ladder(quick)) {
       const mdrmap::LoadOptions o = load_options(ls);
       Row r = measure(
-          "load", ls.name, nc, ref_of(i), [&] { return mdrmap::run_load(nc.c, o); }, reps);
+          "load", ls.name, nc, ref_of(i),
+          [&] { return mdrmap::run_load(mdrmap::CheckedCase(nc.c), o); }, reps);
       r.rtol = ls.rtol;
       if (ls.rtol == 0.0) r.cells = ls.cells;
       if (!r.failed) {
@@ -475,7 +476,7 @@ int main(int argc, char** argv) {
             unbounded.max_work = std::numeric_limits<double>::infinity();
             mdrmap::SpectrumBaselineOptions bb = b;
             bb.control = &unbounded;
-            return mdrmap::run_spectrum_baseline(nc.c, bb);
+            return mdrmap::run_spectrum_baseline(mdrmap::CheckedCase(nc.c), bb);
           },
           reps);
       r.cells = cpa;

@@ -134,10 +134,10 @@ struct Measured {
 RunResult reference(const Case& c, double ref_rtol, bool& loose) {
   try {
     loose = false;
-    return run_case(c, SolverKind::Auto, ref_rtol);
+    return run_case(CheckedCase(c), SolverKind::Auto, ref_rtol);
   } catch (const std::exception&) {
     loose = true;
-    return run_case(c, SolverKind::Auto, 10.0 * ref_rtol);
+    return run_case(CheckedCase(c), SolverKind::Auto, 10.0 * ref_rtol);
   }
 }
 
@@ -149,7 +149,7 @@ Measured measure(const Case& c, double ref_rtol, int reps) {
     RunResult r;
     for (int i = 0; i < reps; ++i) {
       const double a = cpu_seconds();
-      r = run_case(c, SolverKind::Auto, 1e-3);
+      r = run_case(CheckedCase(c), SolverKind::Auto, 1e-3);
       t.push_back(1e3 * (cpu_seconds() - a));
     }
     m.err = case_error(r.series, ref.series, c, 1e-12).max();

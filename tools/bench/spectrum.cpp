@@ -108,13 +108,13 @@ Line spectrum_line(const Scene& s, const RunResult& ref, double rtol, int reps) 
   o.rtol = rtol;
   RunResult r;
   try {
-    r = run_spectrum(s.c, o);
+    r = run_spectrum(CheckedCase(s.c), o);
   } catch (const CaseAbandoned&) { // over the work budget: said, not timed
     char name[64];
     std::snprintf(name, sizeof name, "spectrum rtol %g: over its budget", rtol);
     return {s.name, name, NAN, NAN, NAN};
   }
-  const double sec = time_median([&] { run_spectrum(s.c, o); }, reps);
+  const double sec = time_median([&] { run_spectrum(CheckedCase(s.c), o); }, reps);
   char name[64];
   std::snprintf(name, sizeof name, "spectrum rtol %g", rtol);
   return {s.name, name, err_of(r, ref, s.c), r.info.error_estimate, 1e3 * sec};
@@ -129,7 +129,7 @@ RunResult reference(const Case& c, bool quick) {
   if (c.loading.by_force() && c.rheology.kelvin()) {
     LoadOptions l;
     l.rtol = rtol;
-    return run_load(c, l);
+    return run_load(CheckedCase(c), l);
   }
   SpectrumOptions o;
   o.rtol = rtol;
@@ -140,7 +140,7 @@ RunResult reference(const Case& c, bool quick) {
     o.cells_per_a1 = quick ? 128 : 256;
     o.estimate_error = false;
   }
-  return run_spectrum(c, o);
+  return run_spectrum(CheckedCase(c), o);
 }
 
 /// The brute-force solver at three resolutions (doubling from n0): a line
@@ -157,8 +157,8 @@ std::vector<Line> baseline_lines(const Scene& s, const RunResult& ref, double ta
   double err[3], ms[3];
   for (int i = 0; i < 3; ++i) {
     o.cells_per_a1 = n0 * std::pow(2.0, i);
-    err[i] = err_of(run_spectrum_baseline(s.c, o), ref, s.c);
-    ms[i] = 1e3 * time_median([&] { run_spectrum_baseline(s.c, o); }, 1);
+    err[i] = err_of(run_spectrum_baseline(CheckedCase(s.c), o), ref, s.c);
+    ms[i] = 1e3 * time_median([&] { run_spectrum_baseline(CheckedCase(s.c), o); }, 1);
     char name[64];
     std::snprintf(name, sizeof name, "brute force a1/dx %g", o.cells_per_a1);
     out.push_back({s.name, name, err[i], 0.0, ms[i]});
@@ -176,13 +176,13 @@ std::vector<Line> kelvin_lines(const Scene& s, const RunResult& ref, int reps) {
   if (s.c.loading.by_force()) {
     LoadOptions l;
     l.rtol = 1e-3;
-    const RunResult r = run_load(s.c, l);
+    const RunResult r = run_load(CheckedCase(s.c), l);
     return {{s.name, "kelvin_load rtol 0.001", err_of(r, ref, s.c), r.info.error_estimate,
-             1e3 * time_median([&] { run_load(s.c, l); }, reps)}};
+             1e3 * time_median([&] { run_load(CheckedCase(s.c), l); }, reps)}};
   }
-  const RunResult re = run_exact(s.c, 1e-3);
+  const RunResult re = run_exact(CheckedCase(s.c), 1e-3);
   return {{s.name, "exact rtol 0.001", err_of(re, ref, s.c), re.info.error_estimate,
-           1e3 * time_median([&] { run_exact(s.c, 1e-3); }, reps)}};
+           1e3 * time_median([&] { run_exact(CheckedCase(s.c), 1e-3); }, reps)}};
 }
 
 } // namespace

@@ -50,7 +50,7 @@ void direct_effect(const char* name, const Rheology& r, double v, double rtol, s
   c.sampling.decades = 12.0;
   SpectrumOptions so;
   so.rtol = rtol;
-  const RunResult res = run_spectrum(c, so);
+  const RunResult res = run_spectrum(CheckedCase(c), so);
   const Series& s = res.series;
   for (std::size_t k = 0; k < s.size(); ++k)
     csv << name << "," << s.t[k] / tmin << "," << s.mu[k] << "," << s.mu[k] - s.pre.mu << "\n";

@@ -16,7 +16,7 @@
 
 #include "core/metrics/creep.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 #include "shs.hpp"
 #include "studies.hpp"
 

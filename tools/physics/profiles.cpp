@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/metrics/profile_stationary.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "peak.hpp"
 #include "studies.hpp"
 

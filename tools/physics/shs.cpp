@@ -48,7 +48,7 @@ Healing shs(const Case& base, double v0, double t_hold, double rtol) {
   c.sampling.decades = 8.0;
   SpectrumOptions so;
   so.rtol = rtol;
-  const RunResult res = run_spectrum(c, so);
+  const RunResult res = run_spectrum(CheckedCase(c), so);
   const Series& s = res.series;
   const std::size_t n = static_cast<std::size_t>(c.sampling.samples);
   Healing h;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <utility>
 
-#include <boost/math/tools/toms748_solve.hpp>
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
@@ -61,11 +61,9 @@ double f_prime_rho(const Poles& p, std::size_t a, int sign, double e, double rho
 }
 
 double solve_offset(const Poles& p, std::size_t a, int sign, double emax) {
-  std::uintmax_t iters = 300;
-  const auto r =
-      boost::math::tools::toms748_solve([&](double e) { return scaled_f(p, a, sign, e); }, 0.0,
-                                        emax, boost::math::tools::eps_tolerance<double>(52), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748([&](double e) { return scaled_f(p, a, sign, e); }, 0.0, emax,
+                           numerics::bits_tolerance(52), {"creep spectrum", 300})
+      .mid();
 }
 
 // The root in (t_k, t_(k+1)) (k + 1 == size: in (t_k, inf)): the anchor is the

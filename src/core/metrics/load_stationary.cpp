@@ -5,9 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/analytic.hpp"
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
@@ -39,22 +38,17 @@ double stationary_alpha(double zeta0) {
   if (zeta0 == 0.0) return 1.0;
   // bracket around the better of the two limits (4/3 / zeta0, not 4 / (3
   // zeta0): 3 zeta0 overflows above 6e307, and a zero start never grows)
-  double lo = std::min(1.0, std::sqrt(4.0 / 3.0 / zeta0));
-  double hi = lo;
+  auto f = [&](double a) { return residual(a, zeta0); };
   // residual(0) = -4/3 and residual(1) > 0: each loop ends within the
   // exponent range (2100 halvings or doublings; the bound guards NaN only)
-  for (int i = 0; i < 2100 && residual(lo, zeta0) > 0.0; ++i)
-    lo *= 0.5;
-  for (int i = 0; i < 2100 && residual(hi, zeta0) < 0.0; ++i)
-    hi *= 2.0;
-  if (!(residual(lo, zeta0) <= 0.0) || !(residual(hi, zeta0) >= 0.0))
+  const numerics::ScaledBracket e =
+      numerics::scaled_bracket(f, std::min(1.0, std::sqrt(4.0 / 3.0 / zeta0)), 2100);
+  if (!(e.flo <= 0.0) || !(e.fhi >= 0.0))
     throw std::domain_error("stationary_alpha: no bracket at zeta0 = " + std::to_string(zeta0));
-  if (lo == hi) return lo;
-  std::uintmax_t iters = 200;
-  const auto r =
-      boost::math::tools::toms748_solve([&](double a) { return residual(a, zeta0); }, lo, hi,
-                                        boost::math::tools::eps_tolerance<double>(52), iters);
-  return 0.5 * (r.first + r.second);
+  if (e.lo == e.hi) return e.lo;
+  return numerics::toms748(f, e.lo, e.hi, e.flo, e.fhi, numerics::bits_tolerance(52),
+                           {"stationary_alpha"})
+      .mid();
 }
 
 double stationary_depth(const Case& c, double w) {

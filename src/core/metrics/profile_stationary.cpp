@@ -6,12 +6,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/load_stationary.hpp"
 #include "core/metrics/profile_branches.hpp"
 #include "core/metrics/spectrum_stationary.hpp"
+#include "core/numerics/root.hpp"
 
 // Derivation: docs/design.md, "Indenter profiles". The branches' integrals
 // (split into glassy part and remainder where that keeps the digits, each
@@ -53,10 +52,7 @@ Contact make_contact(const Case& c, double a1, double w, profile::Budget& budget
 }
 
 template <class F> double root(F f, double lo, double hi) {
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      f, lo, hi, boost::math::tools::eps_tolerance<double>(52), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748(f, lo, hi, numerics::bits_tolerance(52), {"profile_stationary"}).mid();
 }
 
 /// |g'| at distance y >= 0 from the tip: c n y^(n-1).
@@ -191,12 +187,8 @@ double load_edge(const Case& c, double w, profile::Budget& budget) {
   if (linear && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
   const double F0 = c.loading.F0;
   auto f = [&](double a1) { return at_edge(c, a1, w, budget, false).FN / F0 - 1.0; };
-  double lo = c.a0(), hi = lo;
-  for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
-    lo *= 0.5;
-  for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
-    hi *= 2.0;
-  return lo == hi ? lo : root(f, lo, hi);
+  return numerics::scaled_root(f, c.a0(), 4000, numerics::bits_tolerance(52),
+                               {"profile_stationary: load"});
 }
 
 void check_velocity(double w) {

@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/phi.hpp"
+#include "core/numerics/root.hpp"
 
 // Derivation (docs/design.md, "Materials with a relaxation spectrum"). With
 // s = x + a1, h = s (2 a1 - s) / R and the branch's equation
@@ -36,40 +36,7 @@
 // the single interval [-a1, a2].
 
 namespace mdrmap {
-namespace spectrum_detail {
-
-void phi_functions(double z, double (&phi)[6]) {
-  static constexpr double kInvFact[6] = {1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0, 1.0 / 120.0};
-  phi[0] = std::exp(-z);
-  if (z <= 2.0) {
-    // alternating series, terms shrink from j > z: 34 terms reach 2^34/34! < 1e-25
-    for (int n = 1; n <= 5; ++n) {
-      double term = kInvFact[n], sum = 0.0;
-      double tail[40];
-      int m = 0;
-      for (int j = 0; j < 40; ++j) {
-        tail[m++] = term;
-        term *= -z / static_cast<double>(j + n + 1);
-        if (std::fabs(term) < 1e-40) break;
-      }
-      for (int j = m - 1; j >= 0; --j) // smallest first
-        sum += tail[j];
-      phi[n] = sum;
-    }
-    return;
-  }
-  // phi_1 = (1 - e^-z) / z exactly; the recurrence's error factor
-  // phi_n / (z phi_(n+1)) is below 2.5 for z > 2, n < 5
-  phi[1] = -std::expm1(-z) / z;
-  for (int n = 1; n < 5; ++n)
-    phi[n + 1] = (kInvFact[n] - phi[n]) / z;
-}
-
-} // namespace spectrum_detail
-
 namespace {
-
-using spectrum_detail::phi_functions;
 
 struct Term {
   double G;   // branch modulus
@@ -108,7 +75,7 @@ struct Point {
 
 double glassy_D(double a1, double s, double lam) {
   double phi[6];
-  phi_functions(s / lam, phi);
+  numerics::phi_all(s / lam, phi);
   return s * (s / lam) * (a1 * phi[2] - s * phi[3]);
 }
 
@@ -132,10 +99,7 @@ struct Edge {
 };
 
 template <class F> double root(F f, double lo, double hi) {
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      f, lo, hi, boost::math::tools::eps_tolerance<double>(50), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748(f, lo, hi, numerics::bits_tolerance(50), {"spectrum_stationary"}).mid();
 }
 
 Edge trailing_edge(const Contact& k) {
@@ -162,7 +126,7 @@ State forces(const Contact& k, const Edge& e, double R) {
   double X = k.Ge * 0.25 * dS * dS + k.G * (2.0 / 3.0) * k.L * cubes;
   for (const Term& t : k.glassy) {
     double phi[6];
-    phi_functions(S / t.lam, phi);
+    numerics::phi_all(S / t.lam, phi);
     const double c = S * S * (S / t.lam);
     N -= 2.0 * t.G * c * (A * phi[3] - S * phi[4]);
     X -= 2.0 * t.G * c * (S * S * (phi[4] - phi[5]) - A * a2 * phi[3]);
@@ -211,12 +175,8 @@ double spectrum_stationary_depth(const Case& c, double w) {
   const Rheology r = c.rheology.shifted();
   // FN grows strictly with a1 (in s = x + a1, dP/da1 > 0 at every s): one root
   auto f = [&](double a1) { return solve(r, R, a1, w).FN / F0 - 1.0; };
-  double lo = c.a0(), hi = lo;
-  for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
-    lo *= 0.5;
-  for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
-    hi *= 2.0;
-  const double a1 = lo == hi ? lo : root(f, lo, hi);
+  const double a1 = numerics::scaled_root(f, c.a0(), 4000, numerics::bits_tolerance(50),
+                                          {"spectrum_stationary: load"});
   return a1 * (a1 / R);
 }
 

@@ -31,11 +31,4 @@ double spectrum_stationary_depth(const Case& c, double w);
 /// The stationary state at w under F0 (FN = F0 to rounding), d and a1 filled.
 State spectrum_stationary_load(const Case& c, double w);
 
-namespace spectrum_detail {
-/// phi_n(-z) = sum_j (-z)^j / (j + n)! for n = 0..5 (phi_0 = exp(-z)), z >= 0,
-/// each to a few ulps: the series for z <= 2, the recurrence
-/// phi_(n+1) = (1/n! - phi_n) / z above. Exposed for its test.
-void phi_functions(double z, double (&phi)[6]);
-} // namespace spectrum_detail
-
 } // namespace mdrmap

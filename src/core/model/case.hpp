@@ -130,33 +130,18 @@ struct Case {
 };
 
 /// Throws InvalidInput naming the first offending parameter (as the CLI
-/// spells it). Checks every part and that the derived scales are representable.
-void validate(const Case& c);
+/// spells it). Checks every part and the parameter table: the parameters in
+/// their ranges, one of each group, the profile's limits, the rheology, the
+/// history and its explicit instants, the element row's limits where the case
+/// needs the row. The scales derived from the parts (which need the
+/// stationary states of core/metrics) are validate()'s, above the model
+/// (core/solvers/checked_case.hpp), which calls this first.
+void validate_parts(const Case& c);
 
-/// A case that passed validate(): made once where a case is built (a study's
-/// row: study::checked_case_for), then taken by the solvers (run_case,
-/// run_exact), which need not check it again.
-class CheckedCase {
-public:
-  /// Validates `c`; throws InvalidInput as validate() does.
-  explicit CheckedCase(Case c) : c_(std::move(c)) { validate(c_); }
-  const Case& get() const { return c_; }
-  /// The case itself, no longer marked as checked.
-  Case take() && { return std::move(c_); }
-  /// This case with the durations T of `segments` (one per segment; their
-  /// velocities must be this case's): only the history is checked again, as
-  /// nothing else validate() checks depends on the durations. Throws
-  /// InvalidInput("history") as validate() does.
-  CheckedCase with_durations(const std::vector<Segment>& segments) &&;
-  /// This case with aT folded into its relaxation times (Rheology::shifted;
-  /// validate() checked the shifted times): what the solvers solve.
-  CheckedCase shifted() const;
-
-private:
-  struct Trusted {};
-  CheckedCase(Case c, Trusted) : c_(std::move(c)) {}
-  Case c_;
-};
+/// The history's part of validate_parts: its segments, and the explicit
+/// output instants (Sampling::at) where given. Throws InvalidInput
+/// ("history", "history-file").
+void validate_history(const History& h, const Sampling& s);
 
 /// The seed's experiment: one step v -> v1 at t = 0, observed over t_end
 /// (0: default_step_duration), `samples` linear samples.

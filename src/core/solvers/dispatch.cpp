@@ -69,7 +69,7 @@ RunResult within_rtol(RunResult r, double rtol) {
 // The brute-force check (core/solvers/spectrum_baseline.hpp) at a resolution
 // from rtol: first order, its estimate is ~4/(a1/dx) on a step, so a1/dx =
 // 5/rtol, within what a fixed-step run can afford.
-RunResult run_baseline_check(const Case& c, double rtol, const RunControl& control) {
+RunResult run_baseline_check(const CheckedCase& c, double rtol, const RunControl& control) {
   SpectrumBaselineOptions o;
   o.cells_per_a1 = std::clamp(std::ceil(5.0 / rtol), 16.0, 4000.0);
   o.control = &control;
@@ -145,26 +145,22 @@ namespace {
 RunResult run_solver(const CheckedCase& checked, SolverKind kind, double rtol,
                      const RunControl& control) {
   const Case& c = checked.get();
-  if (kind == SolverKind::Baseline) return run_baseline_check(c, rtol, control);
+  if (kind == SolverKind::Baseline) return run_baseline_check(checked, rtol, control);
   if (kind == SolverKind::Row || (kind == SolverKind::Auto && uses_element_row(c))) {
     SpectrumOptions o;
     o.rtol = rtol;
     o.control = &control;
-    return run_spectrum(c, o);
+    return run_spectrum(checked, o);
   }
   if (c.loading.by_force()) { // auto on the Kelvin parabola under load: kelvin_load
     LoadOptions o;
     o.rtol = rtol;
     o.control = &control;
-    return run_load(c, o);
+    return run_load(checked, o);
   }
   return run_exact(checked, rtol, control); // auto or exact, at fixed depth
 }
 
 } // namespace
-
-RunResult run_case(const Case& c, SolverKind kind, double rtol, const RunControl& control) {
-  return run_case(CheckedCase(c), kind, rtol, control);
-}
 
 } // namespace mdrmap

@@ -3,8 +3,9 @@
 #include <string>
 
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -54,9 +55,6 @@ inline bool solver_handles(SolverKind kind, bool by_force) {
 /// case needs more than its budget (or, for baseline, cannot meet rtol at its
 /// fixed resolution), Interrupted when its stop flag is set.
 RunResult run_case(const CheckedCase& c, SolverKind kind, double rtol,
-                   const RunControl& control = RunControl{});
-/// The same for a case not yet checked: validates it first (InvalidInput).
-RunResult run_case(const Case& c, SolverKind kind, double rtol,
                    const RunControl& control = RunControl{});
 
 } // namespace mdrmap

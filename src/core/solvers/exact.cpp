@@ -1,29 +1,21 @@
 #include "core/solvers/exact.hpp"
 
 #include <algorithm>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include "core/numerics/phi.hpp"
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// phi2(z) = (exp(-z) - 1 + z) / z^2, evaluated without cancellation.
-// For small z the direct form loses digits (numerator ~ z^2/2), so use the
-// series sum_{n>=0} (-z)^n / (n+2)!; truncation error < 1e-20 for |z| < 0.1.
+// phi2(z) = (exp(-z) - 1 + z) / z^2 (numerics/phi.hpp).
 double phi2(double z) {
-  if (std::abs(z) < 0.1) {
-    double term = 0.5, sum = 0.5; // n = 0: 1/2!
-    for (int n = 1; n <= 10; ++n) {
-      term *= -z / static_cast<double>(n + 2);
-      sum += term;
-    }
-    return sum;
-  }
-  return (std::expm1(-z) + z) / (z * z);
+  return numerics::phi(2, z);
 }
 
 /// Geometry and material the tail arithmetic needs.
@@ -91,13 +83,11 @@ Root piece_root(const TailPiece& p, const Frame& f, double lo, double end, doubl
   }
   // in y = x - xa (never through x: xa + y would round y away when y << xa),
   // so that a1 - x = (a1 - xa) - y keeps its digits
-  std::uintmax_t iters = 200;
-  const auto tol = boost::math::tools::eps_tolerance<double>(static_cast<unsigned>(bits));
   auto g = [&](double y) { return exp_gap(p, f, y); };
-  const auto r =
-      boost::math::tools::toms748_solve(g, lo - p.xa, end - p.xa, g_lo, g_end, tol, iters);
-  const double y = 0.5 * (r.first + r.second);
-  return {p.xa + y, p.a1_minus_xa - y, r.second - r.first, static_cast<double>(iters)};
+  const numerics::Bracket r = numerics::toms748(g, lo - p.xa, end - p.xa, g_lo, g_end,
+                                                numerics::bits_tolerance(bits), {"exact: front"});
+  const double y = r.mid();
+  return {p.xa + y, p.a1_minus_xa - y, r.width(), static_cast<double>(r.evaluations)};
 }
 
 } // namespace
@@ -255,11 +245,9 @@ double ExactSolution::arrival(const SegmentStart& seg, double x, double T, int b
   const double g0 = gap_at_x(0.0), gT = gap_at_x(T);
   if (g0 >= 0.0) return 0.0;
   if (gT < 0.0) return T; // (rounding: the front is at x only just)
-  std::uintmax_t iters = 200;
-  const auto tol = boost::math::tools::eps_tolerance<double>(static_cast<unsigned>(bits));
-  const auto r = boost::math::tools::toms748_solve(gap_at_x, 0.0, T, g0, gT, tol, iters);
-  charge(static_cast<double>(iters));
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748(gap_at_x, 0.0, T, g0, gT, numerics::bits_tolerance(bits),
+                           {"exact", 200, control_})
+      .mid();
 }
 
 // One Exp piece reaching to infinity: the material at x at time t left its
@@ -369,10 +357,6 @@ double relative_error(const Case& c, const Series& s, const State& err) {
 }
 
 } // namespace
-
-RunResult run_exact(const Case& c, double rtol, const RunControl& control) {
-  return run_exact(CheckedCase(c), rtol, control);
-}
 
 RunResult run_exact(const CheckedCase& checked, double rtol, const RunControl& control) {
   const Case& c = checked.get();

@@ -26,8 +26,9 @@
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/transient.hpp"
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -145,10 +146,10 @@ private:
 
 /// Samples the continuum solution at the case's instants. rtol sets the root
 /// tolerance; info.error_estimate bounds the case error. The work is charged
-/// to `control` (CaseAbandoned past its budget, Interrupted on a stop).
+/// to `control` (CaseAbandoned past its budget, Interrupted on a stop). The
+/// case was checked where it was made (CheckedCase); refused here is only what
+/// this solver does not take (a load, Maxwell branches, another profile).
 RunResult run_exact(const CheckedCase& c, double rtol = 1e-12,
                     const RunControl& control = RunControl{});
-/// The same for a case not yet checked: validates it first (InvalidInput).
-RunResult run_exact(const Case& c, double rtol = 1e-12, const RunControl& control = RunControl{});
 
 } // namespace mdrmap

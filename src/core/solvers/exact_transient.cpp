@@ -15,10 +15,10 @@
 // bracketed root to ~40 bits.
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
-#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
 #include <cstdint>
 
+#include "core/numerics/root.hpp"
 #include "core/solvers/exact.hpp"
 
 namespace mdrmap {
@@ -119,12 +119,10 @@ Transient ExactSolution::transient(std::size_t k, double T) const {
     return s * (analytic::contact_forces(c_, e, e0.a1_minus_e - (e - e0.e), seg.w).mu - mu_ss) -
            level;
   };
-  std::uintmax_t iters = 100;
-  const auto root =
-      boost::math::tools::toms748_solve(above, E[i - 1], E[i], Y[i - 1] - level, Y[i] - level,
-                                        boost::math::tools::eps_tolerance<double>(kBits), iters);
-  charge(static_cast<double>(iters));
-  r.t_decay = arrival_time(seg, 0.5 * (root.first + root.second), t_end, kBits);
+  const numerics::Bracket root =
+      numerics::toms748(above, E[i - 1], E[i], Y[i - 1] - level, Y[i] - level,
+                        numerics::bits_tolerance(kBits), {"exact", 100, control_});
+  r.t_decay = arrival_time(seg, root.mid(), t_end, kBits);
   return r;
 }
 

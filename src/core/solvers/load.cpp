@@ -314,8 +314,8 @@ void merge(LoadChecks& a, const LoadChecks& b) {
 
 } // namespace
 
-RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks) {
-  validate(c);
+RunResult run_load(const CheckedCase& checked, const LoadOptions& opt, LoadChecks* checks) {
+  const Case& c = checked.get();
   if (!c.loading.by_force())
     throw InvalidInput("solver", "the load solver needs a prescribed normal load (--F0)");
   require_kelvin(c, "the load solver");

@@ -7,9 +7,10 @@
 // (spectrum.hpp) solves those cases too, at several times its CPU time
 // (tools/bench/kelvin_load.cpp).
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "core/solvers/load_row.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -50,7 +51,10 @@ struct LoadOptions {
 /// material narrower than two cells (a reslide's travel, a band let go at a
 /// change) that matters at rtol is resolved first, and a case whose error
 /// estimate stays above rtol after five resolutions throws CaseAbandoned
-/// (stating the estimate and rtol) instead of returning a result.
-RunResult run_load(const Case& c, const LoadOptions& opt, LoadChecks* checks = nullptr);
+/// (stating the estimate and rtol) instead of returning a result. The case
+/// was checked where it was made (CheckedCase); refused here is only what this
+/// solver does not take (a fixed depth, Maxwell branches, another profile)
+/// and rtol.
+RunResult run_load(const CheckedCase& c, const LoadOptions& opt, LoadChecks* checks = nullptr);
 
 } // namespace mdrmap

@@ -6,9 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/load_stationary.hpp"
+#include "core/numerics/phi.hpp"
+#include "core/numerics/root.hpp"
 
 namespace mdrmap {
 namespace {
@@ -17,21 +17,20 @@ constexpr double kNoMemory = -std::numeric_limits<double>::infinity(); // ln 0: 
 constexpr long long kNoElement = std::numeric_limits<long long>::min();
 constexpr double kRootWork = 16.0; // work units of one evaluation of the edge
 
-/// phi(x) = 1 - (1 - exp(-x)) / x, the weight of D's change over a step of
-/// x = h / tau (series where the difference would cancel).
+/// phi(x) = 1 - (1 - exp(-x)) / x = x phi_2(x) (numerics/phi.hpp), the weight
+/// of D's change over a step of x = h / tau.
 double phi(double x) {
-  if (x < 1e-3) return x * (0.5 - x * (1.0 / 6.0 - x * (1.0 / 24.0 - x / 120.0)));
-  return 1.0 + std::expm1(-x) / x;
+  return x * numerics::phi(2, x);
 }
 
 // Root of f on [lo, hi] with f(lo) and f(hi) of opposite signs.
 template <class F> double bracketed_root(F f, double lo, double hi, double flo, double fhi) {
   if (flo == 0.0) return lo;
   if (fhi == 0.0) return hi;
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      f, lo, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(50), iters);
-  return 0.5 * (r.first + r.second);
+  // (charged by the caller, with the walk: kRootWork)
+  return numerics::toms748(f, lo, hi, flo, fhi, numerics::bits_tolerance(50),
+                           {"kelvin_load: front"})
+      .mid();
 }
 
 } // namespace

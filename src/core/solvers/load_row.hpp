@@ -62,7 +62,7 @@
 
 #include "core/model/case.hpp"
 #include "core/model/state.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 
 namespace mdrmap {
 

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "core/metrics/error_metric.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 
 namespace mdrmap {
 namespace {

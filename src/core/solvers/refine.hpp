@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 

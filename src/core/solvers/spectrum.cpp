@@ -10,10 +10,9 @@
 #include <string>
 #include <utility>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/stationary.hpp"
+#include "core/numerics/root.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
@@ -131,35 +130,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
 // decides where a point lets go) is second order too. Steps grow geometrically
 // from each velocity change (relative step eps = 1 / cells: the companion at
 // half the cells has twice the step, so its difference sees the time error).
-
-/// Root of an increasing f from x0: a secant step with the expected slope k
-/// (> 0) past the root, widened (times 4) until it brackets, then TOMS 748 to
-/// |b - a| <= tol; lo_limit bounds the search below. k receives the slope of
-/// the final bracket (the next call's guess).
-template <class F> double increasing_root(F f, double x0, double& k, double tol, double lo_limit) {
-  double a = x0, fa = f(x0);
-  if (fa == 0.0) return x0;
-  double step = -1.2 * fa / k, b = a, fb = fa;
-  for (int n = 0; fa * fb > 0.0; ++n) {
-    if (n > 60 || !std::isfinite(step))
-      throw CaseAbandoned("row: the load balance has no root near " + format_number(x0));
-    a = b;
-    fa = fb;
-    b = std::max(a + step, 0.5 * (a + lo_limit));
-    fb = f(b);
-    step *= 4.0;
-  }
-  if (fb == 0.0) return b;
-  if (a > b) {
-    std::swap(a, b);
-    std::swap(fa, fb);
-  }
-  std::uintmax_t iters = 100;
-  const auto r = boost::math::tools::toms748_solve(
-      f, a, b, fa, fb, [tol](double l, double h) { return h - l <= tol; }, iters);
-  if (fb > fa) k = (fb - fa) / (b - a);
-  return 0.5 * (r.first + r.second);
-}
+// The balance's root: numerics::increasing_root (each evaluation runs the row,
+// which charges its own work).
+const numerics::RootSearch kBalance{"row: the load balance", 100};
 
 // Time steps. The relative step eps = factor / (a_ref/dx) after a change,
 // starting at first eps t_min, whatever the travel (a cap of 16 dx of travel
@@ -178,19 +151,37 @@ template <class F> double increasing_root(F f, double x0, double& k, double tol,
 // (tools/bench/spectrum.cpp) and the case set: the time error then stays
 // below the space error of both runs of the estimate; the first step of a
 // reslide after a hold needs first <= 0.1 (at 1: 2.0e-4 at a/dx 32 on the
-// SLS G0/G = 100 case, estimate 7.8e-5). Under load the steps are also cut at
-// a lattice of each segment, never at the samples (LoadRun::reach).
+// SLS G0/G = 100 case, estimate 7.8e-5).
+//
+// Above kGrowthCells the growth eps falls as 1 / sqrt(a_ref/dx), not
+// 1 / (a_ref/dx): the miss bound (and the first step) keep eps_acc =
+// factor / (a_ref/dx), so the path's error is held where it matters while
+// smooth stretches take fewer, longer steps. (With the miss bound at the
+// growth eps too, the SLS G0/G = 100 drop and rise under load erred by
+// 1.06e-6 at rtol 1e-6; with it at eps_acc 3.5e-7, as with eps = eps_acc.
+// The two-term case at aT 37, rtol 1e-6: 3.6e8 -> 7.6e7 element updates,
+// within 4.6e-8 of the run with eps = eps_acc everywhere.)
+//
+// Under load the steps are also cut at a lattice of each segment, never at
+// the samples (LoadRun::reach).
 struct StepRule {
   double factor, first;
 };
 StepRule step_rule(const Rheology& r) {
   return r.tau > 0.0 ? StepRule{2.0, 1e-2} : StepRule{8.0, 0.1};
 }
+constexpr double kGrowthCells = 32.0;
+/// The growth eps of the step rule at resolution `cells` (a_ref/dx).
+double growth_eps(const StepRule& rule, double cells) {
+  return rule.factor / (cells <= kGrowthCells ? cells : std::sqrt(kGrowthCells * cells));
+}
 // The load balance's tolerance on F_N and the depth, relative to rtol: 1e-3
 // of the case's error budget. (At 1e-4 the secant needed 17% more trials for
 // the same results: 6-term spectrum under load at rtol 1e-3, 32 -> 29 ms,
 // errors and estimates unchanged.)
 constexpr double kBalanceTol = 1e-3;
+/// Lattice points per segment of the fine run under load (LoadRun::lattice_n).
+constexpr long kLatticeFine = 200;
 
 struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
@@ -220,9 +211,9 @@ class LoadRun {
 public:
   LoadRun(const Case& c, spectrum::Row& row, double cells, double tol, StationaryWatch watch,
           StationaryStates& states)
-      : c_(c), row_(row), cells_(cells), eps_(step_rule(c.rheology).factor / cells),
-        first_(step_rule(c.rheology).first), tol_(tol), ftol_(tol), watch_(watch), states_(states) {
-  }
+      : c_(c), row_(row), cells_(cells), eps_(growth_eps(step_rule(c.rheology), cells)),
+        acc_(step_rule(c.rheology).factor / cells), first_(step_rule(c.rheology).first), tol_(tol),
+        ftol_(tol), watch_(watch), states_(states) {}
 
   /// The depth rate just after a change to w (the dashpot's balance at the instant).
   void change(double w) {
@@ -242,13 +233,14 @@ public:
       return row_.measure().FN - F0;
     };
     double k = 4.0 * c_.rheology.G * c_.rheology.tau * row_.a1_now(); // dF_N/dd, one interval
-    const double dd = increasing_root(f, row_.rate_now(), k, 1e-9 * d / c_.rheology.tau, -1e300);
+    const double dd = numerics::increasing_root(f, row_.rate_now(), k, 1e-9 * d / c_.rheology.tau,
+                                                -1e300, kBalance);
     row_.restore(snap_);
     row_.change_velocity(w, dd);
   }
 
   /// The segment's step grid (its duration T): the step rule's steps cut at
-  /// the lattice T j / kLattice, j = 1 .. kLattice, and at nothing else.
+  /// the lattice T j / lattice_n, j = 1 .. lattice_n, and at nothing else.
   void begin(double T) {
     undo_side();
     lattice_T_ = T;
@@ -268,6 +260,12 @@ public:
     check_window();
   }
   double t_min = 0.0;
+  /// Lattice points per segment: 200 in the fine run, fewer in proportion in
+  /// the runs of the estimate at coarser cells (100 in the companion): where
+  /// the lattice binds the steps, the companion's coarser lattice shows the
+  /// time error it leaves (on a lattice shared by both runs the estimate did
+  /// not see it).
+  long lattice_n = kLatticeFine;
   double a_max = 0.0; ///< the largest leading edge the row's window holds
   /// Where every grid step's end and its mu go (the event metrics' probes:
   /// the grid does not depend on the samples), or nowhere.
@@ -279,7 +277,7 @@ private:
     undo_side();
     for (;;) {
       const double pos = lattice(j_) - left_;
-      if (near(s, pos) || (j_ == kLattice && !(left_ > 0.0))) return;
+      if (near(s, pos) || (j_ == lattice_n && !(left_ > 0.0))) return;
       if (!(left_ > 0.0)) {
         check_window(); // (at every lattice point, whatever the samples)
         ++j_;
@@ -293,7 +291,7 @@ private:
         probe(t_seg_);
         continue;
       }
-      double h = std::min(std::max(eps_ * t_seg_, first_ * eps_ * t_min), h_err_);
+      double h = std::min(std::max(eps_ * t_seg_, first_ * acc_ * t_min), h_err_);
       const double n = std::ceil(left_ / h);
       h = n > 1.0 ? left_ / n : left_;
       const double end = n > 1.0 ? pos + h : lattice(j_);
@@ -311,15 +309,14 @@ private:
       throw CaseAbandoned("row: under load the contact grew past its window (a1 = " +
                           format_number(row_.a1_now()) + ")");
   }
-  /// The lattice's points: the offsets of kLattice + 1 linear samples (the
-  /// same formula: such samples, and those of 5, 21, 41 or 101, fall on them).
-  static constexpr long kLattice = 200;
-  static Sampling lattice_sampling() {
+  /// The lattice's points: the offsets of lattice_n + 1 linear samples (the
+  /// same formula: on the fine run's 200, such samples, and those of 5, 21,
+  /// 41 or 101, fall).
+  double lattice(long j) const {
     Sampling s;
-    s.samples = kLattice + 1; // (linear)
-    return s;
+    s.samples = lattice_n + 1; // (linear)
+    return s.offset(j, lattice_T_);
   }
-  double lattice(long j) const { return lattice_.offset(j, lattice_T_); }
   /// a and b the same instant (a few ulps apart: the lattice's points as
   /// other samplings compute them).
   static bool near(double a, double b) {
@@ -391,7 +388,7 @@ private:
       // (at least 100 times the balance's own noise, and never below the
       // shortest step: a miss made of the secant's tolerance shortens nothing)
       const double miss = std::abs(x - pred) / x, h_min = 1e-6 * t_min;
-      const double r = miss / std::max(eps_ * eps_ * eps_, 100.0 * ftol_);
+      const double r = miss / std::max(acc_ * acc_ * acc_, 100.0 * ftol_);
       h_err_ = std::max(h_min, h * std::clamp(0.9 / std::cbrt(r), 0.2, 2.0));
       if (r > 1.0 && h > h_min) {
         row_.restore(snap_);
@@ -414,7 +411,7 @@ private:
       fx = fn;
     }
     if (std::abs(fx) > ftol) {
-      x = increasing_root(f, from, k_, tol_ * d0, 0.0);
+      x = numerics::increasing_root(f, from, k_, tol_ * d0, 0.0, kBalance);
       fx = f(x);
     }
   }
@@ -467,7 +464,7 @@ private:
 
   const Case& c_;
   spectrum::Row& row_;
-  double cells_, eps_, first_, tol_, ftol_;
+  double cells_, eps_, acc_, first_, tol_, ftol_; ///< eps_ grows the steps, acc_ bounds the miss
   spectrum::Row::Snapshot snap_;
   State at_; ///< the row measured at the last depth tried
   static constexpr std::size_t kOrder = 3;
@@ -477,7 +474,6 @@ private:
   StationaryWatch watch_;
   StationaryStates& states_;
   double watch_w_ = 0.0;
-  Sampling lattice_ = lattice_sampling();
   double lattice_T_ = 0.0, left_ = 0.0, t_seg_ = 0.0; ///< left_: to the lattice point j_
   long j_ = 0;
   bool side_ = false; ///< the row is at a side step's end
@@ -518,6 +514,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
               StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);
   run.t_min = geo.t_min;
+  run.lattice_n = std::max(25L, std::lround(static_cast<double>(kLatticeFine) * cells / fine));
   run.a_max = a_win - 2.0 * dx;
   ResolutionRun out;
   out.probes.assign(c.history.size(), Probes{});
@@ -549,8 +546,8 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
 
 } // namespace
 
-RunResult run_spectrum(const Case& given, const SpectrumOptions& o) {
-  validate(given);
+RunResult run_spectrum(const CheckedCase& checked, const SpectrumOptions& o) {
+  const Case& given = checked.get();
   const bool adaptive = !(o.cells_per_a1 > 0.0);
   if (adaptive) validate_rtol(o.rtol);
   if (!(o.sub_travel > 0.0) || !(o.sub_travel <= 2.0))

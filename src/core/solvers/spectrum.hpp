@@ -10,8 +10,9 @@
 // (Kelvin) cases too, as a check of the specialised solvers. Expects a
 // shifted case (aT folded in; an unshifted one is shifted here).
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -33,7 +34,8 @@ struct SpectrumOptions {
 /// ends at the depth that balances F_N = F0 (spectrum.cpp, "load control"),
 /// the run starts from stationary sliding at v0 under F0, and Series d, a1
 /// are filled. Throws CaseAbandoned when the estimate stays above rtol or past
-/// the work budget.
-RunResult run_spectrum(const Case& c, const SpectrumOptions& o);
+/// the work budget. The case was checked where it was made (CheckedCase);
+/// only the options are checked here (rtol, sub-travel, cells-per-a1).
+RunResult run_spectrum(const CheckedCase& c, const SpectrumOptions& o);
 
 } // namespace mdrmap

@@ -278,8 +278,8 @@ RunResult run_once(const Case& c, const SpectrumBaselineOptions& o, const RunCon
 
 } // namespace
 
-RunResult run_spectrum_baseline(const Case& given, const SpectrumBaselineOptions& o) {
-  validate(given);
+RunResult run_spectrum_baseline(const CheckedCase& checked, const SpectrumBaselineOptions& o) {
+  const Case& given = checked.get();
   Case c = given;
   c.rheology = given.rheology.shifted();
   const RunControl own;

@@ -10,8 +10,9 @@
 // (core/model/profile.hpp): an element in contact follows h = d - g(x), the
 // contact spans [-a1, a1] at most, g(a1) = d.
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
+#include "core/solvers/checked_case.hpp"
 #include "core/solvers/result.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
@@ -28,6 +29,7 @@ struct SpectrumBaselineOptions {
 /// Under load control (c.loading.by_force()) each fixed step solves its end
 /// depth from F_N = F0 (the dashpot sees the backward difference of d), the
 /// spin-up starts at the stationary depth under load and balances the load too.
-RunResult run_spectrum_baseline(const Case& c, const SpectrumBaselineOptions& o);
+/// The case was checked where it was made (CheckedCase), not again here.
+RunResult run_spectrum_baseline(const CheckedCase& c, const SpectrumBaselineOptions& o);
 
 } // namespace mdrmap

@@ -10,7 +10,11 @@ namespace {
 // phi_a(z) = 1 - (1 - e^-z)/z and phi_b(z) = 1 - 2/z + 2 (1 - e^-z)/z^2: the
 // response of tau q' = u - q (q(0) = 0) to u = t and u = t^2, over dt, in
 // units of dt and dt^2 (z = dt/tau, e = e^-z). Series below z = 0.5, where
-// the closed form cancels.
+// the closed form cancels. (These are z phi_2(z) and 2 z phi_3(z) of
+// numerics/phi.hpp, which agrees to a few ulps; kept here because the steady
+// runs of tests/test_spectrum_steady.cpp at v tau/a1 = 1e-5 under load move
+// with the last bits: there mu's error is the row's solver tolerances, which
+// the estimate does not see.)
 void phis(double z, double e, double& pa, double& pb) {
   if (z < 0.5) {
     // term = (-1)^(n+1) z^(n-1)/(n+1)!, from n = 1, until it no longer counts

@@ -8,7 +8,7 @@
 #include <tuple>
 #include <utility>
 
-#include <boost/math/tools/toms748_solve.hpp>
+#include "core/numerics/root.hpp"
 
 namespace mdrmap::spectrum {
 namespace {
@@ -33,10 +33,9 @@ template <class F> double solve(F f, double hi) {
   const double flo = f(0.0), fhi = f(hi);
   if (!(flo > 0.0)) return 0.0;
   if (!(fhi < 0.0)) return hi;
-  std::uintmax_t iters = 100;
-  const auto r = boost::math::tools::toms748_solve(
-      f, 0.0, hi, flo, fhi, boost::math::tools::eps_tolerance<double>(50), iters);
-  return 0.5 * (r.first + r.second);
+  return numerics::toms748(f, 0.0, hi, flo, fhi, numerics::bits_tolerance(50),
+                           {"row: release", 100})
+      .mid();
 }
 
 // Root in (0, h) of f, with f(0) = f0 > 0 > f(h) (else 0 or h, as solve):
@@ -653,11 +652,10 @@ double Row::trailing_edge(long long jb, double& pe, Edge edge) const {
     else
       std::tie(lo, slo) = std::make_pair(b, sb);
   }
-  std::uintmax_t iters = 200;
-  const auto r = boost::math::tools::toms748_solve(
-      s, lo, hi, slo, shi, [tol](double l, double h) { return h - l <= tol; }, iters);
+  const numerics::Bracket r =
+      numerics::toms748(s, lo, hi, slo, shi, numerics::WidthTolerance{tol}, {"row: edge"});
   pe = std::max(0.0, pe);
-  return std::min(xb + r.first * dx_, a1);
+  return std::min(xb + r.lo * dx_, a1);
 }
 
 // The edge after node jb where the contact forces alone predict it, without

@@ -67,7 +67,7 @@
 
 #include "core/model/case.hpp"
 #include "core/model/state.hpp"
-#include "core/solvers/run_control.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/spectrum_law.hpp"
 
 namespace mdrmap::spectrum {

@@ -9,8 +9,8 @@
 #include <cstddef>
 
 #include "core/model/case.hpp"
+#include "core/numerics/run_control.hpp"
 #include "core/solvers/refine.hpp"
-#include "core/solvers/run_control.hpp"
 
 namespace mdrmap {
 
