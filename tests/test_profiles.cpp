@@ -111,16 +111,15 @@ TEST(ProfileModel, HertzRadiusOfEachProfile) {
 
 struct Reference {
   const Case& c;
-  double w, n, k, a1, L;
-  Reference(const Case& cc, double ww)
-      : c(cc), w(ww), n(cc.indenter.exponent()), k(cc.indenter.coefficient()), a1(0.0),
-        L(ww * cc.rheology.tau) {}
-  // -g'(x) on the side `behind` (x >= 0) or ahead of the tip
+  double w, a1, L;
+  Reference(const Case& cc, double ww) : c(cc), w(ww), a1(0.0), L(ww * cc.rheology.tau) {}
+  // -g'(x) on the side `behind` (x >= 0) or ahead of the tip (the indenter's g')
   double minus_slope(double x, bool behind) const {
-    const double m = n * k * std::pow(std::fabs(x), n - 1.0);
+    const double y = std::fabs(x);
+    const double m = y > 0.0 ? c.indenter.slope(y) : c.indenter.slope(1e-300 * a1);
     return behind ? -m : m;
   }
-  double h(double x) const { return k * (std::pow(a1, n) - std::pow(std::fabs(x), n)); }
+  double h(double x) const { return c.indenter.g(a1) - c.indenter.g(std::fabs(x)); }
   // y = (q_1 .. q_N, int p/4, int p/4 (-g')); x in [-a1, end]
   std::vector<double> integrate_to(double end) const {
     namespace ode = boost::numeric::odeint;
@@ -154,7 +153,7 @@ struct Reference {
     return P;
   }
   State at_depth(double d) {
-    a1 = std::pow(d / k, 1.0 / n);
+    a1 = c.indenter.contact_radius(d);
     double a2 = a1;
     if (pressure(0.0) <= 0.0)
       a2 = 0.0;
@@ -195,8 +194,7 @@ std::vector<Case> profiles(double d, double tau, double v, const std::vector<Bra
 }
 
 std::string label(const Case& c, double w) {
-  return std::string(mdrmap::profile_name(c.indenter.profile)) +
-         " n=" + std::to_string(c.indenter.exponent()) +
+  return std::string(mdrmap::profile_name(c.indenter.profile)) + " a1=" + std::to_string(c.a1()) +
          " branches=" + std::to_string(c.rheology.branches.size()) + " w=" + std::to_string(w);
 }
 

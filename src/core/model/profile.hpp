@@ -119,11 +119,8 @@ struct Indenter {
   bool parabolic() const { return is<Parabola>(); }
   /// The chosen shape's image, formed once (its coefficient computed).
   ShapeImage image() const { return image_from<0>(); }
-  /// The exponent n of g: 2, 1 or n.
-  double exponent() const {
-    return visit([](const auto& s) { return s.image().exponent(); });
-  }
-  /// The coefficient c of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A.
+  /// The scale c of g (of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A), the
+  /// element row's range checks' (core/model/row_limits.hpp).
   double coefficient() const {
     return visit([](const auto& s) { return s.image().coefficient(); });
   }
@@ -147,6 +144,11 @@ struct Indenter {
   /// foundation of modulus G: 4 G int (g(a) - g).
   double elastic_force(double a, double G) const {
     return visit([a, G](const auto& s) { return s.image().elastic_force(a, G); });
+  }
+  /// d ln F / d ln d of that force at depth d (dF/dd = 8 G a): (n + 1)/n
+  /// for g = c |x|^n.
+  double force_exponent(double d) const {
+    return visit([d](const auto& s) { return s.image().force_exponent(d); });
   }
   /// The radius a of that force: elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {
