@@ -1,6 +1,6 @@
 // Indenter profiles (src/core/model/profile.*, src/core/metrics/profile_stationary.*):
 // the MDR image and the Hertz-type scales of each profile, the stationary
-// states of the cone and the power law against an independent computation
+// states of the cone, the power law and the sphere against an independent computation
 // (the branch ODEs integrated along the contact by adaptive Dormand-Prince,
 // the trailing edge the zero of that pressure), the power law with n = 2
 // against the parabola on the history and load case sets, the cone's limits,
@@ -52,6 +52,12 @@ Case power_case(double n, double A, double d, double tau, double v, std::vector<
   c.indenter.as<mdrmap::Cone>().beta = 0.0;
   c.indenter.as<mdrmap::Power>().n = n;
   c.indenter.as<mdrmap::Power>().A = A;
+  return c;
+}
+
+Case sphere_case(double R, double d, double tau, double v, std::vector<Branch> b = {}) {
+  Case c = cone_case(10.0, d, tau, v, std::move(b));
+  c.indenter = mdrmap::Sphere{R};
   return c;
 }
 
@@ -190,7 +196,8 @@ std::vector<std::vector<Branch>> rheologies() {
 
 std::vector<Case> profiles(double d, double tau, double v, const std::vector<Branch>& b) {
   return {cone_case(10.0, d, tau, v, b), cone_case(45.0, d, tau, v, b),
-          power_case(1.5, 0.8, d, tau, v, b), power_case(3.0, 2.0, d, tau, v, b)};
+          power_case(1.5, 0.8, d, tau, v, b), power_case(3.0, 2.0, d, tau, v, b),
+          sphere_case(2.0 * d, d, tau, v, b)}; // (a1/R = 0.64 at depth d)
 }
 
 std::string label(const Case& c, double w) {

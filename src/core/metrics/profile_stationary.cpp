@@ -204,8 +204,9 @@ double load_edge(const Case& c, double w, profile::Budget& budget) {
   double lo = c.a0(), hi = lo;
   for (int i = 0; i < 4000 && f(lo) > 0.0; ++i)
     lo *= 0.5;
+  const double most = c.indenter.max_radius(); // (the edges stay below it)
   for (int i = 0; i < 4000 && f(hi) < 0.0; ++i)
-    hi *= 2.0;
+    hi = std::fmin(2.0 * hi, 0.5 * (hi + most));
   return lo == hi ? lo : root(f, lo, hi);
 }
 

@@ -17,11 +17,12 @@
 #include "core/model/shapes/cone.hpp"
 #include "core/model/shapes/parabola.hpp"
 #include "core/model/shapes/power.hpp"
+#include "core/model/shapes/sphere.hpp"
 
 namespace mdrmap {
 
 /// The shapes, in the order of the help text; the first is the default.
-using Shapes = std::tuple<Parabola, Cone, Power>;
+using Shapes = std::tuple<Parabola, Cone, Power, Sphere>;
 inline constexpr std::size_t kShapeCount = std::tuple_size_v<Shapes>;
 
 template <class S, class T = Shapes> struct is_shape;
@@ -71,7 +72,7 @@ private:
 /// Every kind, in the order of the table.
 std::array<Profile, kShapeCount> all_profiles();
 
-/// "parabola", "cone", "power".
+/// "parabola", "cone", "power", "sphere".
 const char* profile_name(Profile p);
 /// Parses a profile's name; throws InvalidInput("profile").
 Profile parse_profile(const std::string& name);
@@ -149,6 +150,10 @@ struct Indenter {
   /// for g = c |x|^n.
   double force_exponent(double d) const {
     return visit([d](const auto& s) { return s.image().force_exponent(d); });
+  }
+  /// The bound every contact radius stays below (the sphere's R; infinity).
+  double max_radius() const {
+    return visit([](const auto& s) { return s.image().max_radius(); });
   }
   /// The radius a of that force: elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {

@@ -60,6 +60,8 @@ struct Parabola {
   }
   /// d ln F / d ln d of the elastic force: F ~ d^(3/2).
   double force_exponent(double) const { return 1.5; }
+  /// No bound on the contact radius.
+  double max_radius() const { return std::numeric_limits<double>::infinity(); }
   double hertz_radius(double F, double G) const { return std::cbrt(3.0 * F * R / (16.0 * G)); }
 };
 

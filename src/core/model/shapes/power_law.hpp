@@ -3,6 +3,7 @@
 // c = kappa_n A (docs/design.md, "Indenter profiles"): the arithmetic the cone
 // and the power law share (shapes/cone.hpp, shapes/power.hpp).
 #include <cmath>
+#include <limits>
 
 namespace mdrmap {
 
@@ -97,6 +98,8 @@ struct PowerImage {
   }
   /// d ln F / d ln d of the elastic force: F ~ d^((n + 1)/n).
   double force_exponent(double) const { return (n + 1.0) / n; }
+  /// No bound on the contact radius.
+  double max_radius() const { return std::numeric_limits<double>::infinity(); }
   /// elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {
     return std::pow(F * (n + 1.0) / (8.0 * G * c * n), 1.0 / (n + 1.0));
