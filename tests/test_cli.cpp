@@ -970,7 +970,7 @@ TEST(cli, SimulateBadInputsExit2WithOneLineNamingTheOption) {
        true},
       {"output is a directory", {{"output", dir.path().string()}}, {}, "output", true},
       // indenter profiles (issue 21): each profile's parameters, in range, with it only
-      {"profile unknown", {{"profile", "sphere"}}, {}, "profile"},
+      {"profile unknown", {{"profile", "ellipsoid"}}, {}, "profile"},
       {"--beta with the parabola", {{"beta", "10"}}, {}, "beta"},
       {"--n with the parabola", {{"n", "2"}}, {}, "n"},
       {"--R with a cone", {{"profile", "cone"}, {"beta", "10"}}, {}, "R"},
@@ -2563,6 +2563,39 @@ TEST(cli, StationaryConeOnKelvinHasMuPiOver2TanBetaForVTauFromA1) {
       EXPECT_LE(rel_diff(to_double(row[4]), 0.01), 1e-14);
     }
   }
+}
+
+// The exact sphere from the command line: at rest its force is Hertz's for the
+// sphere (at a/R = 0.64, 16% above the paraboloid's), under load F_N is the
+// load, simulate runs it, and a depth whose contact radius would reach R is
+// refused in one line naming --d.
+TEST(cli, SphereIsHertzsSphereAndRefusesAContactReachingR) {
+  const double R = 0.02, d = 0.01;
+  const double a = mdrmap::Indenter(mdrmap::Sphere{R}).contact_radius(d);
+  const double hertz = 2.0 * ((a * a + R * R) * std::log((R + a) / (R - a)) - 2.0 * a * R);
+  const std::vector<std::string> sphere{"--profile", "sphere", "--radius", num(R), "--tau", "1"};
+  auto with = [&](std::vector<std::string> more) {
+    more.insert(more.begin(), sphere.begin(), sphere.end());
+    return more;
+  };
+  const StationaryTable t = run_stationary(with({"--d", num(d), "--v-list", "1e-14,1"}));
+  ASSERT_EQ(t.rows.size(), 2U);
+  EXPECT_LE(rel_diff(to_double(t.rows[0][4]), hertz), 1e-11); // (v tau / a = 1e-12)
+  EXPECT_GT(rel_diff(hertz, 16.0 / 3.0 * a * a * a / R), 0.1);
+  const StationaryTable load = run_stationary(with({"--F0", "0.001", "--v-list", "0.01,1"}));
+  ASSERT_EQ(load.rows.size(), 2U);
+  for (const auto& row : load.rows)
+    EXPECT_LE(rel_diff(to_double(row[4]), 0.001), 1e-12) << row[0];
+  std::vector<std::string> simulate = with({"--d", num(d), "--v", "0.01", "--v1", "0.001"});
+  simulate.insert(simulate.begin(), "simulate");
+  const Outcome sim = run_mdrmap(simulate, kNoHangSeconds);
+  EXPECT_EQ(sim.code, 0) << sim.err;
+  const Outcome far = run_mdrmap({"simulate", "--profile", "sphere", "--radius", "1", "--d", "100",
+                                  "--tau", "1", "--v", "1", "--v1", "0.1"});
+  EXPECT_EQ(far.code, 2);
+  EXPECT_EQ(std::count(far.err.begin(), far.err.end(), '\n'), 1) << far.err;
+  EXPECT_NE(far.err.find("--d: "), std::string::npos) << far.err;
+  EXPECT_NE(far.err.find("not below"), std::string::npos) << far.err;
 }
 
 // --v-range LO:HI:N: N rows, log-spaced, the ends exactly the doubles of LO

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "core/metrics/profile_branches.hpp"
@@ -48,7 +49,8 @@ double rel(double a, double b) {
 /// F_x -> 4 sum_k G_k / (w tau_k) int h^2, int h^2 = 2 c^2 a1^(2n+1)
 /// (1 - 2/(n+1) + 1/(2n+1)): mu w -> the ratio of the two without w.
 double glassy_mu_v(const Case& c) {
-  const double n = c.indenter.exponent(), k = c.indenter.coefficient(), a1 = c.a1();
+  const auto img = std::get<mdrmap::PowerImage>(c.indenter.image()); // (a cone or a power law)
+  const double n = img.exponent(), k = img.coefficient(), a1 = c.a1();
   double G0 = c.rheology.G, rate = 0.0;
   for (const Branch& b : c.rheology.branches) {
     G0 += b.G;
@@ -154,8 +156,7 @@ TEST(ProfileStationaryLimits, PowerTwoIsTheParabolaAtEveryVelocity) {
 // unbounded loop.
 TEST(ProfileStationaryLimits, QuadratureStopsAtItsBudget) {
   mdrmap::profile::BranchContact k;
-  k.n = 1.5;
-  k.c = 0.1;
+  k.img = mdrmap::PowerImage{0.1, 1.5};
   k.a1 = 1.0;
   mdrmap::profile::Budget budget;
   budget.max_evaluations = 1000;

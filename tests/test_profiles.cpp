@@ -1,6 +1,6 @@
 // Indenter profiles (src/core/model/profile.*, src/core/metrics/profile_stationary.*):
 // the MDR image and the Hertz-type scales of each profile, the stationary
-// states of the cone and the power law against an independent computation
+// states of the cone, the power law and the sphere against an independent computation
 // (the branch ODEs integrated along the contact by adaptive Dormand-Prince,
 // the trailing edge the zero of that pressure), the power law with n = 2
 // against the parabola on the history and load case sets, the cone's limits,
@@ -52,6 +52,12 @@ Case power_case(double n, double A, double d, double tau, double v, std::vector<
   c.indenter.as<mdrmap::Cone>().beta = 0.0;
   c.indenter.as<mdrmap::Power>().n = n;
   c.indenter.as<mdrmap::Power>().A = A;
+  return c;
+}
+
+Case sphere_case(double R, double d, double tau, double v, std::vector<Branch> b = {}) {
+  Case c = cone_case(10.0, d, tau, v, std::move(b));
+  c.indenter = mdrmap::Sphere{R};
   return c;
 }
 
@@ -111,16 +117,15 @@ TEST(ProfileModel, HertzRadiusOfEachProfile) {
 
 struct Reference {
   const Case& c;
-  double w, n, k, a1, L;
-  Reference(const Case& cc, double ww)
-      : c(cc), w(ww), n(cc.indenter.exponent()), k(cc.indenter.coefficient()), a1(0.0),
-        L(ww * cc.rheology.tau) {}
-  // -g'(x) on the side `behind` (x >= 0) or ahead of the tip
+  double w, a1, L;
+  Reference(const Case& cc, double ww) : c(cc), w(ww), a1(0.0), L(ww * cc.rheology.tau) {}
+  // -g'(x) on the side `behind` (x >= 0) or ahead of the tip (the indenter's g')
   double minus_slope(double x, bool behind) const {
-    const double m = n * k * std::pow(std::fabs(x), n - 1.0);
+    const double y = std::fabs(x);
+    const double m = y > 0.0 ? c.indenter.slope(y) : c.indenter.slope(1e-300 * a1);
     return behind ? -m : m;
   }
-  double h(double x) const { return k * (std::pow(a1, n) - std::pow(std::fabs(x), n)); }
+  double h(double x) const { return c.indenter.g(a1) - c.indenter.g(std::fabs(x)); }
   // y = (q_1 .. q_N, int p/4, int p/4 (-g')); x in [-a1, end]
   std::vector<double> integrate_to(double end) const {
     namespace ode = boost::numeric::odeint;
@@ -154,7 +159,7 @@ struct Reference {
     return P;
   }
   State at_depth(double d) {
-    a1 = std::pow(d / k, 1.0 / n);
+    a1 = c.indenter.contact_radius(d);
     double a2 = a1;
     if (pressure(0.0) <= 0.0)
       a2 = 0.0;
@@ -191,12 +196,12 @@ std::vector<std::vector<Branch>> rheologies() {
 
 std::vector<Case> profiles(double d, double tau, double v, const std::vector<Branch>& b) {
   return {cone_case(10.0, d, tau, v, b), cone_case(45.0, d, tau, v, b),
-          power_case(1.5, 0.8, d, tau, v, b), power_case(3.0, 2.0, d, tau, v, b)};
+          power_case(1.5, 0.8, d, tau, v, b), power_case(3.0, 2.0, d, tau, v, b),
+          sphere_case(2.0 * d, d, tau, v, b)}; // (a1/R = 0.64 at depth d)
 }
 
 std::string label(const Case& c, double w) {
-  return std::string(mdrmap::profile_name(c.indenter.profile)) +
-         " n=" + std::to_string(c.indenter.exponent()) +
+  return std::string(mdrmap::profile_name(c.indenter.profile)) + " a1=" + std::to_string(c.a1()) +
          " branches=" + std::to_string(c.rheology.branches.size()) + " w=" + std::to_string(w);
 }
 

@@ -19,8 +19,10 @@ namespace mdrmap {
 namespace {
 
 std::vector<Indenter> examples() {
-  return {Parabola{1.3},   Cone{10.0},      Cone{45.0},      Power{1.5, 0.7},
-          Power{3.0, 2.0}, Power{1.0, 1.0}, Power{2.0, 0.5}, Power{1.2, 3.0}};
+  // (the spheres' contacts at d = 0.01: a/R = 0.1, on the sums, and 0.64,
+  // on the closed forms)
+  return {Parabola{1.3},   Cone{10.0},      Cone{45.0},      Power{1.5, 0.7}, Power{3.0, 2.0},
+          Power{1.0, 1.0}, Power{2.0, 0.5}, Power{1.2, 3.0}, Sphere{1.0},     Sphere{0.02}};
 }
 
 std::string label(const Indenter& ind) {

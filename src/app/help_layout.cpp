@@ -127,16 +127,22 @@ std::string case_usage(bool history) {
     const auto members = group_members(p.one_of);
     if (members.front() == &p) s += " (" + group_usage(members, " | ", " | ") + ")";
   }
-  std::string alternatives;
+  const std::string indent = "\n           ";
+  std::string alternatives, line; // (lines of at most 80 columns)
   for (const Profile kind : all_profiles()) {
     std::string alt =
         kind == Profile::of<Parabola>() ? "" : std::string("--profile ") + profile_name(kind);
     for (const auto& p : case_parameters())
       if (p.required && p.profile && std::string(p.profile) == profile_name(kind))
         alt += (alt.empty() ? "--" : " --") + std::string(p.name) + " " + p.symbol;
-    alternatives += (alternatives.empty() ? "(" : " | ") + alt;
+    const std::string piece = (line.empty() && alternatives.empty() ? "(" : " | ") + alt;
+    if (!line.empty() && indent.size() + line.size() + piece.size() > 79) {
+      alternatives += indent + line;
+      line.clear();
+    }
+    line += piece;
   }
-  return s + "\n           " + alternatives + ")";
+  return s + alternatives + indent + line + ")";
 }
 
 HelpEntry option_entry(const std::string& name, const std::string& extra) {

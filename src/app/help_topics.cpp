@@ -33,7 +33,7 @@ std::string exit_codes_help() {
 
 std::string profiles_help() {
   return "The indenter profiles, as mdrmap simulate and mdrmap stationary take them\n"
-         "(mdrmap study: run.profile and the grid columns R, beta, n, A).\n\n" +
+         "(mdrmap study: run.profile and the grid columns R, beta, n, A, radius).\n\n" +
          simulate_section_help("geometry");
 }
 
@@ -56,7 +56,7 @@ const std::vector<Topic>& topics() {
       {"stationary", "every option of mdrmap stationary and its CSV", stationary_help_all},
       {"study", "every option of mdrmap study (MPI parameter maps)", study_help_all},
       {"fit", "every option of mdrmap fit (case parameters from lab records)", fit_help_all},
-      {"profiles", "the indenter: parabola, cone, power law; depth or load", profiles_help},
+      {"profiles", "the indenter: parabola, cone, power law, sphere; depth or load", profiles_help},
       {"spectrum", "the material: Kelvin, Prony spectrum, aT, temperature", spectrum_help},
       {"history", "the velocity history: a step, or segments and holds", history_help},
       {"config", "the study config keys the options of mdrmap study set", study_config_help},

@@ -203,9 +203,9 @@ Prints the stationary sliding states of one case at one or more velocities,
 in the method of dimensionality reduction (MDR): the state that the contact
 reaches after sliding steadily at the velocity v for long enough, from the
 closed forms (or by quadrature) of the core, with no time stepping. Any
-indenter profile (parabola, cone, power law), the Kelvin foundation or a
-relaxation spectrum (--prony), at fixed depth (--d) or under the normal load
-F0 (--F0: the depth follows). The case is given as to mdrmap simulate,
+indenter profile (parabola, cone, power law, sphere), the Kelvin foundation
+or a relaxation spectrum (--prony), at fixed depth (--d) or under the normal
+load F0 (--F0: the depth follows). The case is given as to mdrmap simulate,
 without its velocity history and sampling.
 
 Any consistent units work (e.g. mm, s, MPa): d, R, a1, a2 are lengths, tau a

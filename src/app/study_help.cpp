@@ -34,7 +34,7 @@ const std::vector<OverrideGroup>& override_groups() {
   static const std::vector<OverrideGroup> groups = {
       {"geometry",
        "Overrides: case geometry and loading",
-       {"profile", "d", "F0", "R", "beta", "n", "A", "FN"}},
+       {"profile", "d", "F0", "R", "beta", "n", "A", "radius", "FN"}},
       {"material", "Overrides: material", {"tau", "G", "aT", "temperature", "wlf", "material"}},
       {"history", "Overrides: velocity history", {"v", "v1", "v1-over-v", "t-end-over-tau"}},
       {"output", "Overrides: sampling and stored output", {"samples", "timeseries"}},
@@ -59,8 +59,9 @@ std::string override_text(const StudyOverride& ov) {
     s += std::string(" (") + dim_name(p->dim) + "): " + p->meaning;
   if (ov.option == "G") return s + ", one number for every case";
   if (ov.option == "profile")
-    return s + ": parabola (default, with R), cone (with beta) or power (with n and A); a cone "
-               "or power law is solved by the spectrum solver (solver auto picks it)";
+    return s + ": parabola (default, with R), cone (with beta), power (with n and A) or "
+               "sphere (with radius); a cone, power law or sphere is solved by the spectrum "
+               "solver (solver auto picks it)";
   if (ov.option == "wlf") return s + ", the WLF constants of the temperature";
   if (ov.option == "material")
     return s + ": an Abaqus card or pyvisco's CSV (relative to the working directory) that "

@@ -134,7 +134,8 @@ std::vector<ConfigKey> run_keys() {
        "take a temperature's WLF shift of more than 12 decades (refused otherwise: most often a "
        "C/K mix-up)"},
       {"run", "profile", profiles, "", profiles, std::string("default ") + profile_name(d.profile),
-       "the indenter of every case: a parabola (column R), a cone (beta) or a power law (n, A)"},
+       "the indenter of every case: a parabola (column R), a cone (beta), a power law (n, A) "
+       "or the exact sphere (radius)"},
       {"run", "material", "FILE", "",
        "an Abaqus card or pyvisco's CSV, relative to the config's "
        "directory",

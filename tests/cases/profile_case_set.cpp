@@ -21,7 +21,8 @@ std::vector<NamedProfile> profiles() {
   return {{"cone 10deg", Cone{10.0}},
           {"cone 45deg", Cone{45.0}},
           {"power n=1.5", Power{1.5, 1.0}},
-          {"power n=3", Power{3.0, 1.0}}};
+          {"power n=3", Power{3.0, 1.0}},
+          {"sphere a/R=0.5", Sphere{2.0 * kContact}}};
 }
 
 /// The history (w / v0, T / t_ref) at zeta0 on the profile and material.

@@ -91,7 +91,7 @@ ROWS = [
     # relaxation spectra and the temperature shift (issue 19); {dir} is a
     # directory holding PRONY_FILES
     # indenter profiles (issue 21)
-    ("profile unknown", {"profile": "sphere"}, [], "profile"),
+    ("profile unknown", {"profile": "ellipsoid"}, [], "profile"),
     ("--beta with the parabola", {"beta": "10"}, [], "beta"),
     ("--n with the parabola", {"n": "2"}, [], "n"),
     ("--R with a cone", {"profile": "cone", "beta": "10"}, [], "R"),

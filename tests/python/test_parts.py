@@ -105,7 +105,7 @@ def test_files(tmp_path):
     (lambda: mdrmap.Indenter("cone"), "beta", "is required"),
     (lambda: mdrmap.Indenter("cone", beta=90), "beta", "must be a finite number > 0 and < 90"),
     (lambda: mdrmap.Indenter(R=10, beta=3), "beta", "applies to --profile cone only"),
-    (lambda: mdrmap.Indenter("sphere", R=1), "profile", "sphere"),
+    (lambda: mdrmap.Indenter("ellipsoid", R=1), "profile", "ellipsoid"),
     (lambda: mdrmap.Indenter(R=b"10"), "R", "must be a number, got bytes"),
     (lambda: mdrmap.Indenter("power", n=0.5, A=1), "n", "must be a finite number >= 1"),
     (lambda: mdrmap.History([(1, -2)]), "history", "segment 1 '1:-2': T must be"),

@@ -54,7 +54,7 @@ bool glassy(const BranchContact& k, double lambda) {
   return lambda >= 0.5 * k.a1;
 }
 
-/// f = -g' at t: c n |t|^(n-1) ahead of the tip, its negative behind.
+/// f = -g' at t: |g'| ahead of the tip, its negative behind.
 double f_at(const BranchContact& k, double t) {
   return t < 0.0 ? k.slope_mag(-t) : -k.slope_mag(t);
 }
@@ -85,18 +85,6 @@ double relaxed_stress(const BranchContact& k, double lambda, double x, double s)
 }
 
 } // namespace
-
-double pow_diff(double a1, double delta, double n) {
-  return std::pow(a1, n) * -std::expm1(n * std::log1p(-delta / a1));
-}
-
-double BranchContact::slope_mag(double y) const {
-  return n == 1.0 ? c : c * n * std::pow(y, n - 1.0);
-}
-
-double BranchContact::depth_left(double delta) const {
-  return c * pow_diff(a1, delta, n);
-}
 
 void BranchContact::charge(double k) const {
   budget->evaluations += k;

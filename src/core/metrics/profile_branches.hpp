@@ -1,6 +1,6 @@
 #pragma once
-// The Maxwell branches' part of the stationary contact of a profile
-// g = c |x|^n (core/metrics/profile_stationary.hpp): a branch of length
+// The Maxwell branches' part of the stationary contact of any indenter's
+// image g (core/metrics/profile_stationary.hpp): a branch of length
 // lambda = w tau_k carries the stress
 //   r(x) = int_{-a1}^{x} exp(-(x - x')/lambda) f(x') dx',  f = -g',
 // and adds int r to F_N / 4 and int r f to F_x / 4 over the contact [-a1, a2].
@@ -20,6 +20,9 @@
 // Every integrand evaluation is counted against a budget; past it the
 // quadrature throws std::runtime_error (the caller fails the case).
 #include <cstdint>
+#include <variant>
+
+#include "core/model/profile.hpp"
 
 namespace mdrmap::profile {
 
@@ -30,21 +33,23 @@ struct Budget {
   double evaluations = 0.0;
 };
 
-/// The contact of g = c |x|^n at leading edge a1 (depth c a1^n), and the
+/// The contact of the image g at leading edge a1 (depth g(a1)), and the
 /// budget its branches' quadrature charges.
 struct BranchContact {
-  double n = 2.0, c = 1.0, a1 = 0.0;
+  ShapeImage img; ///< g (Indenter::image), symmetric
+  double a1 = 0.0;
   Budget* budget = nullptr; ///< required
-  /// |g'| at distance y >= 0 from the tip: c n y^(n-1).
-  double slope_mag(double y) const;
+  /// |g'| at distance y >= 0 from the tip (at the tip its limit from y > 0).
+  double slope_mag(double y) const {
+    return std::visit([y](const auto& i) { return i.side_slope(y, 1); }, img);
+  }
   /// h = d - g at x (|x| <= a1), from delta = a1 - |x| without cancellation.
-  double depth_left(double delta) const;
+  double depth_left(double delta) const {
+    return std::visit([this, delta](const auto& i) { return i.drop(a1, delta); }, img);
+  }
   /// Counts k evaluations; throws std::runtime_error past the budget.
   void charge(double k) const;
 };
-
-/// a1^n - (a1 - delta)^n without cancellation.
-double pow_diff(double a1, double delta, double n);
 
 /// r(x) of a branch of length lambda at x in the contact, x = a1 - delta
 /// behind the tip (delta = a1 - x given, so that h keeps its digits near

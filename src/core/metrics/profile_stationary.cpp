@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "core/metrics/analytic.hpp"
@@ -24,11 +25,12 @@ struct Term {
   double lam; // w tau_k
 };
 
-// The contact of g = c |x|^n at leading edge a1 (depth d = c a1^n), velocity w.
+// The contact of the image g at leading edge a1 (depth g(a1)), velocity w.
 struct Contact {
-  double n = 2.0, c = 1.0, a1 = 0.0, L = 0.0, G = 0.0;
+  double a1 = 0.0, L = 0.0, G = 0.0;
+  bool linear = false; // g = c |x| (the cone): the Kelvin edge in closed form
   std::vector<Term> terms;
-  profile::BranchContact shape; // n, c, a1 and the evaluation budget of the branches
+  profile::BranchContact shape; // g, a1 and the evaluation budget of the branches
 };
 
 struct Edge {
@@ -37,15 +39,13 @@ struct Edge {
 
 Contact make_contact(const Case& c, double a1, double w, profile::Budget& budget) {
   Contact k;
-  k.n = c.indenter.exponent();
-  k.c = c.indenter.coefficient();
   k.a1 = a1;
   k.L = w * c.rheology.tau;
   k.G = c.rheology.G;
+  k.linear = c.indenter.visit([](const auto& s) { return s.linear(); });
   for (const Branch& b : c.rheology.branches)
     if (w * b.tau > 0.0) k.terms.push_back({b.G, w * b.tau});
-  k.shape.n = k.n;
-  k.shape.c = k.c;
+  k.shape.img = c.indenter.image();
   k.shape.a1 = a1;
   k.shape.budget = &budget;
   return k;
@@ -55,44 +55,54 @@ template <class F> double root(F f, double lo, double hi) {
   return numerics::toms748(f, lo, hi, numerics::bits_tolerance(52), {"profile_stationary"}).mid();
 }
 
-/// |g'| at distance y >= 0 from the tip: c n y^(n-1).
+/// |g'| at distance y >= 0 from the tip.
 double slope_mag(const Contact& k, double y) {
   return k.shape.slope_mag(y);
 }
 
-using profile::pow_diff;
+/// g at distance y >= 0 from the tip.
+double g_at(const Contact& k, double y) {
+  return std::visit([y](const auto& i) { return i.g(y); }, k.shape.img);
+}
 
-/// The Kelvin trailing edge: the root of a1^n - a2^n = L n a2^(n-1).
+/// The signed antiderivatives int_0^t g and int_0^t g'^2.
+double int_g(const Contact& k, double t) {
+  return std::visit([t](const auto& i) { return i.integral_g(t); }, k.shape.img);
+}
+double int_slope_squared(const Contact& k, double t) {
+  return std::visit([t](const auto& i) { return i.integral_slope_squared(t); }, k.shape.img);
+}
+
+/// The Kelvin trailing edge: the root of g(a1) - g(a2) = L g'(a2) (the
+/// cone: a2 = a1 - L, the contact ends at the tip once L >= a1).
 Edge kelvin_edge(const Contact& k) {
-  const double a1 = k.a1, n = k.n, L = k.L, half = 0.5 * a1;
+  const double a1 = k.a1, L = k.L, half = 0.5 * a1;
   if (L == 0.0) return {a1, 0.0};
-  if (n == 1.0) return L >= a1 ? Edge{0.0, a1} : Edge{a1 - L, L};
-  auto in_delta = [&](double dl) {
-    return pow_diff(a1, dl, n) - L * n * std::pow(a1 - dl, n - 1.0);
-  };
+  if (k.linear) return L >= a1 ? Edge{0.0, a1} : Edge{a1 - L, L};
+  auto in_delta = [&](double dl) { return k.shape.depth_left(dl) - L * slope_mag(k, a1 - dl); };
   if (in_delta(half) >= 0.0) {
     const double dl = root(in_delta, 0.0, half);
     return {a1 - dl, dl};
   }
-  auto in_a2 = [&](double x) {
-    return std::pow(x, n) + L * n * std::pow(x, n - 1.0) - std::pow(a1, n);
-  };
+  const double d = g_at(k, a1);
+  auto in_a2 = [&](double x) { return g_at(k, x) + L * slope_mag(k, x) - d; };
   const double a2 = root(in_a2, 0.0, half);
   return {a2, a1 - a2};
 }
 
-/// The Kelvin brackets of F_N / (4 G c) and F_x / (4 G c^2) of the contact.
+/// The Kelvin brackets F_N / (4 G) = int (h - L g') and
+/// F_x / (4 G) = int (h - L g') (-g') over the contact [-a1, a2], h = d - g:
+/// d (a1 + a2) - int g + L D and D^2 / 2 + L int g'^2, D = g(a1) - g(a2).
 void kelvin_brackets(const Contact& k, const Edge& e, double& N, double& X) {
-  const double n = k.n, a1 = k.a1, a2 = e.a2, an = std::pow(a1, n);
-  const double D = pow_diff(a1, e.delta, n); // a1^n - a2^n
-  N = n / (n + 1.0) * an * a1 + a2 * (an - std::pow(a2, n) / (n + 1.0)) + k.L * D;
-  X = 0.5 * D * D +
-      k.L * n * n * (std::pow(a1, 2.0 * n - 1.0) + std::pow(a2, 2.0 * n - 1.0)) / (2.0 * n - 1.0);
+  const double a1 = k.a1, a2 = e.a2, d = g_at(k, a1);
+  const double D = k.shape.depth_left(e.delta);
+  N = (d * a1 - int_g(k, a1)) + (d * a2 - int_g(k, a2)) + k.L * D;
+  X = 0.5 * D * D + k.L * (int_slope_squared(k, a1) + int_slope_squared(k, a2));
 }
 
 /// p / 4 at x >= 0 of the contact (behind the tip: g' > 0), x = a1 - delta.
 double pressure_behind(const Contact& k, double x, double delta) {
-  const double h = k.c * pow_diff(k.a1, delta, k.n); // d - g(x)
+  const double h = k.shape.depth_left(delta); // d - g(x)
   double p = k.G * (h - k.L * slope_mag(k, x));
   for (const Term& t : k.terms)
     p += t.G * profile::branch_stress(k.shape, t.lam, x, delta);
@@ -137,18 +147,18 @@ State forces(const Contact& k, const Edge& e, bool friction = true) {
   State st;
   st.a2 = e.a2;
   st.a1 = k.a1;
-  st.FN = 4.0 * (k.G * k.c * N + (any ? branch_normal(k, e) : 0.0));
+  st.FN = 4.0 * (k.G * N + (any ? branch_normal(k, e) : 0.0));
   if (!friction) return st;
-  st.Fx = 4.0 * (k.G * k.c * k.c * X + (any ? branch_friction(k, e) : 0.0));
+  st.Fx = 4.0 * (k.G * X + (any ? branch_friction(k, e) : 0.0));
   st.mu = st.Fx / st.FN;
   return st;
 }
 
-/// The general path at leading edge a1 (depth c a1^n).
+/// The general path at leading edge a1 (depth g(a1)).
 State at_edge(const Case& c, double a1, double w, profile::Budget& budget, bool friction = true) {
   const Contact k = make_contact(c, a1, w, budget);
   State st = forces(k, k.terms.empty() ? kelvin_edge(k) : spectrum_edge(k), friction);
-  st.d = k.c * std::pow(a1, k.n);
+  st.d = g_at(k, a1);
   return st;
 }
 
@@ -187,8 +197,9 @@ double load_edge(const Case& c, double w, profile::Budget& budget) {
   if (linear && c.rheology.kelvin()) return cone_kelvin_edge(c, w);
   const double F0 = c.loading.F0;
   auto f = [&](double a1) { return at_edge(c, a1, w, budget, false).FN / F0 - 1.0; };
+  // (the edges stay below the profile's largest radius)
   return numerics::scaled_root(f, c.a0(), 4000, numerics::bits_tolerance(52),
-                               {"profile_stationary: load"});
+                               {"profile_stationary: load"}, c.indenter.max_radius());
 }
 
 void check_velocity(double w) {

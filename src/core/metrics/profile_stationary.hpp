@@ -1,16 +1,22 @@
 #pragma once
-// Stationary sliding of any indenter profile g(x) = c |x|^n (core/model/profile.hpp)
-// on the Kelvin foundation and on a relaxation spectrum, at fixed depth and
-// under load (docs/design.md, "Indenter profiles"). The parabola (and the
-// power law with n = 2) is the closed form of analytic.hpp / load_stationary.hpp /
-// spectrum_stationary.hpp, on a parabola of radius 1/c; the others:
+// Stationary sliding of any indenter's image g (core/model/profile.hpp, a
+// shape of core/model/shapes/) on the Kelvin foundation and on a relaxation
+// spectrum, at fixed depth and under load (docs/design.md, "Indenter
+// profiles"). The shapes whose g = c x^2 (the parabola, the power law with
+// n = 2) take the closed form of analytic.hpp / load_stationary.hpp /
+// spectrum_stationary.hpp, on a parabola of radius 1/c; the others work in x
+// with what the shape gives (g, g', g(a1) - g(a1 - delta) without
+// cancellation, the integrals of g and g'^2):
 //
 //   Kelvin   p = 4G (h - L g'), h = d - g, L = w tau; the trailing edge a2 is
-//            the root of a1^n - a2^n = L n a2^(n-1) in [0, a1] (the cone:
+//            the root of g(a1) - g(a2) = L g'(a2) in [0, a1] (the cone:
 //            a2 = max(a1 - L, 0), the contact ends at the tip once L >= a1),
-//            and with D = a1^n - a2^n
-//              F_N = 4 G c [ n/(n+1) a1^(n+1) + a2 (a1^n - a2^n/(n+1)) + L D ]
-//              F_x = 4 G c^2 [ D^2/2 + L n^2 (a1^(2n-1) + a2^(2n-1)) / (2n-1) ]
+//            and with D = g(a1) - g(a2), I = int_0 g, J = int_0 g'^2
+//              F_N = 4 G [ d (a1 + a2) - I(a1) - I(a2) + L D ]
+//              F_x = 4 G [ D^2/2 + L (J(a1) + J(a2)) ]
+//            (for g = c |x|^n: F_N = 4 G c [ n/(n+1) a1^(n+1)
+//            + a2 (a1^n - a2^n/(n+1)) + L D ], F_x = 4 G c^2 [ D^2/2
+//            + L n^2 (a1^(2n-1) + a2^(2n-1)) / (2n-1) ] with D/c)
 //   spectrum p = 4 [ G (h - L g') + sum_k G_k r_k ], the branch stress
 //            r_k(x) = int_{-a1}^{x} exp(-(x - x')/lambda_k) (-g'(x')) dx',
 //            lambda_k = w tau_k: tanh-sinh quadrature (split at the tip x = 0,

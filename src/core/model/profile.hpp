@@ -17,11 +17,12 @@
 #include "core/model/shapes/cone.hpp"
 #include "core/model/shapes/parabola.hpp"
 #include "core/model/shapes/power.hpp"
+#include "core/model/shapes/sphere.hpp"
 
 namespace mdrmap {
 
 /// The shapes, in the order of the help text; the first is the default.
-using Shapes = std::tuple<Parabola, Cone, Power>;
+using Shapes = std::tuple<Parabola, Cone, Power, Sphere>;
 inline constexpr std::size_t kShapeCount = std::tuple_size_v<Shapes>;
 
 template <class S, class T = Shapes> struct is_shape;
@@ -71,7 +72,7 @@ private:
 /// Every kind, in the order of the table.
 std::array<Profile, kShapeCount> all_profiles();
 
-/// "parabola", "cone", "power".
+/// "parabola", "cone", "power", "sphere".
 const char* profile_name(Profile p);
 /// Parses a profile's name; throws InvalidInput("profile").
 Profile parse_profile(const std::string& name);
@@ -119,11 +120,8 @@ struct Indenter {
   bool parabolic() const { return is<Parabola>(); }
   /// The chosen shape's image, formed once (its coefficient computed).
   ShapeImage image() const { return image_from<0>(); }
-  /// The exponent n of g: 2, 1 or n.
-  double exponent() const {
-    return visit([](const auto& s) { return s.image().exponent(); });
-  }
-  /// The coefficient c of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A.
+  /// The scale c of g (of g = c |x|^n: 1/R, (pi/2) tan(beta), kappa_n A), the
+  /// element row's range checks' (core/model/row_limits.hpp).
   double coefficient() const {
     return visit([](const auto& s) { return s.image().coefficient(); });
   }
@@ -147,6 +145,15 @@ struct Indenter {
   /// foundation of modulus G: 4 G int (g(a) - g).
   double elastic_force(double a, double G) const {
     return visit([a, G](const auto& s) { return s.image().elastic_force(a, G); });
+  }
+  /// d ln F / d ln d of that force at depth d (dF/dd = 8 G a): (n + 1)/n
+  /// for g = c |x|^n.
+  double force_exponent(double d) const {
+    return visit([d](const auto& s) { return s.image().force_exponent(d); });
+  }
+  /// The bound every contact radius stays below (the sphere's R; infinity).
+  double max_radius() const {
+    return visit([](const auto& s) { return s.image().max_radius(); });
   }
   /// The radius a of that force: elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {

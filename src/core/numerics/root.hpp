@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -95,27 +96,31 @@ Bracket toms748(F&& f, double a, double b, Tol tol, const RootSearch& s) {
 }
 
 /// A bracket of an increasing f from x0 > 0 by scaling: lo halved while
-/// f(lo) > 0, hi doubled while f(hi) < 0 (at most max_steps times each, from
-/// lo = hi = x0), with the values there. It brackets unless a bound stopped a
-/// loop or f is NaN: the caller checks flo <= 0 <= fhi.
+/// f(lo) > 0, hi doubled while f(hi) < 0, or moved halfway to `most` where
+/// that is nearer (at most max_steps times each, from lo = hi = x0), with the
+/// values there. It brackets unless a bound stopped a loop or f is NaN: the
+/// caller checks flo <= 0 <= fhi.
 struct ScaledBracket {
   double lo, hi, flo, fhi;
 };
-template <class F> ScaledBracket scaled_bracket(F&& f, double x0, int max_steps) {
+template <class F>
+ScaledBracket scaled_bracket(F&& f, double x0, int max_steps,
+                             double most = std::numeric_limits<double>::infinity()) {
   ScaledBracket e{x0, x0, f(x0), 0.0};
   e.fhi = e.flo;
   for (int i = 0; i < max_steps && e.flo > 0.0; ++i)
     e.flo = f(e.lo *= 0.5);
   for (int i = 0; i < max_steps && e.fhi < 0.0; ++i)
-    e.fhi = f(e.hi *= 2.0);
+    e.fhi = f(e.hi = std::fmin(2.0 * e.hi, 0.5 * (e.hi + most)));
   return e;
 }
 
 /// The root of an increasing f: scaled_bracket from x0 (max_steps), then
 /// toms748 (x0 itself where f(x0) = 0 or is NaN).
 template <class F, class Tol>
-double scaled_root(F&& f, double x0, int max_steps, Tol tol, const RootSearch& s) {
-  const ScaledBracket e = scaled_bracket(f, x0, max_steps);
+double scaled_root(F&& f, double x0, int max_steps, Tol tol, const RootSearch& s,
+                   double most = std::numeric_limits<double>::infinity()) {
+  const ScaledBracket e = scaled_bracket(f, x0, max_steps, most);
   if (e.lo == e.hi) return e.lo;
   return toms748(f, e.lo, e.hi, e.flo, e.fhi, tol, s).mid();
 }

@@ -95,6 +95,9 @@ void check_scales(const Case& c) {
   if (!(a > 0.0) || !std::isfinite(a))
     throw InvalidInput(opt,
                        radius + format_number(a) + " that is not representable; rescale the units");
+  if (const double most = c.indenter.max_radius(); !(a < most))
+    throw InvalidInput(opt, radius + format_number(a) + ", not below the profile's largest " +
+                                format_number(most) + " (the sphere's radius); lower it");
   const double d = load ? c.indenter.g(a) : c.loading.d;
   const double force_scale = d * d * c.rheology.G * 16.0;
   if (!std::isfinite(force_scale))

@@ -485,8 +485,9 @@ private:
 // (the closed-form depth d_pre, corrected by the discretisation: secant steps).
 void start_under_load(spectrum::Row& row, const Case& c, double d_pre, double rtol) {
   const double F0 = c.loading.F0;
-  const double m = c.indenter.exponent(); // F ~ a^(m + 1) ~ d^((m + 1) / m)
-  double d = d_pre, slope = (m + 1.0) / m * F0 / d;
+  // the first secant slope: the elastic contact's F ~ d^m near d_pre
+  const double m = c.indenter.force_exponent(d_pre);
+  double d = d_pre, slope = m * F0 / d;
   row.start_stationary(c.history.v0, d);
   double f = row.measure().FN - F0;
   for (int n = 0; n < 8 && std::abs(f) > 1e-4 * rtol * F0; ++n) {

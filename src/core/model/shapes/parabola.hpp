@@ -45,6 +45,8 @@ struct Parabola {
   bool smooth_apex() const { return true; }
   bool exact_forcing() const { return true; }
   double depth(double x, double d) const { return d - x * x / R; }
+  /// g(a) - g(a - delta) (0 <= delta <= a) without cancellation.
+  double drop(double a, double delta) const { return delta * (2.0 * a - delta) / R; }
   double lift(double x, double w) const { return 2.0 * x * w / R; }
   bool inside(double x, double d) const { return x * x <= R * d; }
   double curvature(double) const { return 2.0 / R; }
@@ -56,6 +58,10 @@ struct Parabola {
   template <class Out, class Path> Out forcing(double x, double w, double, const Path& q) const {
     return {depth(x, q.d), q.r - lift(x, w), q.k - w * w / R};
   }
+  /// d ln F / d ln d of the elastic force: F ~ d^(3/2).
+  double force_exponent(double) const { return 1.5; }
+  /// No bound on the contact radius.
+  double max_radius() const { return std::numeric_limits<double>::infinity(); }
   double hertz_radius(double F, double G) const { return std::cbrt(3.0 * F * R / (16.0 * G)); }
 };
 

@@ -3,6 +3,7 @@
 // c = kappa_n A (docs/design.md, "Indenter profiles"): the arithmetic the cone
 // and the power law share (shapes/cone.hpp, shapes/power.hpp).
 #include <cmath>
+#include <limits>
 
 namespace mdrmap {
 
@@ -22,6 +23,11 @@ inline double profile_pow(double x, double n) {
   return std::pow(x, n);
 }
 
+/// a^n - (a - delta)^n (0 <= delta <= a) without cancellation.
+inline double pow_diff(double a, double delta, double n) {
+  return std::pow(a, n) * -std::expm1(n * std::log1p(-delta / a));
+}
+
 /// g = c |x|^n and what is formed from it: what the shapes of such an image
 /// (the cone, the power law) answer, and what the element row asks of a shape
 /// (core/solvers/spectrum_row.hpp; the parabola answers it in its own file).
@@ -38,6 +44,8 @@ struct PowerImage {
   /// (n = 1, 2): the row's forcing is exact.
   bool exact_forcing() const { return n == 1.0 || n == 2.0; }
   double depth(double x, double d) const { return d - g(x); }
+  /// g(a) - g(a - delta) (0 <= delta <= a) without cancellation.
+  double drop(double a, double delta) const { return c * pow_diff(a, delta, n); }
   /// g'(x) w.
   double lift(double x, double w) const { return slope(x) * w; }
   bool inside(double x, double d) const { return g(x) <= d; }
@@ -88,6 +96,10 @@ struct PowerImage {
   double elastic_force(double a, double G) const {
     return 8.0 * G * c * n / (n + 1.0) * std::pow(a, n + 1.0);
   }
+  /// d ln F / d ln d of the elastic force: F ~ d^((n + 1)/n).
+  double force_exponent(double) const { return (n + 1.0) / n; }
+  /// No bound on the contact radius.
+  double max_radius() const { return std::numeric_limits<double>::infinity(); }
   /// elastic_force(a, G) = F.
   double hertz_radius(double F, double G) const {
     return std::pow(F * (n + 1.0) / (8.0 * G * c * n), 1.0 / (n + 1.0));
