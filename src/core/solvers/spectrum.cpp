@@ -128,8 +128,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
 // the parabola ending at that rate (linear without a dashpot), so the branch
 // updates are exact for the path and the dashpot's force inside the step (it
 // decides where a point lets go) is second order too. Steps grow geometrically
-// from each velocity change (relative step eps = 1 / cells: the companion at
-// half the cells has twice the step, so its difference sees the time error).
+// from each velocity change (relative step eps falling with the cells, see
+// StepRule: the companion at half the cells has longer steps, so its
+// difference sees the time error).
 // The balance's root: numerics::increasing_root (each evaluation runs the row,
 // which charges its own work).
 const numerics::RootSearch kBalance{"row: the load balance", 100};
