@@ -189,7 +189,7 @@ private:
                  bool may_switch, const Path& q) const;
   void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
   static double deepest(const Entry& e);
-  std::vector<Entry>::const_iterator at_rest_until(std::vector<Entry>::const_iterator it,
+  std::vector<Entry>::const_iterator uniform_until(std::vector<Entry>::const_iterator it,
                                                    std::vector<Entry>::const_iterator end) const;
   static double total_time(std::vector<Entry>::const_iterator first,
                            std::vector<Entry>::const_iterator last);
@@ -354,14 +354,15 @@ private:
   // coefficient sets of a partial sub-step, a switch and a switch's search
   // (kept: their vectors are allocated once)
   mutable StepCoef coef_scratch_[3];
-  // the last span of log entries at rest a replay crossed in one step:
-  // entries [from, last] found from `from` within [from, to), and the grid
-  // of the step over them (its coefficient sets formed once per span)
-  struct RestSpan {
+  // the last span of log entries at one velocity and depth a replay crossed
+  // in one step (uniform_until): entries [from, last] found from `from`
+  // within [from, to), and the grid of the step over them (its coefficient
+  // sets formed once per span)
+  struct Span {
     std::size_t from = 0, to = 0, last = 0; // (to = 0: none)
     Grid g;
   };
-  mutable RestSpan rest_;
+  mutable Span span_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
