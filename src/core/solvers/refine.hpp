@@ -70,11 +70,13 @@ struct ProbeRule {
 };
 
 /// sample_history, and between the output instants the probes of `rule(k)`
-/// for segment k: advance to each, measure() there into probes[k] (with
-/// mu(0+) and the segment's end, which every sampling has).
-template <class Change, class Advance, class Measure, class Rule>
+/// for segment k: advance to each, probe() there into probes[k] (with the
+/// measure() of mu(0+) and of the segment's end, which every sampling has).
+/// probe() returns mu; it may measure more cheaply than measure() where the
+/// event metrics need less than the series.
+template <class Change, class Advance, class Measure, class Probe, class Rule>
 Series sample_history(const Case& c, const RunControl& control, Change change, Advance advance,
-                      Measure measure, Rule rule, std::vector<Probes>& probes) {
+                      Measure measure, Probe probe, Rule rule, std::vector<Probes>& probes) {
   probes.assign(c.history.size(), Probes{});
   Probes* p = nullptr; // the segment's (none before the first change: pre)
   std::size_t k = 0;
@@ -96,7 +98,7 @@ Series sample_history(const Case& c, const RunControl& control, Change change, A
       advance(next - prev, w);
       prev = next;
       p->t.push_back(next);
-      p->mu.push_back(measure().mu);
+      p->mu.push_back(probe());
     }
     advance(target - prev, w);
     prev = target;
