@@ -64,6 +64,11 @@ public:
   /// the state before the step keeps it without copying it first.
   void contact_step(const double* q0, double* q, double h0, double h1, double h2,
                     const StepCoef& c) const;
+  /// The contact update of q in place (its state before kept in q0) and the
+  /// force after it: bit for bit contact_step and pressure(u, du, q), in one
+  /// pass.
+  double contact_step_pressure(double* q, double* q0, double u, double du, double h0, double h1,
+                               double h2, const StepCoef& c) const;
   /// Contact force per 4 dx for depth u, rate du, branch states q.
   double pressure(double u, double du, const double* q) const;
   /// The contact force after a contact update of q0 (forcing h0, h1, h2,
@@ -78,6 +83,9 @@ public:
   void free_step(double* z, const StepCoef& c) const { free_step(z, z, c); }
   /// The same from z0 into z (z may be z0).
   void free_step(const double* z0, double* z, const StepCoef& c) const;
+  /// The free update of z in place (its state before kept in z0) and the
+  /// depression after it: bit for bit free_step and free_u(z), in one pass.
+  double free_step_u(double* z, double* z0, const StepCoef& c) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
   /// The free depression after a free update of z0 by c (bit for bit
@@ -130,6 +138,27 @@ inline double Law::pressure(double u, double du, const double* q0, double h0, do
   for (std::size_t k = 0; k < n_; ++k)
     s -= Gk_[k] * stepped(k, q0, h0, h1, h2, c);
   return s;
+}
+
+inline double Law::contact_step_pressure(double* q, double* q0, double u, double du, double h0,
+                                         double h1, double h2, const StepCoef& c) const {
+  double s = G0_ * u + G_ * tau_ * du;
+  for (std::size_t k = 0; k < n_; ++k) {
+    q0[k] = q[k];
+    q[k] = stepped(k, q0, h0, h1, h2, c);
+    s -= Gk_[k] * q[k];
+  }
+  return s;
+}
+
+inline double Law::free_step_u(double* z, double* z0, const StepCoef& c) const {
+  double u = 0.0;
+  for (std::size_t i = 0; i < m_; ++i) {
+    z0[i] = z[i];
+    z[i] = z0[i] * c.modal[i];
+    u += cu_[i] * z[i];
+  }
+  return u;
 }
 
 inline void Law::free_step(const double* z0, double* z, const StepCoef& c) const {

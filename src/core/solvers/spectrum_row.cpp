@@ -360,34 +360,27 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
 // advanced.
 double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
                     bool may_switch, const Path& q) const {
-  double tmp[kMaxBranches + 1];
+  // (stepped in place, its start kept in y0: a switch's search starts there)
+  double y0[kMaxBranches + 1], tmp[kMaxBranches + 1];
   StepCoef& at = coef_scratch_[1];
   const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
     const Forcing u = forcing(x, w, h, q);
-    // (the end's force from y, which a switch's search still needs: stepped
-    // in place where the element does not let go)
-    if (!(may_switch && law_.pressure(depth(xn, dn), q.rate(h) - lift(xn, w), y, u.h0, u.h1, u.h2,
-                                      c) < -p_tiny_)) {
-      law_.contact_step(y, u.h0, u.h1, u.h2, c);
-      return h;
-    }
-    const double tc = locate(true, y, x, h, w, q, c); // lets go
+    const double p = law_.contact_step_pressure(y, y0, depth(xn, dn), q.rate(h) - lift(xn, w), u.h0,
+                                                u.h1, u.h2, c);
+    if (!(may_switch && p < -p_tiny_)) return h;
+    const double tc = locate(true, y0, x, h, w, q, c); // lets go
     law_.coef(tc, at, Part::Contact);
-    law_.contact_step(y, tmp, u.h0, u.h1, u.h2, at);
+    law_.contact_step(y0, tmp, u.h0, u.h1, u.h2, at);
     law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
     md = Mode::Free;
     return tc;
   }
-  // (the end's gap from y, which a switch's search still needs: stepped in
-  // place where the element does not touch)
-  if (!(may_switch && depth(xn, dn) - law_.free_u(y, c) > psi_tiny_ && inside(xn, dn))) {
-    law_.free_step(y, c);
-    return h;
-  }
-  const double tc = locate(false, y, x, h, w, q, c); // touches
+  const double gap = depth(xn, dn) - law_.free_step_u(y, y0, c);
+  if (!(may_switch && gap > psi_tiny_ && inside(xn, dn))) return h;
+  const double tc = locate(false, y0, x, h, w, q, c); // touches
   law_.coef(tc, at, Part::Free);
-  law_.free_step(y, tmp, at);
+  law_.free_step(y0, tmp, at);
   law_.from_modal(tmp, y);
   md = Mode::Contact;
   return tc;
