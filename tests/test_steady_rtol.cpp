@@ -93,5 +93,26 @@ TEST(SteadyAgainstStationary, WithinRtol1em4) {
   expect_steady_within_rtol(1e-4);
 }
 
+// A step that is a whole number of the row's sub-steps, with dt / D a hair
+// above it (0.075 / 0.025 = 3.0000000000000004): the row took ceil() = 4
+// sub-steps, the first of length 0, and gave the next, full one that empty
+// step's coefficients, so the element stood still over it. Steady sliding at
+// v tau / a1 = 10 sampled every 0.075 (D = sub_travel a1 / v = 0.025): the
+// last sample erred by 2.6e-3 at rtol 1e-4 (mu 0.1021263 against 0.1023898,
+// estimate 1.7e-5).
+TEST(SteadyAgainstStationary, StepsOfAWholeNumberOfSubSteps) {
+  for (double rtol : {1e-3, 1e-4}) {
+    Case c =
+        steady_case({"three terms and a dashpot", 1.0, {{4.0, 1.0}, {2.0, 10.0}, {1.0, 100.0}}},
+                    false, false, 10.0);
+    c.history.segments = {{c.history.v0, 0.3}};
+    ASSERT_DOUBLE_EQ(c.history.v0, 10.0);
+    const RunResult r = run_case(CheckedCase(c), SolverKind::Row, rtol);
+    const double err = case_error(r.series, stationary_series(c, r.series), c).max();
+    EXPECT_LE(err, rtol) << "rtol " << rtol;
+    EXPECT_GE(r.info.error_estimate, err / 3.0) << "rtol " << rtol;
+  }
+}
+
 } // namespace
 } // namespace mdrmap

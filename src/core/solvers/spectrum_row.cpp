@@ -216,6 +216,9 @@ void Row::grid(Grid& g, double dt, double w, double a) const {
   g.dt = dt;
   g.D = full_substep(dt, w, a);
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
+  // (dt / D a hair above a whole number, as 0.075 / 0.025: no empty first
+  // sub-step; step_material would take its coefficients for a full one)
+  if (g.K > 1 && !(dt - static_cast<double>(g.K - 1) * g.D > 0.0)) --g.K;
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
   law_.coef(g.D, g.full);
 }
@@ -336,7 +339,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
     const StepCoef* c = &local;
     if (!whole) {
       law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
-    } else if (t == 0.0 && i == g.K - 1) {
+    } else if (t == 0.0 && i == g.K - 1 && h == g.first.dt) {
       c = &g.first;
     } else if (std::abs(h - g.D) <= 1e-13 * g.D) {
       c = &g.full;
