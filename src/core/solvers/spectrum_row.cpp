@@ -212,9 +212,9 @@ void Row::change_material(Mode& md, double* y, double x, double w, double d, dou
 }
 
 // (In place: a grid that already holds a coefficient set keeps it, Law::coef.)
-void Row::grid(Grid& g, double dt, double w, double a) const {
+void Row::grid(Grid& g, double dt, double w, double a, double longest) const {
   g.dt = dt;
-  g.D = full_substep(dt, w, a);
+  g.D = std::min(full_substep(dt, w, a), longest);
   g.K = std::max(1LL, static_cast<long long>(std::ceil(dt / g.D)));
   // (dt / D a hair above a whole number, as 0.075 / 0.025: no empty first
   // sub-step; step_material would take its coefficients for a full one)
@@ -466,13 +466,20 @@ Row::uniform_until(std::vector<Entry>::const_iterator it,
   if (span_.from == from && span_.to == to)
     return log_.begin() + static_cast<std::ptrdiff_t>(span_.last);
   auto last = it;
+  double longest = e0.dt;
   while (last + 1 != end && same(*(last + 1)))
-    ++last;
+    longest = std::max(longest, (++last)->dt);
   if (last != it) {
     span_.from = from;
     span_.to = to;
     span_.last = static_cast<std::size_t>(last - log_.begin());
-    grid(span_.g, total_time(it, last), e0.w, radius(e0.d0));
+    // moving, a sub-step is no longer than the longest of the entries: the
+    // live row tests for switches at each entry's end, and at a slow
+    // velocity a sub-step's travel alone would let one span a whole segment
+    // (a drop to 0.1 a1 over a segment: an element that let go and touched
+    // again inside it was missed, 6e-3 in mu at the next hold's samples)
+    grid(span_.g, total_time(it, last), e0.w, radius(e0.d0),
+         e0.w > 0.0 ? longest : std::numeric_limits<double>::infinity());
   }
   return last;
 }

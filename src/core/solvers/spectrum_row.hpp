@@ -62,6 +62,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -180,7 +181,10 @@ private:
     Material m;
   };
   void set_position(long double P);
-  void grid(Grid& g, double dt, double w, double a) const;
+  /// The sub-steps of a step of dt at w where the contact is a (none longer
+  /// than `longest`).
+  void grid(Grid& g, double dt, double w, double a,
+            double longest = std::numeric_limits<double>::infinity()) const;
   double full_substep(double dt, double w, double a) const;
   std::shared_ptr<const Grid> step_grid(double dt, double w, double a) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
