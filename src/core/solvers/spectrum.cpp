@@ -239,8 +239,10 @@ public:
     row_.renumber();
     row_.save(snap_);
     const double F0 = c_.loading.F0, d = row_.depth_now();
+    bool saved = true; // (as in step())
     auto f = [&](double dd) {
-      row_.restore(snap_);
+      if (!saved) row_.restore(snap_);
+      saved = false;
       row_.change_velocity(w, dd);
       return row_.measure().FN - F0;
     };
@@ -377,8 +379,10 @@ private:
     // trials measure the edge where the nodes predict it (no replays); the
     // accepted depth balances the forces with the confirmed edge
     spectrum::Edge edge = spectrum::Edge::Predicted;
+    bool saved = true; // the row is at snap_ (the first trial need not restore it)
     auto f = [&](double d1) {
-      row_.restore(snap_);
+      if (!saved) row_.restore(snap_);
+      saved = false;
       row_.advance(h, d1, slope.a * d1 + slope.b);
       at_ = row_.measure(edge);
       return at_.FN - F0;

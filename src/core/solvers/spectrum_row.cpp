@@ -16,6 +16,8 @@ namespace {
 constexpr int kMaxEvents = 8;           // contact switches of one element within one step
 constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
 constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
+/// A switch's force (gap) within kNoise of G0 u (u) is zero to rounding.
+constexpr double kNoise = 4.0 * std::numeric_limits<double>::epsilon();
 constexpr long long kPast = 5; // nodes kept past the window: four free ones predict an edge there
 // The row's memory (window, its snapshot, the log of steps and their
 // coefficient sets) is bounded: a case that would need more fails at once
@@ -59,6 +61,51 @@ template <class F> double bracketed_newton(F f, double f0, double h) {
     t = tn;
   }
   return 0.5 * (lo + hi);
+}
+
+// The zero in (0, 1) of the cubic through f0 and f1 at 0 and 1 with slopes m0
+// and m1 there (f0 > 0 > f1; Hermite): a switch's first point, within
+// O(h^4) of it where the force (gap) is smooth over the sub-step.
+double hermite_zero(double f0, double m0, double f1, double m1) {
+  const double c2 = 3.0 * (f1 - f0) - 2.0 * m0 - m1, c3 = 2.0 * (f0 - f1) + m0 + m1;
+  return bracketed_newton(
+      [&](double s, double& v, double& dv) {
+        v = ((c3 * s + c2) * s + m0) * s + f0;
+        dv = (3.0 * c3 * s + 2.0 * c2) * s + m0;
+      },
+      f0, 1.0);
+}
+
+// A switch's time in (0, h): the root of f with f(0) = f0 > 0 > f(h) (else 0
+// or h, as solve) and f'(0) = df0. Newton as bracketed_newton, from the zero
+// of the Hermite cubic of f and f' at both ends (the secant's point where
+// that is not inside), until a step is within 4 ulps of h or |f| is within
+// `noise` (its rounding: near a tangency the steps it leaves are far longer
+// than 4 ulps, and bisection took some twenty more points). It returns the
+// point it evaluated last (within those of the root), whose coefficient set
+// the caller's f formed last: from the secant's start the search took about
+// five sets a switch, and the switch's update one more; from this one about
+// three in all.
+template <class F> double switch_time(F f, double f0, double df0, double h, double noise) {
+  if (!(f0 > 0.0)) return 0.0;
+  double v = 0.0, dv = 0.0;
+  f(h, v, dv);
+  if (!(v < 0.0)) return h;
+  double lo = 0.0, hi = h, t = hermite_zero(f0, df0 * h, v, dv * h) * h;
+  if (!(t > 0.0 && t < h)) t = h * f0 / (f0 - v);
+  const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
+  for (int it = 0; it < 100; ++it) {
+    f(t, v, dv);
+    if (std::abs(v) <= noise) return t;
+    (v > 0.0 ? lo : hi) = t;
+    double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
+    // (a converged step first: at the root it may round onto the bracket's end)
+    if (std::abs(tn - t) <= tiny) return t;
+    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
+    if (std::abs(tn - t) <= tiny || hi - lo <= tiny) return t;
+    t = tn;
+  }
+  return t;
 }
 
 // static_cast<long long>(std::ceil(r)) for 0 <= r < 2^63, without the
@@ -533,17 +580,22 @@ Row::Material Row::replay(long double J) const {
 // Time within a sub-step of length h (from position x, state y) where a
 // contact element's force turns negative, or a free element touches: Newton
 // on the exact update's force (gap), with its time derivative from the
-// element's law (bracketed_newton). ch: the sub-step's coefficient set,
-// taken for the search's first point where it is of that time (h, mostly).
+// element's law (switch_time). ch: the sub-step's coefficient set, taken for
+// the search's first point where it is of that time (h, mostly). The others
+// are formed in coef_scratch_[1], where the switch's own update finds the
+// last of them (switch_time returns that point).
 double Row::locate(bool contact, const double* y, double x, double h, double w, const Path& q,
                    const StepCoef& ch) const {
-  StepCoef& scratch = coef_scratch_[2];
+  StepCoef& scratch = coef_scratch_[1];
   auto coef = [&](double tau, Part part) -> const StepCoef& {
     if (tau == ch.dt && (ch.part == Part::Both || ch.part == part)) return ch;
     law_.coef(tau, scratch, part);
     return scratch;
   };
   double tmp[kMaxBranches + 1];
+  const double u0 = depth(x, q.d), rate0 = q.r - lift(x, w); // at the sub-step's start
+  // the force's (gap's) rounding: of G0 u (u) over the sub-step
+  const double scale = std::max(std::abs(u0), std::abs(depth(x + w * h, q.at(h))));
   if (contact) {
     const Forcing u = forcing(x, w, h, q);
     auto f = [&](double tau, double& v, double& dv) {
@@ -552,7 +604,9 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
       v = law_.pressure(un, du, tmp);
       dv = law_.pressure_rate(un, du, 2.0 * u.h2, tmp);
     };
-    return bracketed_newton(f, law_.pressure(depth(x, q.d), q.r - lift(x, w), y), h);
+    const double noise = kNoise * (law_.G0() * scale + law_.G() * law_.tau() * std::abs(rate0));
+    return switch_time(f, law_.pressure(u0, rate0, y), law_.pressure_rate(u0, rate0, 2.0 * u.h2, y),
+                       h, noise);
   }
   auto f = [&](double tau, double& v, double& dv) {
     law_.free_step(y, tmp, coef(tau, Part::Free));
@@ -560,7 +614,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
     v = law_.free_u(tmp) - depth(xn, q.at(tau));
     dv = law_.free_rate(tmp) - (q.rate(tau) - lift(xn, w));
   };
-  return bracketed_newton(f, law_.free_u(y) - depth(x, q.d), h);
+  return switch_time(f, law_.free_u(y) - u0, law_.free_rate(y) - rate0, h, kNoise * scale);
 }
 
 double Row::pressure_at(const double* q, double x) const {

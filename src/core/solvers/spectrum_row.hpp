@@ -355,9 +355,9 @@ private:
   mutable long updates_ = 0;
   long steps_ = 0;
   double edge_tol_ = 1e-9; // the trailing edge's tolerance, in a1
-  // coefficient sets of a partial sub-step, a switch and a switch's search
-  // (kept: their vectors are allocated once)
-  mutable StepCoef coef_scratch_[3];
+  // coefficient sets of a partial sub-step and of a switch's search, whose
+  // last is the switch's (kept: their vectors are allocated once)
+  mutable StepCoef coef_scratch_[2];
   // the last span of log entries at one velocity and depth a replay crossed
   // in one step (uniform_until): entries [from, last] found from `from`
   // within [from, to), and the grid of the step over them (its coefficient
