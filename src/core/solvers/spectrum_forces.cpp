@@ -12,6 +12,28 @@
 namespace mdrmap::spectrum {
 namespace {
 
+// Row::ends_at_rest: the edge cells past the partial one, the points per cell,
+// the points graded towards an edge (at 4^-2 .. 4^-(kGraded + 1) cells from it)
+constexpr long long kZoneCells = 1, kZoneSplit = 8, kGraded = 6;
+
+// Sorts the points (x, v) by x and drops those within `tiny` of another or of lo, hi.
+void sort_points(double* x, double* v, long long& n, double lo, double hi, double tiny) {
+  for (long long i = 1; i < n; ++i)
+    for (long long k = i; k > 0 && x[k] < x[k - 1]; --k) {
+      std::swap(x[k], x[k - 1]);
+      std::swap(v[k], v[k - 1]);
+    }
+  long long m = 0;
+  for (long long i = 0; i < n; ++i) {
+    if (x[i] - lo <= tiny || hi - x[i] <= tiny || (m > 0 && x[i] - x[m - 1] <= tiny)) continue;
+    x[m] = x[i];
+    v[m++] = v[i];
+  }
+  n = m;
+}
+
+constexpr int kFewPoints = 32; // few_nodes: the nodes and the ends of a piece, at most
+
 // Integral over [lo, hi] of the polynomial through (x_i, f_i), i < k <= 4
 // (2-point Gauss: exact for cubics); 0 for an empty interval.
 double poly_integral(const double* x, const double* f, int k, double lo, double hi) {
@@ -40,7 +62,7 @@ double cubic_integral(const double* x, const double* f, double lo, double hi) {
 template <class X, class F>
 double few_nodes(long long ja, long long jb, double dx, X x, double xl, double fl, double xr,
                  double fr, F f) {
-  double px[10], pf[10];
+  double px[kFewPoints], pf[kFewPoints];
   int m = 0;
   const double tiny = 1e-9 * dx;
   if (!(x(ja) - xl <= tiny)) {
@@ -78,7 +100,7 @@ void add_piece(long long ja, long long jb, double dx, X x, double xl, double fl,
     return;
   }
   const double xa = x(ja), xb = x(jb);
-  if (n < 8) {
+  if (n < 8 || !(std::abs(xb - xa - static_cast<double>(n - 1) * dx) <= 1e-9 * dx)) {
     acc += few_nodes(ja, jb, dx, x, xl, fl, xr, fr, f);
     return;
   }
@@ -167,9 +189,89 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     x0 = x;
     v0 = v;
   }
+  if (smooth_ && jb - j0 >= 2 * kZoneCells + 8 && resting())
+    return ends_at_rest(j0, jb, x0, v0, xr, vr, leading && j0 == ja, value, piece);
   nodes(j0, jb);
   piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())}, x0,
         v0, xr, vr);
+}
+
+// Whether the last step was taken at rest (at a change, the step before it:
+// the forces at the instant of a change do not depend on the rule).
+bool Row::resting() const {
+  for (auto e = log_.rbegin(); e != log_.rend(); ++e)
+    if (e->dt > 0.0) return e->w == 0.0;
+  return false;
+}
+
+// At rest, a part of a run from xl (the leading edge where `leading`) to the
+// trailing edge xr. Where material touches at an edge (the contact grows
+// into fresh material, or free material touches again), its pressure rises
+// from 0 over a knee as wide as the edge's travel over the slow branches'
+// times (a sum of such layers, one per branch), often a fraction of a cell:
+// the end cell's cubic through the edge and the nodes spread it over the
+// cell, an error that jumped as the edge passed a node (the 11-term
+// elastomer's hold under load: mu by +-1.5e-3 of its scale from sample to
+// sample at a/dx 16, where the same state's forces from dense replays are
+// smooth). The edge cells (the partial one and the next kZoneCells) are
+// therefore integrated on replayed material points: at the fractions
+// i / kZoneSplit of their cells, and in the partial cell graded towards the
+// edge (4^-2 .. 4^-(kGraded + 1) cells from it, each on a lattice of a
+// quarter of that). At rest the points recur from trial to trial and step to
+// step, and their replays continue from the cache. The nodes between take
+// the Gregory rule.
+template <class Value, class Piece>
+void Row::ends_at_rest(long long ja, long long jb, double xl, double vl, double xr, double vr,
+                       bool leading, Value value, Piece piece) const {
+  double px[kZoneSplit + kGraded], pv[kZoneSplit + kGraded];
+  long long n = 0;
+  auto add = [&](long double J, double lo, double hi) {
+    const double x = position(J);
+    if (!(x > lo && x < hi)) return;
+    const Material m = replay(J);
+    if (m.mode != Mode::Contact) return;
+    px[n] = x;
+    pv[n++] = value(m.y, x);
+  };
+  // the points graded from the edge at `at` (dir: into the contact)
+  auto graded = [&](double at, int dir, double lo, double hi) {
+    const long double e = label(at);
+    for (int k = static_cast<int>(kGraded); k >= 1; --k) {
+      const long double u = std::ldexp(1.0L, -2 * (k + 1)), q = 0.25L * u;
+      add(std::round((e + dir * u) / q) * q, lo, hi);
+    }
+  };
+  // the cell from node j: its points strictly inside (lo, hi), by `piece` from
+  // lo to hi (edge > 0: lo is an edge, < 0: hi is)
+  auto cell = [&](long long j, double lo, double flo, double hi, double fhi, int edge = 0) {
+    n = 0;
+    if (edge > 0) graded(lo, 1, lo, hi);
+    for (long long i = 1; i < kZoneSplit; ++i)
+      add(static_cast<long double>(j) +
+              static_cast<long double>(i) / static_cast<long double>(kZoneSplit),
+          lo, hi);
+    if (edge < 0) graded(hi, -1, lo, hi);
+    sort_points(px, pv, n, lo, hi, 1e-6 * dx_);
+    piece(Points{px, pv, n}, lo, flo, hi, fhi);
+  };
+  auto node = [&](long long j) { return value(&y_[slot(j) * stride_], xi(j)); };
+  const long long za = leading ? ja + kZoneCells : ja, zb = jb - kZoneCells;
+  if (leading) {
+    cell(ja - 1, xl, vl, xi(ja), node(ja), 1);
+    for (long long j = ja; j < za; ++j)
+      cell(j, xi(j), node(j), xi(j + 1), node(j + 1));
+  }
+  scratch_x_.clear();
+  scratch_v_.clear();
+  for (long long k = za; k <= zb; ++k) {
+    scratch_x_.push_back(xi(k));
+    scratch_v_.push_back(node(k));
+  }
+  piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())},
+        leading ? xi(za) : xl, leading ? node(za) : vl, xi(zb), node(zb));
+  for (long long j = zb; j < jb; ++j)
+    cell(j, xi(j), node(j), xi(j + 1), node(j + 1));
+  cell(jb, xi(jb), node(jb), xr, vr, -1);
 }
 
 // Forces (per 4, as sums of p dx) of the contact run ja..jb; the trailing
