@@ -189,7 +189,7 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     x0 = x;
     v0 = v;
   }
-  if (smooth_ && jb - j0 >= 2 * kZoneCells + 8 && resting())
+  if (smooth_ && law_.branches() > 0 && jb - j0 >= 2 * kZoneCells + 8 && resting())
     return ends_at_rest(j0, jb, x0, v0, xr, vr, leading && j0 == ja, value, piece);
   nodes(j0, jb);
   piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())}, x0,
@@ -208,7 +208,8 @@ bool Row::resting() const {
 // trailing edge xr. Where material touches at an edge (the contact grows
 // into fresh material, or free material touches again), its pressure rises
 // from 0 over a knee as wide as the edge's travel over the slow branches'
-// times (a sum of such layers, one per branch), often a fraction of a cell:
+// times (a sum of such layers, one per branch; without branches, a jump at
+// the edge or none), often a fraction of a cell:
 // the end cell's cubic through the edge and the nodes spread it over the
 // cell, an error that jumped as the edge passed a node (the 11-term
 // elastomer's hold under load: mu by +-1.5e-3 of its scale from sample to
