@@ -16,7 +16,7 @@ namespace {
 constexpr int kMaxEvents = 8;           // contact switches of one element within one step
 constexpr std::size_t kMaxTracers = 64; // replayed points kept (a few per contact run's edge; at
                                         // rest the edge cells' points too: Row::ends_at_rest)
-constexpr double kSubCells = 1.0; // largest travel of an interpolated sub-step, in dx
+constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
 constexpr long long kPast = 5; // nodes kept past the window: four free ones predict an edge there
 // The row's memory (window, its snapshot, the log of steps and their
 // coefficient sets) is bounded: a case that would need more fails at once
