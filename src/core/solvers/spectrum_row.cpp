@@ -14,7 +14,8 @@ namespace mdrmap::spectrum {
 namespace {
 
 constexpr int kMaxEvents = 8;           // contact switches of one element within one step
-constexpr std::size_t kMaxTracers = 32; // replayed points kept (a few per contact run's edge)
+constexpr std::size_t kMaxTracers = 64; // replayed points kept (a few per contact run's edge; at
+                                        // rest the edge cells' points too: Row::ends_at_rest)
 constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
 /// A switch's force (gap) within kNoise of G0 u (u) is zero to rounding.
 constexpr double kNoise = 4.0 * std::numeric_limits<double>::epsilon();

@@ -254,6 +254,10 @@ private:
   template <class Piece>
   void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
                     bool rest, bool leading, const Layer& layer, Piece piece) const;
+  bool resting() const;
+  template <class Value, class Piece>
+  void ends_at_rest(long long ja, long long jb, double xl, double vl, double xr, double vr,
+                    bool leading, Value value, Piece piece) const;
   double part_value(const double* y, double x, bool rest) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
