@@ -8,13 +8,14 @@
 #include "core/metrics/analytic.hpp"
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/load_stationary.hpp"
+#include "core/solvers/load_steps.hpp"
 
 namespace mdrmap {
 namespace {
 
 struct SingleRun {
   Series series;
-  std::vector<Transient> transients; ///< one per segment, from every accepted step
+  std::vector<Transient> transients; ///< one per segment, from every grid step
   long steps = 0, updates = 0, elements = 0;
   LoadChecks checks;
   double dx = 0.0;
@@ -25,9 +26,9 @@ struct SingleRun {
 struct RunSettings {
   double cells, phase, time_tol, dt_over_tau;
   LoadStart start;
-  int split = 1;            ///< adaptive steps per sample interval, at least
-  double window_a = 0.0;    ///< the window is 1.6 window_a (+ 4 dx) on either side
-  double piece_floor = 0.0; ///< free-material pieces this wide and wider are recorded
+  long lattice_n = LoadLattice::kFine; ///< lattice points per segment (load_steps.hpp)
+  double window_a = 0.0;               ///< the window is 1.6 window_a (+ 4 dx) on either side
+  double piece_floor = 0.0;            ///< free-material pieces this wide and wider are recorded
 };
 
 /// The deepest stationary contact of the history (its slowest velocity; a0
@@ -51,104 +52,6 @@ double reference_radius(const Case& c, LoadStart start) {
     wmax = std::max(wmax, s.w);
   return stationary_alpha(wmax * c.rheology.tau / c.a0()) * c.a0();
 }
-
-/// Steps from the row's time to `target`: fixed, or adaptive by step doubling
-/// (one step h against two of h/2; the two-step result is kept and the local
-/// error taken as their difference / 3, for d, D relative to d and e to a1).
-class Stepper {
-public:
-  Stepper(LoadRow& row, const RunSettings& s, double tau) : row_(row), s_(s), tau_(tau) {}
-  /// A new segment: the first step size again, and the tracker that is fed
-  /// the state after every accepted step (and its midpoint) from now on.
-  void restart(TransientTracker* tracker) {
-    h_ = tau_ * 1e-2 * std::cbrt(s_.time_tol);
-    tracker_ = tracker;
-  }
-  long steps() const { return steps_; }
-
-  /// `target` on the row's clock (the time since the segment's start).
-  void advance_to(double target) {
-    const double hmax = (target - row_.t()) / s_.split;
-    while (row_.t() < target) {
-      const double left = target - row_.t();
-      double h = s_.dt_over_tau > 0.0 ? s_.dt_over_tau * tau_ : std::min(h_, hmax);
-      if (h >= left * (1.0 - 1e-12)) h = left;
-      if (!(row_.t() + h > row_.t()))
-        throw CaseAbandoned("kelvin_load: the time step (" + format_number(h) +
-                            ") fell below the resolution of the time " + format_number(row_.t()) +
-                            " within its segment");
-      if (s_.dt_over_tau > 0.0 || left <= 1e-12 * (std::abs(target) + tau_)) {
-        LoadRow::Trial tr = row_.trial(h, h);
-        if (h == left) tr.t_end = target;
-        row_.commit(tr);
-        track();
-        ++steps_;
-      } else {
-        adaptive_step(h, h == left, target);
-      }
-      row_.rebase_time();
-    }
-  }
-
-private:
-  // A trial outside the window is a rejected step; but when the edge already
-  // sits at the window's limit, smaller steps only creep closer: the run
-  // needs a wider window.
-  void reject_outside(const LoadRow::Trial& a, const LoadRow::Trial& b) const {
-    if (row_.at_window_edge() && (std::isfinite(a.d) || std::isfinite(b.d)))
-      throw WindowExceeded("kelvin_load: the leading edge reached the element window's limit");
-  }
-
-  void adaptive_step(double h, bool to_target, double target) {
-    // (a trial that leaves the window is a rejected step, e.g. an undeformed
-    // start, where D is unbounded as d -> 0)
-    const LoadRow::Trial big = row_.trial(h, h), half = row_.trial(0.5 * h, h);
-    if (!row_.fits(big) || !row_.fits(half)) {
-      reject_outside(big, half);
-      h_ = 0.25 * h;
-      return;
-    }
-    row_.checkpoint();
-    row_.commit(half);
-    const double t_mid = row_.t(), mu_mid = row_.measure().mu;
-    const LoadRow::Trial two = row_.trial(0.5 * h, h);
-    if (!row_.fits(two)) {
-      row_.rollback();
-      reject_outside(two, two);
-      h_ = 0.25 * h;
-      return;
-    }
-    const double err = std::max({std::abs(two.d - big.d) / two.d,
-                                 std::abs(two.D - big.D) / std::max(two.d, std::abs(two.D)),
-                                 std::abs(two.e - big.e) / std::sqrt(two.d * row_.R())}) /
-                       3.0;
-    const double fac = err > 0.0 ? 0.9 * std::cbrt(s_.time_tol / err) : 5.0;
-    if (err <= s_.time_tol || h < 1e-14 * tau_) {
-      LoadRow::Trial last = two;
-      if (to_target) last.t_end = target;
-      row_.commit(last);
-      row_.release();
-      if (tracker_ != nullptr) tracker_->add(t_mid, mu_mid);
-      track();
-      ++steps_;
-      if (!to_target || fac < 1.0) h_ = h * std::clamp(fac, 0.2, 5.0);
-      return;
-    }
-    row_.rollback();
-    h_ = h * std::clamp(fac, 0.1, 0.9);
-  }
-
-  void track() {
-    if (tracker_ != nullptr) tracker_->add(row_.t(), row_.measure().mu);
-  }
-
-  LoadRow& row_;
-  RunSettings s_;
-  double tau_;
-  double h_ = 0.0;
-  long steps_ = 0;
-  TransientTracker* tracker_ = nullptr;
-};
 
 State hertz(const Case& c) {
   const double a0 = c.a0();
@@ -216,23 +119,23 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
   SingleRun out;
   out.series.resize(c.total_samples());
   out.series.pre = row.measure();
-  Stepper stepper(row, s, c.rheology.tau);
+  LoadStepper stepper(row, {s.time_tol, s.dt_over_tau, s.lattice_n}, c.rheology.tau);
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const double t0 = c.history.start(k);
     row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
     TransientTracker tracker(stationary_under_load(c, seg.w).mu, row.measure().mu);
-    stepper.restart(&tracker);
+    stepper.begin(seg.T, &tracker);
     for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
       const double off = c.sampling.offset(k, j, seg.T);
-      stepper.advance_to(std::max(row.t(), off));
+      stepper.reach(off); // (a sample off the step grid: a side step, undone by the next reach)
       row.check_one_interval();
       out.series.set(i, t0 + off, static_cast<int>(k), row.measure()); // (t: output only)
       control.report(i + 1, out.series.size());
     }
+    stepper.reach(seg.T); // (on the grid at the segment's end, whatever its last sample)
     out.transients.push_back(tracker.result());
-    stepper.restart(nullptr);
   }
   out.steps = stepper.steps();
   out.updates = row.updates();
@@ -255,7 +158,7 @@ constexpr double kTimeTol = 0.02;
 // Starting resolution and local time tolerance from rtol (refined below if
 // the companion disagrees by more than rtol).
 RunSettings initial_settings(const LoadOptions& o) {
-  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, 1, 0.0, 0.0};
+  RunSettings s{o.cells, o.phase, o.time_tol, o.dt_over_tau, o.start, LoadLattice::kFine, 0.0, 0.0};
   if (!(s.cells > 0.0)) s.cells = std::clamp(std::ceil(0.5 / std::sqrt(o.rtol)), 16.0, 1e6);
   if (!(s.time_tol > 0.0)) s.time_tol = kTimeTol * o.rtol;
   return s;
@@ -285,8 +188,9 @@ bool resolve_piece(RunSettings& s, double dx, double width) {
 
 // The companion: half the resolution at a shifted phase (a read-out error
 // that depends on where the grid falls is not shared), four times the local
-// step error and at least two steps per sample interval (where the sample
-// spacing limits the steps, the companion does not repeat the step error).
+// step error and half the lattice's points (where the lattice limits the
+// steps, the companion's longer steps show the time error it leaves: on one
+// lattice both runs would share it).
 // The estimate is floored at the local step tolerance: below it the two runs'
 // difference no longer measures the error (it is within the scatter over grid
 // phases of an unresolved tail, ~1e-6 at zeta0 = 1e-4).
@@ -296,7 +200,7 @@ double companion_estimate(const Case& c, RunSettings& s, const Series& fine, Run
   cs.cells = 0.5 * s.cells;
   cs.phase = std::fmod(s.phase + 0.381966, 1.0);
   cs.time_tol = 4.0 * s.time_tol;
-  cs.split = 2;
+  cs.lattice_n = LoadLattice::points(cs.cells, s.cells);
   if (cs.dt_over_tau > 0.0) cs.dt_over_tau *= 2.0;
   const SingleRun coarse = run_widening(c, cs, control);
   s.window_a = cs.window_a;

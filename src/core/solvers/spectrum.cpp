@@ -13,6 +13,7 @@
 #include "core/metrics/error_metric.hpp"
 #include "core/metrics/stationary.hpp"
 #include "core/numerics/root.hpp"
+#include "core/solvers/load_lattice.hpp"
 #include "core/solvers/refine.hpp"
 #include "core/solvers/spectrum_law.hpp"
 #include "core/solvers/spectrum_row.hpp"
@@ -192,8 +193,6 @@ double growth_eps(const StepRule& rule, double cells) {
 // the same results: 6-term spectrum under load at rtol 1e-3, 32 -> 29 ms,
 // errors and estimates unchanged.)
 constexpr double kBalanceTol = 1e-3;
-/// Lattice points per segment of the fine run under load (LoadRun::lattice_n).
-constexpr long kLatticeFine = 200;
 
 struct LoadGeometry {
   double d_pre = 0.0, a_ref = 0.0, a_win = 0.0, t_min = 0.0;
@@ -254,10 +253,10 @@ public:
   }
 
   /// The segment's step grid (its duration T): the step rule's steps cut at
-  /// the lattice T j / lattice_n, j = 1 .. lattice_n, and at nothing else.
+  /// the lattice T j / n, j = 1 .. n, and at nothing else.
   void begin(double T) {
     undo_side();
-    lattice_T_ = T;
+    lattice.T = T;
     j_ = 0;
     left_ = 0.0;
     t_seg_ = 0.0;
@@ -274,12 +273,8 @@ public:
     check_window();
   }
   double t_min = 0.0;
-  /// Lattice points per segment: 200 in the fine run, fewer in proportion in
-  /// the runs of the estimate at coarser cells (100 in the companion): where
-  /// the lattice binds the steps, the companion's coarser lattice shows the
-  /// time error it leaves (on a lattice shared by both runs the estimate did
-  /// not see it).
-  long lattice_n = kLatticeFine;
+  /// The segment's lattice (its points: LoadLattice::points).
+  LoadLattice lattice;
   double a_max = 0.0; ///< the largest leading edge the row's window holds
   /// Where every grid step's end and its mu go (the event metrics' probes:
   /// the grid does not depend on the samples), or nowhere.
@@ -290,16 +285,16 @@ private:
   void walk(double s) {
     undo_side();
     for (;;) {
-      const double pos = lattice(j_) - left_;
-      if (near(s, pos) || (j_ == lattice_n && !(left_ > 0.0))) return;
+      const double pos = lattice.at(j_) - left_;
+      if (LoadLattice::near(s, pos) || (j_ == lattice.n && !(left_ > 0.0))) return;
       if (!(left_ > 0.0)) {
         check_window(); // (at every lattice point, whatever the samples)
         ++j_;
-        left_ = lattice(j_) - lattice(j_ - 1);
+        left_ = lattice.at(j_) - lattice.at(j_ - 1);
         continue;
       }
       if (watch_.frozen()) { // (the state stays)
-        if (s < lattice(j_) && !near(s, lattice(j_))) return;
+        if (s < lattice.at(j_) && !LoadLattice::near(s, lattice.at(j_))) return;
         t_seg_ += left_;
         left_ = 0.0;
         probe(t_seg_);
@@ -308,8 +303,8 @@ private:
       double h = std::min(std::max(eps_ * t_seg_, first_ * acc_ * t_min), h_err_);
       const double n = std::ceil(left_ / h);
       h = n > 1.0 ? left_ / n : left_;
-      const double end = n > 1.0 ? pos + h : lattice(j_);
-      if (s < end && !near(s, end)) return side_step(s - pos);
+      const double end = n > 1.0 ? pos + h : lattice.at(j_);
+      if (s < end && !LoadLattice::near(s, end)) return side_step(s - pos);
       if (!step(h)) continue;
       t_seg_ += h;
       probe(t_seg_);
@@ -322,20 +317,6 @@ private:
     if (row_.a1_now() > a_max)
       throw CaseAbandoned("row: under load the contact grew past its window (a1 = " +
                           format_number(row_.a1_now()) + ")");
-  }
-  /// The lattice's points: the offsets of lattice_n + 1 linear samples (the
-  /// same formula: on the fine run's 200, such samples, and those of 5, 21,
-  /// 41 or 101, fall).
-  double lattice(long j) const {
-    Sampling s;
-    s.samples = lattice_n + 1; // (linear)
-    return s.offset(j, lattice_T_);
-  }
-  /// a and b the same instant (a few ulps apart: the lattice's points as
-  /// other samplings compute them).
-  static bool near(double a, double b) {
-    return std::abs(a - b) <=
-           4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(a), std::abs(b));
   }
   /// One balanced step of h off the grid (no error control, no node pushed).
   void side_step(double h) {
@@ -490,7 +471,7 @@ private:
   StationaryWatch watch_;
   StationaryStates& states_;
   double watch_w_ = 0.0;
-  double lattice_T_ = 0.0, left_ = 0.0, t_seg_ = 0.0; ///< left_: to the lattice point j_
+  double left_ = 0.0, t_seg_ = 0.0; ///< left_: to the lattice point j_
   long j_ = 0;
   bool side_ = false; ///< the row is at a side step's end
   double side_k_ = 0.0;
@@ -531,7 +512,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
               StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);
   run.t_min = geo.t_min;
-  run.lattice_n = std::max(25L, std::lround(static_cast<double>(kLatticeFine) * cells / fine));
+  run.lattice.n = LoadLattice::points(cells, fine);
   run.a_max = a_win - 2.0 * dx;
   ResolutionRun out;
   out.probes.assign(c.history.size(), Probes{});
