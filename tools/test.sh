@@ -26,6 +26,11 @@ JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 bash tools/setup.sh
 read -r -a cmake_args <<<"${CMAKE_ARGS:-}"
+# tools/build.sh compiles through ccache with the paths below the root made
+# relative (CCACHE_BASEDIR): the test install_pip builds the program and the
+# module again from a copy of this tree under BUILD_DIR, whose compilations
+# are then the first build's (cache hits), with the same setting.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$ROOT}
 bash tools/build.sh ${cmake_args[@]+"${cmake_args[@]}"}
 
 # MPI tests start several ranks on one small machine: allow more ranks than
