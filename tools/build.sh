@@ -10,6 +10,9 @@
 #   BUILD_TARGETS="..."   build only these targets (space-separated; default: all)
 #   JOBS=$(nproc)         parallel build jobs
 #   CI=true               adds -DMDRMAP_WERROR=ON (warnings are errors)
+#   CCACHE_BASEDIR=ROOT   ccache's base directory (the repository root by default)
+# Compiles through ccache when it is installed (tools/setup.sh installs it;
+# -DCMAKE_CXX_COMPILER_LAUNCHER= turns it off).
 # Does not install packages: tools/setup.sh does (tools/test.sh runs both).
 set -euo pipefail
 
@@ -23,6 +26,10 @@ JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 config=(-S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE="$BUILD_TYPE")
 if [[ "${CI:-}" == true ]]; then
   config+=(-DMDRMAP_WERROR=ON)
+fi
+if command -v ccache >/dev/null 2>&1; then
+  config+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$ROOT}
 fi
 config+=("$@") # last -D wins: the caller's arguments override the defaults above
 

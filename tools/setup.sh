@@ -20,8 +20,10 @@
 set -euo pipefail
 
 PACKAGES=(
-  # toolchain
-  g++ make cmake git clang-format
+  # toolchain (ccache: tools/test.sh compiles through it, so that the test
+  # install_pip, a second build of the program and module from a copy of the
+  # source, finds the first build's objects)
+  g++ make cmake git clang-format ccache
   # MPI and parallel HDF5
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
   # C++ libraries

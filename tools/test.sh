@@ -26,6 +26,11 @@ JOBS=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 
 bash tools/setup.sh
 read -r -a cmake_args <<<"${CMAKE_ARGS:-}"
+# tools/build.sh compiles through ccache with the paths below the root made
+# relative (CCACHE_BASEDIR): the test install_pip builds the program and the
+# module again from a copy of this tree under BUILD_DIR, whose compilations
+# are then the first build's (cache hits), with the same setting.
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$ROOT}
 bash tools/build.sh ${cmake_args[@]+"${cmake_args[@]}"}
 
 # MPI tests start several ranks on one small machine: allow more ranks than
@@ -46,11 +51,23 @@ fi
 
 ASAN_BUILD_DIR=${ASAN_BUILD_DIR:-build-asan}
 echo "== unit tests under ASan+UBSan (in $ASAN_BUILD_DIR)" >&2
-# Only what the unit tests need (no benchmark); warnings are errors under CI as
-# in stage 1. The caller's CMAKE_ARGS come first: the sanitizer switch wins.
-BUILD_DIR=$ASAN_BUILD_DIR BUILD_TYPE=RelWithDebInfo BUILD_TARGETS="" \
-  bash tools/build.sh ${cmake_args[@]+"${cmake_args[@]}"} \
+# Only what the unit tests need (the target unit_tests: no benchmark, case
+# sets, MPI-only tests); warnings are errors under CI as in stage 1. Debug
+# information of lines only (-g1: a report's stack names functions, files and
+# lines; no variables, which -g adds for a fifth more compile time). The
+# caller's CMAKE_ARGS come first: the sanitizer switch wins.
+BUILD_DIR=$ASAN_BUILD_DIR BUILD_TYPE=RelWithDebInfo BUILD_TARGETS=unit_tests \
+  bash tools/build.sh "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" \
+  ${cmake_args[@]+"${cmake_args[@]}"} \
   -DMDRMAP_SANITIZE=ON -DMDRMAP_BUILD_TESTS=ON -DMDRMAP_BUILD_BENCH=OFF
+# Every unit test of stage 1 is there (an executable missing from unit_tests
+# would leave its tests unlisted, i.e. silently not run).
+unit_list() { (cd "$1" && ctest -N -L unit | sed -n 's/^ *Test *#[0-9]*: //p' | sort); }
+if ! diff <(unit_list "$BUILD_DIR") <(unit_list "$ASAN_BUILD_DIR") >&2; then
+  echo "test: the unit tests of $ASAN_BUILD_DIR differ from $BUILD_DIR's (<): is an executable" \
+    "missing from the target unit_tests (tests/CMakeLists.txt)?" >&2
+  exit 1
+fi
 
 # Any report is fatal: ASan and LeakSanitizer abort, UBSan halts (the code is
 # also built with -fno-sanitize-recover=all). Open MPI, which `mdrmap study`
