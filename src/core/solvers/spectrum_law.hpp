@@ -71,11 +71,6 @@ public:
                                double h2, const StepCoef& c) const;
   /// Contact force per 4 dx for depth u, rate du, branch states q.
   double pressure(double u, double du, const double* q) const;
-  /// The contact force after a contact update of q0 (forcing h0, h1, h2,
-  /// coefficients c): bit for bit pressure() of contact_step's result, which
-  /// a caller need not store to test.
-  double pressure(double u, double du, const double* q0, double h0, double h1, double h2,
-                  const StepCoef& c) const;
   /// The contact force's rate along a path with depth u, rate du and
   /// acceleration ddu (the branches' rates (u - q_k) / tau_k).
   double pressure_rate(double u, double du, double ddu, const double* q) const;
@@ -88,9 +83,6 @@ public:
   double free_step_u(double* z, double* z0, const StepCoef& c) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
-  /// The free depression after a free update of z0 by c (bit for bit
-  /// free_u of free_step's result, which a caller need not store to test).
-  double free_u(const double* z0, const StepCoef& c) const;
   /// Its rate (each mode decays at its rate).
   double free_rate(const double* z) const;
 
@@ -132,14 +124,6 @@ inline double Law::pressure(double u, double du, const double* q) const {
   return s;
 }
 
-inline double Law::pressure(double u, double du, const double* q0, double h0, double h1, double h2,
-                            const StepCoef& c) const {
-  double s = G0_ * u + G_ * tau_ * du;
-  for (std::size_t k = 0; k < n_; ++k)
-    s -= Gk_[k] * stepped(k, q0, h0, h1, h2, c);
-  return s;
-}
-
 inline double Law::contact_step_pressure(double* q, double* q0, double u, double du, double h0,
                                          double h1, double h2, const StepCoef& c) const {
   double s = G0_ * u + G_ * tau_ * du;
@@ -170,13 +154,6 @@ inline double Law::free_u(const double* z) const {
   double u = 0.0;
   for (std::size_t i = 0; i < m_; ++i)
     u += cu_[i] * z[i];
-  return u;
-}
-
-inline double Law::free_u(const double* z0, const StepCoef& c) const {
-  double u = 0.0;
-  for (std::size_t i = 0; i < m_; ++i)
-    u += cu_[i] * (z0[i] * c.modal[i]);
   return u;
 }
 
