@@ -369,5 +369,47 @@ TEST(EventsFromTheSolution, RowMetricsDoNotDependOnTheSamplesConeLoad) {
   expect_row_metrics_agree(cone_drop(true));
 }
 
+// A broad spectrum's step from a stationary state: the row skips the first
+// probes (ProbeSkip, refine.hpp) only where they are quiet. Its first probe
+// after 0+ is past the rule's first, within a tenth of rtol of mu(0+); a run
+// whose log samples start at 1e-10 T (they keep every probe: no skip past a
+// sample) shows mu monotone and within that tolerance up to there, and the
+// same metrics.
+TEST(EventsFromTheSolution, RowSkipsOnlyAQuietStart) {
+  Case c = event_case(false, 1.0, {{10.0, 3.0}});
+  c.rheology.tau = 0.0;
+  c.rheology.branches = {{8.0, 1e-7}, {8.0, 1e-5}, {8.0, 1e-3}, {8.0, 0.1}, {8.0, 10.0}};
+  c.sampling.samples = 201;
+  const double rtol = 1e-3;
+  const RunResult r = run_case(CheckedCase(c), SolverKind::Auto, rtol);
+  ASSERT_EQ(r.info.solver, "row");
+  const Probes& p = r.probes[0];
+  ASSERT_GE(p.t.size(), 3u);
+  // (the rule's first probe: 1e-2 of the shortest tau_k)
+  const double mu0 = p.mu[0], t1 = p.t[1], first = 1e-2 * 1e-7, tol = 0.1 * rtol * std::abs(mu0);
+  EXPECT_GE(t1, 10.0 * first) << "a decade of probes at least was skipped";
+  EXPECT_LE(std::abs(p.mu[1] - mu0), tol);
+  Case dense = c;
+  dense.sampling.samples = 2001;
+  dense.sampling.spacing = Spacing::Log;
+  dense.sampling.decades = 10.0;
+  const RunResult d = run_case(CheckedCase(dense), SolverKind::Auto, rtol);
+  const Probes& q = d.probes[0];
+  EXPECT_EQ(q.t[1], first) << "the dense run probes from the start";
+  long seen = 0;
+  for (std::size_t i = 1; i < d.series.size() && d.series.t[i] <= t1; ++i, ++seen) {
+    EXPECT_LE(std::abs(d.series.mu[i] - mu0), tol) << d.series.t[i];
+    EXPECT_GE((d.series.mu[i] - d.series.mu[i - 1]) * (p.mu[1] - mu0), 0.0) << d.series.t[i];
+  }
+  EXPECT_GT(seen, 100);
+  const EventMetrics e =
+      event_metrics(c, r.series, r.transients, r.info.error_estimate, r.probes)[0];
+  const EventMetrics f =
+      event_metrics(dense, d.series, d.transients, d.info.error_estimate, d.probes)[0];
+  EXPECT_TRUE(agree("mu_peak", e.mu_peak, f.mu_peak, f.mu_peak));
+  EXPECT_TRUE(agree("t_peak", e.t_peak, f.t_peak, f.t_peak));
+  EXPECT_TRUE(agree("D_c", e.d_c, f.d_c, f.d_c));
+}
+
 } // namespace
 } // namespace mdrmap

@@ -6,6 +6,7 @@
 // solvers (the row, spectrum.cpp): they differ only in how
 // one run goes, where they start and how fine they may go.
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -66,8 +67,35 @@ struct ProbeRule {
   double first = 0.0;
   double ratio = 0.0;
   bool off = false; ///< no probes (a segment without a change)
+  /// The latest probe a quiet start may jump to (ProbeSkip; 0: none).
+  double quiet_until = 0.0;
   double next(double t) const { return t + std::max(ratio * t, first); }
 };
+
+/// A segment's first probes skipped where the solution is quiet. Right after
+/// a change from a stationary state, every branch's stress leaves its old
+/// path as G_k tau_k (1 - exp(-t/tau_k)) times the element's change of rate,
+/// and while the indenter has moved by much less than the contact's width
+/// that change is fixed: F_x and F_N move by one increasing function of t
+/// times two constants, so mu is monotone. If mu at a probe time t_m is within the
+/// quiet tolerance of mu(0+), so is every probe before t_m, and none holds an
+/// extremum: the run jumps to t_m. A rule sets quiet_until only where this
+/// holds (a stationary state before the change; t_m far below the contact's
+/// travel time). The latest probe at or below it is tried first, then one a
+/// decade earlier, and so on; a try that is not quiet is undone.
+struct ProbeSkip {
+  std::function<void()> save, restore;       ///< the solver's state at t = 0+, and back
+  std::function<bool(double, double)> quiet; ///< quiet(mu(0+), mu(t_m))
+  bool on() const { return static_cast<bool>(quiet); }
+};
+
+/// The probe times of `r` up to `until` and before `before`.
+inline std::vector<double> probe_times(const ProbeRule& r, double until, double before) {
+  std::vector<double> ts;
+  for (double t = r.next(0.0); t <= until && t < before; t = r.next(t))
+    ts.push_back(t);
+  return ts;
+}
 
 /// sample_history, and between the output instants the probes of `rule(k)`
 /// for segment k: advance to each, probe() there into probes[k] (with the
@@ -76,12 +104,33 @@ struct ProbeRule {
 /// event metrics need less than the series.
 template <class Change, class Advance, class Measure, class Probe, class Rule>
 Series sample_history(const Case& c, const RunControl& control, Change change, Advance advance,
-                      Measure measure, Probe probe, Rule rule, std::vector<Probes>& probes) {
+                      Measure measure, Probe probe, Rule rule, std::vector<Probes>& probes,
+                      const ProbeSkip& skip = {}) {
   probes.assign(c.history.size(), Probes{});
   Probes* p = nullptr; // the segment's (none before the first change: pre)
   std::size_t k = 0;
   double prev = 0.0, next = 0.0, T = 0.0;
   ProbeRule r;
+  bool try_skip = false;
+  // (see ProbeSkip; at the segment's first advance, mu(0+) probed, to before `target`)
+  auto skip_quiet = [&](double target, double w) {
+    const std::vector<double> ts = probe_times(r, r.quiet_until, target);
+    const auto decade = static_cast<std::size_t>(std::log(10.0) / std::log1p(r.ratio));
+    for (std::size_t m = ts.size(); m > 0; m = m > decade ? m - decade : 0) {
+      const double t = ts[m - 1];
+      skip.save();
+      advance(t, w);
+      const double mu = probe();
+      if (skip.quiet(p->mu.front(), mu)) {
+        p->t.push_back(t);
+        p->mu.push_back(mu);
+        prev = t;
+        next = r.next(t);
+        return;
+      }
+      skip.restore();
+    }
+  };
   auto change_k = [&](double w) {
     change(w);
     if (p != nullptr) ++k;
@@ -91,9 +140,14 @@ Series sample_history(const Case& c, const RunControl& control, Change change, A
     T = c.history.segments[k].T;
     prev = 0.0;
     next = r.next(0.0);
+    try_skip = skip.on() && !r.off && r.quiet_until > 0.0;
   };
   auto advance_k = [&](double dt, double w) {
     const double target = prev + dt;
+    if (try_skip && dt > 0.0) { // (the first advance past t = 0: mu(0+) is the probe there)
+      try_skip = false;
+      if (prev == 0.0 && p->t.size() == 1) skip_quiet(target, w);
+    }
     for (; !r.off && next < target; next = r.next(next)) {
       advance(next - prev, w);
       prev = next;

@@ -69,6 +69,20 @@ private:
   std::deque<std::pair<double, State>> known_; // (references stay valid)
 };
 
+/// The quiet tolerance of a skipped start (ProbeSkip): a tenth of rtol of
+/// mu(0+) (of the friction a tracker tells from noise, kNegligibleFriction).
+constexpr double kQuiet = 0.1;
+bool quiet(double mu0, double mu, double rtol) {
+  return std::abs(mu - mu0) <= kQuiet * rtol * std::max(std::abs(mu0), kNegligibleFriction);
+}
+/// The probe rule of a segment, with a quiet start (ProbeSkip) where it
+/// starts from a stationary state, up to kFirstProbe of the travel time of
+/// its contact at the faster of the two velocities (`travel`).
+ProbeRule quiet_start(ProbeRule r, bool steady, double travel) {
+  r.quiet_until = steady ? kFirstProbe * travel : 0.0;
+  return r;
+}
+
 ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
                        double fine, const SpectrumOptions& o, const RunControl& control,
                        StationaryStates& states) {
@@ -88,7 +102,10 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // a segment that has reached its stationary state keeps it (stationary_watch.hpp)
   StationaryWatch watch(o.rtol, 2.0 * c.a1(), o.keep_stationary);
   State now;
-  double w_now = 0.0;
+  double w_now = c.history.v0, w_before = w_now;
+  // the segment starts from a stationary state (the pre-state, or a frozen
+  // segment): its first probes may be skipped where quiet (ProbeSkip)
+  bool first = true, steady = true;
   // The samples measure at the confirmed trailing edge; the probes (the
   // event metrics' instants, most of the steps after a change of a broad
   // spectrum: 24 a decade from 1e-2 of its shortest time) where the contact
@@ -96,6 +113,21 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // inside the edge's cell the force there is ~0 and an O(dx^4) shift of the
   // edge moves the forces by O(dx^8); elsewhere (a re-touch front, the tip's
   // cell) the confirmed search runs anyway (Row::predicted_only).
+  spectrum::Row::Snapshot snap;
+  StationaryWatch watch_at_change = watch;
+  State now_at_change;
+  const ProbeSkip skip{[&] {
+                         row.renumber();
+                         row.save(snap);
+                         watch_at_change = watch;
+                         now_at_change = now;
+                       },
+                       [&] {
+                         row.restore(snap);
+                         watch = watch_at_change;
+                         now = now_at_change;
+                       },
+                       [&](double mu0, double mu) { return quiet(mu0, mu, o.rtol); }};
   auto measure = [&](spectrum::Edge edge) {
     if (watch.frozen()) return now;
     now = row.measure(edge);
@@ -114,7 +146,10 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   out.series = sample_history(
       c, control,
       [&](double w) {
+        steady = first || watch.frozen();
+        first = false;
         row.change_velocity(w);
+        w_before = w_now;
         w_now = w;
         watch.start(w, true);
       },
@@ -125,8 +160,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
         watch.moved(w_now * dt);
       },
       [&] { return measure(spectrum::Edge::Confirmed); },
-      [&] { return measure(spectrum::Edge::Predicted).mu; }, [&](std::size_t) { return probe; },
-      out.probes);
+      [&] { return measure(spectrum::Edge::Predicted).mu; },
+      [&](std::size_t) { return quiet_start(probe, steady, c.a1() / std::max(w_before, w_now)); },
+      out.probes, skip);
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
