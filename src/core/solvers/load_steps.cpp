@@ -63,7 +63,7 @@ void LoadStepper::grid_step(double h, bool to_point, double point) {
 }
 
 // The watch after a grid step of h: the depth and mu against the stationary
-// state under load, after each traverse of the window.
+// state under load, after each traverse (run_once sets it: load.cpp).
 void LoadStepper::watch(double h) {
   watch_.moved(w_ * h);
   if (!watch_.due()) return;
