@@ -7,10 +7,12 @@
 // resolution (resolved, within rtol, an honest estimate), and a re-touch
 // front from a tangency at the start of a hold. These cases hung,
 // ran for more than 600 s or returned wrong results before; the time bound is
-// ctest's TIMEOUT, not an assertion.
+// ctest's TIMEOUT, not an assertion. And a segment that has reached its
+// stationary state, frozen there: no further steps, counted, not timed.
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -82,6 +84,39 @@ TEST(LoadStiff, FastSlidingAfterAHoldFinishes) {
     EXPECT_NEAR(r.series.d[last] / st.d, 1.0, 1e-3) << k->history.v0;
     for (std::size_t i = 0; i < r.series.size(); ++i)
       ASSERT_NEAR(r.series.FN[i] / k->loading.F0, 1.0, 1e-12) << i;
+  }
+}
+
+// A segment that has reached its stationary state under load costs no
+// further steps (docs/design/load.md, "Stationary segments"): a drop and a
+// rise at zeta0 = 10 (each step of the rise lets go a traverse's worth of
+// elements), the rise lasting 4 tau and 10 times longer. The longer run
+// takes at most 1.5 times the steps and element updates of the shorter (it
+// stepped on: 9x the updates), while stepping on it takes more; its samples
+// past the transient are the stationary state within rtol, and the whole
+// series is within rtol of the run that steps on.
+TEST(LoadStationarySegments, AStationarySegmentTakesNoFurtherSteps) {
+  const Case c = unit_case(10.0, {{0.1, 2.0}, {1.0, 4.0}}, 21);
+  const Case longer = unit_case(10.0, {{0.1, 2.0}, {1.0, 40.0}}, 21);
+  const RunResult run = at_rtol(c, 1e-3), run_long = at_rtol(longer, 1e-3);
+  LoadOptions o;
+  o.rtol = 1e-3;
+  o.keep_stationary = false;
+  const RunResult stepping = run_load(CheckedCase(longer), o);
+  std::printf("steps %ld, 10x longer %ld (stepping on %ld); element updates %ld, %ld (%ld)\n",
+              run.info.steps, run_long.info.steps, stepping.info.steps, run.info.element_updates,
+              run_long.info.element_updates, stepping.info.element_updates);
+  EXPECT_LE(run_long.info.steps, 1.5 * static_cast<double>(run.info.steps));
+  EXPECT_LE(run_long.info.element_updates, 1.5 * static_cast<double>(run.info.element_updates));
+  EXPECT_GT(stepping.info.element_updates, 3 * run_long.info.element_updates);
+  EXPECT_LE(case_error(run_long.series, stepping.series, longer, 1e-12).max(), o.rtol);
+  EXPECT_LE(run_long.info.error_estimate, o.rtol);
+  const State st = stationary_under_load(longer, longer.history.segments.back().w);
+  for (std::size_t i = 0; i < run_long.series.size(); ++i) {
+    ASSERT_NEAR(run_long.series.FN[i] / longer.loading.F0, 1.0, 1e-12) << i;
+    if (run_long.series.t[i] < 2.0 + 20.0) continue; // (the rise's second half)
+    EXPECT_NEAR(run_long.series.d[i] / st.d, 1.0, o.rtol) << i;
+    EXPECT_NEAR(run_long.series.mu[i] / st.mu, 1.0, o.rtol) << i;
   }
 }
 

@@ -29,6 +29,7 @@ struct RunSettings {
   long lattice_n = LoadLattice::kFine; ///< lattice points per segment (load_steps.hpp)
   double window_a = 0.0;               ///< the window is 1.6 window_a (+ 4 dx) on either side
   double piece_floor = 0.0;            ///< free-material pieces this wide and wider are recorded
+  double watch_rtol = 0.0; ///< a segment this close to its stationary state is frozen (0: never)
 };
 
 /// The deepest stationary contact of the history (its slowest velocity; a0
@@ -119,14 +120,21 @@ SingleRun run_once(const Case& c, const RunSettings& s, const RunControl& contro
   SingleRun out;
   out.series.resize(c.total_samples());
   out.series.pre = row.measure();
-  LoadStepper stepper(row, {s.time_tol, s.dt_over_tau, s.lattice_n}, c.rheology.tau);
+  // a segment within rtol of its stationary state keeps it (load_steps.hpp);
+  // checked after each traverse of the window the history's contacts need,
+  // whatever window the run has (a run rerun in a wider window freezes where
+  // it did)
+  const StationaryWatch watch(s.watch_rtol, 3.2 * history_radius(c, s.start),
+                              s.watch_rtol > 0.0 && !(s.dt_over_tau > 0.0));
+  LoadStepper stepper(row, {s.time_tol, s.dt_over_tau, s.lattice_n}, c.rheology.tau, watch);
   std::size_t i = 0;
   for (std::size_t k = 0; k < c.history.size(); ++k) {
     const Segment& seg = c.history.segments[k];
     const double t0 = c.history.start(k);
     row.change_velocity(seg.w); // (the row's clock restarts: it runs within the segment)
-    TransientTracker tracker(stationary_under_load(c, seg.w).mu, row.measure().mu);
-    stepper.begin(seg.T, &tracker);
+    const State ss = stationary_under_load(c, seg.w);
+    TransientTracker tracker(ss.mu, row.measure().mu);
+    stepper.begin(seg.T, &tracker, seg.w, ss);
     for (long j = 0; j < c.sampling.count(k); ++j, ++i) {
       const double off = c.sampling.offset(k, j, seg.T);
       stepper.reach(off); // (a sample off the step grid: a side step, undone by the next reach)
@@ -232,6 +240,7 @@ RunResult run_load(const CheckedCase& checked, const LoadOptions& opt, LoadCheck
   s.window_a = opt.window_a0 > 0.0 ? opt.window_a0 * c.a0() : history_radius(c, s.start);
   s.piece_floor = kPieceFloor * opt.rtol * c.a0();
   const bool adaptive = !(opt.cells > 0.0);
+  s.watch_rtol = opt.keep_stationary && adaptive ? opt.rtol : 0.0;
   const RunControl own;
   const RunControl& control = opt.control != nullptr ? *opt.control : own;
   LoadChecks all;

@@ -34,6 +34,10 @@ struct LoadOptions {
   /// stationary contact of the history); a run that goes deeper is rerun with
   /// the Hertz contact's window.
   double window_a0 = 0.0;
+  /// A segment that has reached its stationary state under load keeps it, in
+  /// a run whose resolution and steps are chosen from rtol (cells == 0,
+  /// dt_over_tau == 0): no further steps (load_steps.hpp). false: steps on.
+  bool keep_stationary = true;
   /// Work budget and stop flag (nullptr: the default budget, no stop flag).
   /// Every loop of the solver charges it (CaseAbandoned past the budget,
   /// Interrupted on a stop request).

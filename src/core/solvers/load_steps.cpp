@@ -4,12 +4,16 @@
 #include <cmath>
 #include <string>
 
+#include "core/metrics/error_metric.hpp"
 #include "core/numerics/run_control.hpp"
 
 namespace mdrmap {
 
-void LoadStepper::begin(double T, TransientTracker* tracker) {
+void LoadStepper::begin(double T, TransientTracker* tracker, double w, const State& stationary) {
   undo_side();
+  w_ = w;
+  stationary_ = stationary;
+  watch_.start(w, stationary.FN > 0.0);
   lattice_.T = T;
   // (fixed steps: the grid is the steps of dt_over_tau tau from the change,
   // evened out to end on the segment's end; an order test halves them)
@@ -22,6 +26,7 @@ void LoadStepper::begin(double T, TransientTracker* tracker) {
 void LoadStepper::reach(double s) {
   undo_side();
   for (;;) {
+    if (watch_.frozen()) return keep(s);
     const double t = row_.t();
     if (!(s > t) || LoadLattice::near(s, t)) return;
     while (j_ < lattice_.n && !(lattice_.at(j_) > t))
@@ -43,6 +48,7 @@ void LoadStepper::reach(double s) {
 }
 
 void LoadStepper::grid_step(double h, bool to_point, double point) {
+  const long taken = steps_;
   if (s_.dt_over_tau > 0.0 || (to_point && h <= 1e-12 * (std::abs(point) + tau_))) {
     LoadRow::Trial tr = row_.trial(h, h);
     if (to_point) tr.t_end = point;
@@ -53,6 +59,31 @@ void LoadStepper::grid_step(double h, bool to_point, double point) {
     adaptive_step(h, to_point, point);
   }
   row_.rebase_time();
+  if (steps_ > taken) watch(h);
+}
+
+// The watch after a grid step of h: the depth and mu against the stationary
+// state under load, after each traverse (run_once sets it: load.cpp).
+void LoadStepper::watch(double h) {
+  watch_.moved(w_ * h);
+  if (!watch_.due()) return;
+  const double mu = row_.measure().mu;
+  watch_.check(row_.d() / stationary_.d - 1.0,
+               (mu - stationary_.mu) / std::max(std::abs(stationary_.mu), kNegligibleFriction));
+  kept_ = row_.t();
+  kept_mu_ = mu;
+}
+
+// A frozen segment: the row stays where it froze (its state is every later
+// sample's), and the tracker sees that state at the lattice points up to s.
+void LoadStepper::keep(double s) {
+  for (; j_ <= lattice_.n; ++j_) {
+    const double point = lattice_.at(j_);
+    if (!(point > kept_) || LoadLattice::near(point, kept_)) continue;
+    if (s < point && !LoadLattice::near(s, point)) return;
+    if (tracker_ != nullptr) tracker_->add(point, kept_mu_);
+    kept_ = point;
+  }
 }
 
 // A trial outside the window is a rejected step; but when the edge already
