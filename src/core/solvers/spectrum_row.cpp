@@ -345,6 +345,8 @@ double Row::entry_bytes(std::size_t i) const {
 }
 
 void Row::logged() {
+  Entry& e = log_.back();
+  e.top = e.dt > 0.0 ? deepest(e) : e.d0;
   log_bytes_ += entry_bytes(log_.size() - 1);
   if (!(window_bytes_ + log_bytes_ <= kMaxBytes)) too_much_memory();
 }
@@ -465,18 +467,18 @@ long Row::carry(Material& mt, bool& gone, long double J, std::size_t from, std::
                                          static_cast<long double>(dx_));
     if (e.dt < 0.0) {
       change_material(mt.mode, mt.y, x, e.w, e.d0, e.s);
-    } else if (mt.mode != Mode::Fresh || x > -radius(deepest(e))) {
+    } else if (mt.mode != Mode::Fresh || x > -radius(e.top)) {
       gone = x > aw_ + 2.0 * dx_ && mt.mode != Mode::Contact;
       if (gone) break;
-      const auto last = mt.mode == Mode::Fresh ? it : uniform_until(it, end);
-      if (last == it) {
-        step_material(mt.mode, mt.y, x, e.dt, e.w, *e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
-      } else { // entries at one velocity and depth: one exact step (its grid in span_)
+      auto last = mt.mode == Mode::Fresh ? it : uniform_until(it, end);
+      if (last != it) { // entries at one velocity and depth: one exact step (its grid in span_)
         const double xl = static_cast<double>((J + last->P + static_cast<long double>(phase_)) *
                                               static_cast<long double>(dx_));
         step_material(mt.mode, mt.y, xl, span_.g.dt, e.w, span_.g, Path{e.d0, 0.0, 0.0});
-        it = last;
-      }
+      } else if (mt.mode != Mode::Free || e.w != 0.0 || (last = free_until(it, end, mt, x)) == it) {
+        step_material(mt.mode, mt.y, x, e.dt, e.w, *e.g, Path{e.d0, e.s - e.k * e.dt, e.k});
+      } // (else free at rest through `last`: stepped by free_until)
+      it = last;
       ++done;
     }
   }
@@ -529,6 +531,43 @@ Row::uniform_until(std::vector<Entry>::const_iterator it,
     grid(span_.g, total_time(it, last), e0.w, radius(e0.d0),
          e0.w > 0.0 ? longest : std::numeric_limits<double>::infinity());
   }
+  return last;
+}
+
+// A free material point at rest at x (state mt at entry `it`) over the
+// steps at rest from `it` on (under load each its own depth path, so
+// uniform_until merges none): its free update is exact over any time, and
+// it stays free wherever its gap h - u stays negative. Over entries [it,
+// last] of total time T the gap is below depth(x, the deepest of them) less
+// the floor of u over [0, T] (Law::free_span); where that bound is negative
+// the live row, which tests the gap at each entry's end, lets it pass free
+// too, and the point crosses them in one step. Spans of 2, 4, 8, ...
+// entries are tried until the bound fails or the steps at rest end; mt is
+// left after the longest that held, which is returned (it itself where none
+// did: mt unchanged). A point that lies behind the trailing edge through a
+// hold under load is replayed in a few steps instead of one per step (89%
+// of the slide-hold-slide's replayed updates were such).
+std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::const_iterator it,
+                                                        std::vector<Entry>::const_iterator end,
+                                                        Material& mt, double x) const {
+  auto rest = [&](std::vector<Entry>::const_iterator e) {
+    return e != end && e->dt > 0.0 && e->w == 0.0;
+  };
+  double z[kMaxBranches + 1], best[kMaxBranches + 1];
+  double T = it->dt, top = it->top;
+  auto last = it;
+  std::size_t n = 1, next = 2;
+  for (auto cur = it; rest(cur + 1);) {
+    ++cur;
+    T += cur->dt;
+    top = std::max(top, cur->top);
+    if (++n < next && rest(cur + 1)) continue;
+    if (!(depth(x, top) - law_.free_span(mt.y, z, T) < 0.0)) break;
+    std::copy(z, z + law_.free_dim(), best);
+    last = cur;
+    next *= 2;
+  }
+  if (last != it) std::copy(best, best + law_.free_dim(), mt.y);
   return last;
 }
 

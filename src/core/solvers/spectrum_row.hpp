@@ -159,6 +159,7 @@ private:
     std::shared_ptr<const Grid> g; // (consecutive steps with the same grid share it)
     double d0 = 0.0, s = 0.0;      // depth at the start, its rate over the step (a change: d, dd)
     double k = 0.0;                // the depth's curvature: d0 + s t + k t (t - dt)
+    double top = 0.0;              // the deepest over the step (deepest(), set by logged())
   };
   /// The depth along a (sub-)step from its start: d + r t + k t^2.
   struct Path {
@@ -195,6 +196,9 @@ private:
   static double deepest(const Entry& e);
   std::vector<Entry>::const_iterator uniform_until(std::vector<Entry>::const_iterator it,
                                                    std::vector<Entry>::const_iterator end) const;
+  std::vector<Entry>::const_iterator free_until(std::vector<Entry>::const_iterator it,
+                                                std::vector<Entry>::const_iterator end,
+                                                Material& mt, double x) const;
   static double total_time(std::vector<Entry>::const_iterator first,
                            std::vector<Entry>::const_iterator last);
   long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
