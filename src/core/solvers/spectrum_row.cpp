@@ -172,6 +172,7 @@ void Row::restore(const Snapshot& s) {
   for (std::size_t i = s.log; i < log_.size(); ++i)
     log_bytes_ -= entry_bytes(i);
   log_.resize(s.log);
+  ++log_gen_;
   seams_.erase(
       std::remove_if(seams_.begin(), seams_.end(), [&](const Seam& m) { return m.entry >= s.log; }),
       seams_.end());
@@ -300,6 +301,7 @@ void Row::renumber() {
       e.P -= static_cast<long double>(K);
     for (Tracer& t : tracers_)
       t.J += static_cast<long double>(K);
+    ++log_gen_; // (the positions are the same, their arithmetic not)
     for (Seam& m : seams_)
       m.J += static_cast<long double>(K);
     lead_ += static_cast<long double>(K);
@@ -345,6 +347,7 @@ double Row::entry_bytes(std::size_t i) const {
 }
 
 void Row::logged() {
+  ++log_gen_;
   Entry& e = log_.back();
   e.top = e.dt > 0.0 ? deepest(e) : e.d0;
   log_bytes_ += entry_bytes(log_.size() - 1);
@@ -555,6 +558,7 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
   };
   double z[kMaxBranches + 1], best[kMaxBranches + 1];
   double T = it->dt, top = it->top;
+  const double u0 = law_.free_u(mt.y); // (the floor is below it: no span holds where it fails)
   auto last = it;
   std::size_t n = 1, next = 2;
   for (auto cur = it; rest(cur + 1);) {
@@ -562,7 +566,7 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
     T += cur->dt;
     top = std::max(top, cur->top);
     if (++n < next && rest(cur + 1)) continue;
-    if (!(depth(x, top) - law_.free_span(mt.y, z, T) < 0.0)) break;
+    if (!(depth(x, top) - u0 < 0.0) || !(depth(x, top) - law_.free_span(mt.y, z, T) < 0.0)) break;
     std::copy(z, z + law_.free_dim(), best);
     last = cur;
     next *= 2;
@@ -594,13 +598,16 @@ Row::Tracer& Row::tracer(long double J) const {
   t.n = 0;
   t.gone = false;
   t.used = 0;
+  t.tail_gen = 0;
   t.m.mode = Mode::Fresh;
   std::fill(t.m.y, t.m.y + stride_, 0.0); // (the rest of y is never read)
   return t;
 }
 
 // The state now of the material point at J: its tracer carried to the part of
-// the log no restore drops (and kept), then through the rest (not kept).
+// the log no restore drops (and kept), then through the rest (kept as its
+// tail until the log changes: a step's trial and confirmed measures at one
+// depth replay the same points through the same trial step).
 Row::Material Row::replay(long double J) const {
   Tracer& t = tracer(J);
   t.used = measures_;
@@ -609,12 +616,15 @@ Row::Material Row::replay(long double J) const {
   if (t.n < keep) {
     done += carry(t.m, t.gone, J, t.n, keep);
     t.n = keep;
+    t.tail_gen = 0;
   }
-  Material mt = t.m;
+  if (t.tail_gen == log_gen_) return t.tail;
+  t.tail = t.m;
   bool gone = t.gone;
-  done += carry(mt, gone, J, t.n, log_.size());
+  done += carry(t.tail, gone, J, t.n, log_.size());
+  t.tail_gen = log_gen_;
   control_.charge(unit_ * static_cast<double>(done), name_);
-  return mt;
+  return t.tail;
 }
 
 // Time within a sub-step of length h (from position x, state y) where a

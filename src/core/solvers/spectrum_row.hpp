@@ -173,13 +173,18 @@ private:
     double y[kMaxBranches + 1] = {};
   };
   /// Material point J replayed through the first n log entries (gone: past
-  /// the window and free, never to touch again); used: the last measure.
+  /// the window and free, never to touch again); used: the last measure;
+  /// tail: its state at the log's end where the log is still at generation
+  /// tail_gen (the measures of a trial and of its confirmation replay the
+  /// same trial step).
   struct Tracer {
     long double J = 0.0L;
     std::size_t n = 0;
     bool gone = false;
     long used = 0;
     Material m;
+    std::uint64_t tail_gen = 0;
+    Material tail;
   };
   void set_position(long double P);
   /// The sub-steps of a step of dt at w where the contact is a (none longer
@@ -376,6 +381,7 @@ private:
   };
   mutable Span span_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
+  std::uint64_t log_gen_ = 1;             // changes with every entry logged or dropped
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
