@@ -587,13 +587,29 @@ double Row::total_time(std::vector<Entry>::const_iterator first,
 // The cached tracer at J (a new one, fresh before the log, in the place of the
 // least recently used where the cache is full: the first of the least
 // used, found in the same pass as the search, since most points are new).
+// The one found after the last one found the last time is tried first: a
+// measure at rest replays the edge cells' points in the same order from step
+// to step.
 Row::Tracer& Row::tracer(long double J) const {
-  Tracer* lru = nullptr;
-  for (Tracer& t : tracers_) {
-    if (t.J == J && t.n <= log_.size()) return t;
-    if (!lru || t.used < lru->used) lru = &t;
+  auto found = [&](std::size_t i) -> Tracer& {
+    if (last_ < tracers_.size()) tracers_[last_].next = i;
+    last_ = i;
+    return tracers_[i];
+  };
+  auto is = [&](std::size_t i) { // (a point is cached once at most)
+    return i < tracers_.size() && tracers_[i].J == J && tracers_[i].n <= log_.size();
+  };
+  if (last_ < tracers_.size() && is(tracers_[last_].next)) return found(tracers_[last_].next);
+  std::size_t lru = 0;
+  for (std::size_t i = 0; i < tracers_.size(); ++i) {
+    if (is(i)) return found(i);
+    if (tracers_[i].used < tracers_[lru].used) lru = i;
   }
-  Tracer& t = tracers_.size() < kMaxTracers ? tracers_.emplace_back() : *lru;
+  if (tracers_.size() < kMaxTracers) {
+    lru = tracers_.size();
+    tracers_.emplace_back();
+  }
+  Tracer& t = found(lru);
   t.J = J;
   t.n = 0;
   t.gone = false;

@@ -185,6 +185,7 @@ private:
     Material m;
     std::uint64_t tail_gen = 0;
     Material tail;
+    std::size_t next = SIZE_MAX; // the tracer found after it, the last time
   };
   void set_position(long double P);
   /// The sub-steps of a step of dt at w where the contact is a (none longer
@@ -382,6 +383,7 @@ private:
   mutable Span span_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
   std::uint64_t log_gen_ = 1;             // changes with every entry logged or dropped
+  mutable std::size_t last_ = SIZE_MAX;   // the tracer found last (tracer())
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
