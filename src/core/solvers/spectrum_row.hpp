@@ -58,7 +58,11 @@
 // runs); the points lie on a lattice of the tolerance and their replays are
 // cached at the last saved log entry, so a point that recurs, over the trials
 // of a step under load and over the steps of a hold, continues from there
-// instead of from its entry.
+// instead of from its entry (and its state at the log's end is kept until the
+// log changes: a trial's confirmed measure replays nothing again). A free
+// point at rest crosses the steps of a hold in spans where its gap is
+// bounded below zero (free_until): under load each step is its own depth
+// path, which uniform_until cannot merge.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
