@@ -544,8 +544,10 @@ Row::uniform_until(std::vector<Entry>::const_iterator it,
 // last] of total time T the gap is below depth(x, the deepest of them) less
 // the floor of u over [0, T] (Law::free_span); where that bound is negative
 // the live row, which tests the gap at each entry's end, lets it pass free
-// too, and the point crosses them in one step. Spans of 2, 4, 8, ...
-// entries are tried until the bound fails or the steps at rest end; mt is
+// too, and the point crosses them in one step. The whole run of steps at
+// rest is tried first (a point behind the edge mostly stays free through it:
+// one floor instead of a dozen), then spans of 2, 4, 8, ... entries until
+// the bound fails or the steps at rest end; mt is
 // left after the longest that held, which is returned (it itself where none
 // did: mt unchanged). A point that lies behind the trailing edge through a
 // hold under load is replayed in a few steps instead of one per step (89%
@@ -560,6 +562,19 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
   double T = it->dt, top = it->top;
   const double u0 = law_.free_u(mt.y); // (the floor is below it: no span holds where it fails)
   auto last = it;
+  { // the whole run at rest first (a point behind the edge mostly stays free through it)
+    double Ta = T, ta = top;
+    auto cur = it;
+    while (rest(cur + 1)) {
+      ++cur;
+      Ta += cur->dt;
+      ta = std::max(ta, cur->top);
+    }
+    if (cur != it && depth(x, ta) - u0 < 0.0 && depth(x, ta) - law_.free_span(mt.y, z, Ta) < 0.0) {
+      std::copy(z, z + law_.free_dim(), mt.y);
+      return cur;
+    }
+  }
   std::size_t n = 1, next = 2;
   for (auto cur = it; rest(cur + 1);) {
     ++cur;
