@@ -547,11 +547,12 @@ Row::uniform_until(std::vector<Entry>::const_iterator it,
 // too, and the point crosses them in one step. The whole run of steps at
 // rest is tried first (a point behind the edge mostly stays free through it:
 // one floor instead of a dozen), then spans of 2, 4, 8, ... entries until
-// the bound fails or the steps at rest end; mt is
-// left after the longest that held, which is returned (it itself where none
-// did: mt unchanged). A point that lies behind the trailing edge through a
-// hold under load is replayed in a few steps instead of one per step (89%
-// of the slide-hold-slide's replayed updates were such).
+// the bound fails or the steps at rest end; mt is left after the longest
+// that held, which is returned (it itself where none did: mt unchanged). A
+// point that lies behind the trailing edge through a hold under load is
+// replayed in a few steps instead of one per step (89% of the
+// slide-hold-slide's replayed updates were such). (Without the bound,
+// SpectrumLoadCaseSet.MeetsRtolWithAnHonestEstimate fails.)
 std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::const_iterator it,
                                                         std::vector<Entry>::const_iterator end,
                                                         Material& mt, double x) const {
