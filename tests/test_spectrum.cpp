@@ -101,6 +101,15 @@ template <class F> std::vector<double> rk4(F f, std::vector<double> y, double T,
   return y;
 }
 
+// A free element's depression and modal state after t from modal state z.
+std::pair<double, std::vector<double>> free_after(const spectrum::Law& law, std::vector<double> z,
+                                                  double t) {
+  spectrum::StepCoef c;
+  law.coef(t, c, spectrum::Part::Free);
+  law.free_step(z.data(), c);
+  return std::make_pair(law.free_u(z.data()), z);
+}
+
 // The free element: exact modal propagation (the claim: W D M symmetric
 // negative definite, so real decaying modes) against RK4 of the element law
 // itself, with and without the dashpot; and the contact update under a
@@ -191,13 +200,7 @@ TEST(SpectrumLaw, ForceAndFreeRatesAreTheUpdatesDerivatives) {
       law.contact_step(q.data(), h0, h1, h2, c);
       return std::make_pair(law.pressure(h0 + (h1 + h2 * s) * s, h1 + 2.0 * h2 * s, q.data()), q);
     };
-    auto free_u = [&](double s) {
-      std::vector<double> z = z0;
-      spectrum::StepCoef c;
-      law.coef(s, c, spectrum::Part::Free);
-      law.free_step(z.data(), c);
-      return std::make_pair(law.free_u(z.data()), z);
-    };
+    auto free_u = [&](double s) { return free_after(law, z0, s); };
     const std::vector<double> q = force(t).second;
     const double dp = (force(t + e).first - force(t - e).first) / (2.0 * e);
     const double u = h0 + (h1 + h2 * t) * t, du = h1 + 2.0 * h2 * t;
@@ -206,6 +209,28 @@ TEST(SpectrumLaw, ForceAndFreeRatesAreTheUpdatesDerivatives) {
     const double duf = (free_u(t + e).first - free_u(t - e).first) / (2.0 * e);
     EXPECT_NEAR(law.free_rate(z.data()), duf, 1e-7 * (std::abs(duf) + 1.0));
   }
+}
+
+// Law::free_span (Row::free_until lets a free point at rest cross a span of
+// steps in one where its gap stays below zero by it): the state after T is
+// free_step's over T, bit for bit, and the floor bounds u over all of [0, T],
+// also where the modes' terms have both signs and u dips below its ends.
+TEST(SpectrumLaw, FreeSpanFloorsTheDepressionOverTheSpan) {
+  const spectrum::Law law(material(1.0, 0.0, {{3.0, 0.01}, {2.0, 0.3}, {1.0, 5.0}}));
+  const std::size_t m = law.free_dim();
+  const double T = 2.0;
+  std::vector<double> z0(m);
+  for (std::size_t i = 0; i < m; ++i) // mixed signs: u falls, then recovers
+    z0[i] = (i % 2 == 0 ? 1.0 : -1.0) * (1.0 + static_cast<double>(i));
+  auto u_at = [&](double t) { return free_after(law, z0, t); };
+  std::vector<double> z(m);
+  const double floor = law.free_span(z0.data(), z.data(), T);
+  EXPECT_EQ(z, u_at(T).second);
+  double lowest = u_at(0.0).first;
+  for (int i = 1; i <= 2000; ++i)
+    lowest = std::min(lowest, u_at(T * i / 2000.0).first);
+  EXPECT_LT(lowest, std::min(u_at(0.0).first, u_at(T).first)) << "u dips inside (the case tests)";
+  EXPECT_LE(floor, lowest);
 }
 
 // A branch far faster than the step: the exact update is its quasi-static

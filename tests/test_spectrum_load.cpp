@@ -359,5 +359,41 @@ TEST(SpectrumLayers, ForcesAreContinuousWhereTheEdgeRetreatsPastTheChange) {
   EXPECT_LT(worst, 1e-9);
 }
 
+// Row::replay keeps each replayed point's state at the log's end (its tail)
+// until the log changes, so that a trial's confirmed measure at one depth
+// does not replay it again. A trial to another depth from the same snapshot
+// must not see those tails: at rest (the edge cells on replayed points,
+// Row::ends_at_rest) the measures after a trial to d1 are those of a row
+// that only tried d2, bit for bit.
+TEST(SpectrumRowReplays, AnotherTrialDoesNotSeeAnEarlierTrialsReplays) {
+  Case c = step_case(0.1, 10.0, 0.0, 1.0, 1.0); // a1 = 1
+  c.rheology.branches = {{5.0, 0.05}, {4.0, 2.0}};
+  const spectrum::Law law(c.rheology);
+  const RunControl control;
+  const double d = 0.1, dx = 1.0 / 32.0, dt = 0.05;
+  auto trials = [&](const std::vector<double>& depths) {
+    spectrum::Row row(c, law, d, dx, 1.5, 0.3, 0.25, 1e-9, control, "test");
+    row.start_stationary(0.5, d);
+    row.change_velocity(0.0, 0.0);
+    row.advance(dt, 1.001 * d, 0.0);
+    spectrum::Row::Snapshot snap;
+    row.save(snap);
+    State st;
+    for (const double d1 : depths) {
+      row.restore(snap);
+      row.advance(dt, d1, 0.0);
+      st = row.measure(spectrum::Edge::Predicted);
+      st = row.measure(spectrum::Edge::Confirmed);
+    }
+    return st;
+  };
+  const double d1 = 1.002 * d, d2 = 1.003 * d;
+  const State alone = trials({d2}), after = trials({d1, d2}), other = trials({d1});
+  EXPECT_NE(other.FN, alone.FN); // (the trials differ)
+  EXPECT_EQ(after.FN, alone.FN);
+  EXPECT_EQ(after.Fx, alone.Fx);
+  EXPECT_EQ(after.a2, alone.a2);
+}
+
 } // namespace
 } // namespace mdrmap

@@ -19,13 +19,20 @@ constexpr long long kZoneCells = 1, kZoneSplit = 8;
 // (2-point Gauss: exact for cubics); 0 for an empty interval.
 double poly_integral(const double* x, const double* f, int k, double lo, double hi) {
   if (!(hi > lo)) return 0.0;
+  double c[4]; // f_i over the Lagrange basis' denominators (formed once for both points)
+  for (int i = 0; i < k; ++i) {
+    double den = 1.0;
+    for (int j = 0; j < k; ++j)
+      if (j != i) den *= x[i] - x[j];
+    c[i] = f[i] / den;
+  }
   auto poly = [&](double t) {
     double s = 0.0;
     for (int i = 0; i < k; ++i) {
-      double l = 1.0;
+      double l = c[i];
       for (int j = 0; j < k; ++j)
-        if (j != i) l *= (t - x[j]) / (x[i] - x[j]);
-      s += f[i] * l;
+        if (j != i) l *= t - x[j];
+      s += l;
     }
     return s;
   };

@@ -1,5 +1,6 @@
 #include "core/solvers/spectrum_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -171,6 +172,15 @@ double Law::pressure_rate(double u, double du, double ddu, const double* q) cons
   for (std::size_t k = 0; k < n_; ++k)
     s -= Gk_[k] * (u - q[k]) / tk_[k];
   return s;
+}
+
+double Law::free_span(const double* z0, double* z, double T) const {
+  double floor = 0.0;
+  for (std::size_t i = 0; i < m_; ++i) {
+    z[i] = z0[i] * decay(rate_[i] * T);
+    floor += std::min(cu_[i] * z0[i], cu_[i] * z[i]);
+  }
+  return floor;
 }
 
 double Law::free_rate(const double* z) const {

@@ -81,6 +81,11 @@ public:
   /// The free update of z in place (its state before kept in z0) and the
   /// depression after it: bit for bit free_step and free_u(z), in one pass.
   double free_step_u(double* z, double* z0, const StepCoef& c) const;
+  /// The free update over T from z0 into z (z_i = z0_i exp(L_i T), no
+  /// coefficient set formed) and a floor of the depression u over [0, T]:
+  /// each mode's term cu_i z_i(t) of u is monotone in t, so the lesser of its
+  /// ends bounds it (Row::free_until).
+  double free_span(const double* z0, double* z, double T) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
   /// Its rate (each mode decays at its rate).

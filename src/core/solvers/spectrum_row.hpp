@@ -58,7 +58,11 @@
 // runs); the points lie on a lattice of the tolerance and their replays are
 // cached at the last saved log entry, so a point that recurs, over the trials
 // of a step under load and over the steps of a hold, continues from there
-// instead of from its entry.
+// instead of from its entry (and its state at the log's end is kept until the
+// log changes: a trial's confirmed measure replays nothing again). A free
+// point at rest crosses the steps of a hold in spans where its gap is
+// bounded below zero (free_until): under load each step is its own depth
+// path, which uniform_until cannot merge.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -159,6 +163,7 @@ private:
     std::shared_ptr<const Grid> g; // (consecutive steps with the same grid share it)
     double d0 = 0.0, s = 0.0;      // depth at the start, its rate over the step (a change: d, dd)
     double k = 0.0;                // the depth's curvature: d0 + s t + k t (t - dt)
+    double top = 0.0;              // the deepest over the step (deepest(), set by logged())
   };
   /// The depth along a (sub-)step from its start: d + r t + k t^2.
   struct Path {
@@ -172,13 +177,19 @@ private:
     double y[kMaxBranches + 1] = {};
   };
   /// Material point J replayed through the first n log entries (gone: past
-  /// the window and free, never to touch again); used: the last measure.
+  /// the window and free, never to touch again); used: the last measure;
+  /// tail: its state at the log's end where the log is still at generation
+  /// tail_gen (the measures of a trial and of its confirmation replay the
+  /// same trial step).
   struct Tracer {
     long double J = 0.0L;
     std::size_t n = 0;
     bool gone = false;
     long used = 0;
     Material m;
+    std::uint64_t tail_gen = 0;
+    Material tail;
+    std::size_t next = SIZE_MAX; // the tracer found after it, the last time
   };
   void set_position(long double P);
   /// The sub-steps of a step of dt at w where the contact is a (none longer
@@ -195,6 +206,9 @@ private:
   static double deepest(const Entry& e);
   std::vector<Entry>::const_iterator uniform_until(std::vector<Entry>::const_iterator it,
                                                    std::vector<Entry>::const_iterator end) const;
+  std::vector<Entry>::const_iterator free_until(std::vector<Entry>::const_iterator it,
+                                                std::vector<Entry>::const_iterator end,
+                                                Material& mt, double x) const;
   static double total_time(std::vector<Entry>::const_iterator first,
                            std::vector<Entry>::const_iterator last);
   long carry(Material& mt, bool& gone, long double J, std::size_t from, std::size_t to) const;
@@ -372,6 +386,8 @@ private:
   };
   mutable Span span_;
   mutable std::vector<Tracer> tracers_;   // replayed points, carried on from here
+  std::uint64_t log_gen_ = 1;             // changes with every entry logged or dropped
+  mutable std::size_t last_ = SIZE_MAX;   // the tracer found last (tracer())
   std::vector<Seam> seams_;               // kinks of p(x) that may lie in the contact
   mutable std::size_t stable_ = SIZE_MAX; // log entries no restore drops (set by save)
   mutable long measures_ = 0;
