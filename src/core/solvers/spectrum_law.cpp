@@ -5,31 +5,22 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/numerics/phi.hpp"
+
 namespace mdrmap::spectrum {
 namespace {
 
 // phi_a(z) = 1 - (1 - e^-z)/z and phi_b(z) = 1 - 2/z + 2 (1 - e^-z)/z^2: the
 // response of tau q' = u - q (q(0) = 0) to u = t and u = t^2, over dt, in
-// units of dt and dt^2 (z = dt/tau, e = e^-z). Series below z = 0.5, where
-// the closed form cancels. (These are z phi_2(z) and 2 z phi_3(z) of
-// numerics/phi.hpp, which agrees to a few ulps; kept here because the steady
-// runs of tests/test_spectrum_steady.cpp at v tau/a1 = 1e-5 under load move
-// with the last bits: there mu's error is the row's solver tolerances, which
-// the estimate does not see.)
+// units of dt and dt^2 (z = dt/tau, e = e^-z): z phi_2(z) and 2 z phi_3(z) of
+// numerics/phi.hpp. Below z = 0.5, where the closed form cancels, phi_3 by
+// its series (Horner's rule, as phi.hpp) and phi_2 = 1/2 - z phi_3.
 void phis(double z, double e, double& pa, double& pb) {
   if (z < 0.5) {
-    // term = (-1)^(n+1) z^(n-1)/(n+1)!, from n = 1, until it no longer counts
-    double term = 0.5;
-    pa = 0.0;
-    pb = 0.0;
-    for (int n = 1; n < 30; ++n) {
-      pa += term * z;
-      if (n >= 2) pb -= 2.0 * term; // (-1)^n vs the (-1)^(n+1) of pa
-      // (for z >= 0, |pa / z| <= 1/2: a term of 6e-18 or more is not the
-      // last, and the division is left out while the terms are larger)
-      if ((z < 0.0 || std::abs(term) < 6e-18) && std::abs(term) < 1e-17 * std::abs(pa / z)) break;
-      term *= -z / static_cast<double>(n + 2);
-    }
+    double p[4];
+    numerics::phi_detail::series_down(z, p, 3);
+    pa = z * p[2];
+    pb = 2.0 * z * p[3];
     return;
   }
   const double omd = 1.0 - e; // (e <= 0.61: no cancellation)
