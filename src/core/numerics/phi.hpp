@@ -72,16 +72,22 @@ inline void recurrence_up(double z, double e, double* out, int top) {
 
 } // namespace phi_detail
 
-/// phi_0(z), ..., phi_(N-1)(z) at once (1 <= N <= 6; out[0] = exp(-z)).
-template <std::size_t N> void phi_all(double z, double (&out)[N]) {
+/// phi_0(z), ..., phi_(N-1)(z) at once from e = exp(-z), for a caller that
+/// has it (1 <= N <= 6; out[0] = e).
+template <std::size_t N> void phi_all(double z, double e, double (&out)[N]) {
   static_assert(N >= 1 && N <= phi_detail::kMaxN + 1, "phi_all: 1 to 6 functions");
-  out[0] = std::exp(-z);
+  out[0] = e;
   if (N == 1) return;
   constexpr int top = static_cast<int>(N) - 1;
   if (std::abs(z) <= 2.0)
     phi_detail::series_down(z, out, top);
   else
-    phi_detail::recurrence_up(z, out[0], out, top);
+    phi_detail::recurrence_up(z, e, out, top);
+}
+
+/// phi_0(z), ..., phi_(N-1)(z) at once (1 <= N <= 6; out[0] = exp(-z)).
+template <std::size_t N> void phi_all(double z, double (&out)[N]) {
+  phi_all(z, std::exp(-z), out);
 }
 
 /// phi_n(z) for 0 <= n <= 5 and any real z (exp(-z) overflows for z < -709).

@@ -13,12 +13,12 @@ namespace {
 // phi_a(z) = 1 - (1 - e^-z)/z and phi_b(z) = 1 - 2/z + 2 (1 - e^-z)/z^2: the
 // response of tau q' = u - q (q(0) = 0) to u = t and u = t^2, over dt, in
 // units of dt and dt^2 (z = dt/tau, e = e^-z): z phi_2(z) and 2 z phi_3(z) of
-// numerics/phi.hpp. Below z = 0.5, where the closed form cancels, phi_3 by
-// its series (Horner's rule, as phi.hpp) and phi_2 = 1/2 - z phi_3.
+// numerics/phi.hpp, taken from there below z = 0.5, where the closed form
+// cancels (phi_3 by its series, phi_2 = 1/2 - z phi_3).
 void phis(double z, double e, double& pa, double& pb) {
   if (z < 0.5) {
     double p[4];
-    numerics::phi_detail::series_down(z, p, 3);
+    numerics::phi_all(z, e, p);
     pa = z * p[2];
     pb = 2.0 * z * p[3];
     return;

@@ -562,6 +562,11 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
   double z[kMaxBranches + 1], best[kMaxBranches + 1];
   double T = it->dt, top = it->top;
   const double u0 = law_.free_u(mt.y); // (the floor is below it: no span holds where it fails)
+  // the gap's bound over a span of total time Ts reaching the depth `deepest`
+  // is negative (z: the state after it)
+  auto stays_free = [&](double Ts, double deepest) {
+    return depth(x, deepest) - u0 < 0.0 && depth(x, deepest) - law_.free_span(mt.y, z, Ts) < 0.0;
+  };
   auto last = it;
   { // the whole run at rest first (a point behind the edge mostly stays free through it)
     double Ta = T, ta = top;
@@ -571,7 +576,7 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
       Ta += cur->dt;
       ta = std::max(ta, cur->top);
     }
-    if (cur != it && depth(x, ta) - u0 < 0.0 && depth(x, ta) - law_.free_span(mt.y, z, Ta) < 0.0) {
+    if (cur != it && stays_free(Ta, ta)) {
       std::copy(z, z + law_.free_dim(), mt.y);
       return cur;
     }
@@ -582,7 +587,7 @@ std::vector<Row::Entry>::const_iterator Row::free_until(std::vector<Entry>::cons
     T += cur->dt;
     top = std::max(top, cur->top);
     if (++n < next && rest(cur + 1)) continue;
-    if (!(depth(x, top) - u0 < 0.0) || !(depth(x, top) - law_.free_span(mt.y, z, T) < 0.0)) break;
+    if (!stays_free(T, top)) break;
     std::copy(z, z + law_.free_dim(), best);
     last = cur;
     next *= 2;
