@@ -83,15 +83,101 @@ ProbeRule quiet_start(ProbeRule r, bool steady, double travel) {
   return r;
 }
 
-ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
-                       double fine, const SpectrumOptions& o, const RunControl& control,
-                       StationaryStates& states) {
+/// The row counts the indenter's travel in cells (up to 1e18 over the
+/// history, else the case is abandoned).
+void check_travel(const Case& c, double cells) {
   double travel = 2.0 * cells + 8.0;
   for (const auto& seg : c.history.segments)
     travel += seg.w * seg.T / (c.a1() / cells);
   if (!(travel < 1e18))
     throw CaseAbandoned("row: the indenter travels " + format_number(travel) +
                         " cells over the history, more than the element row can count (1e18)");
+}
+
+/// A fixed-depth run at a segment's t = 0+, for a quiet start (ProbeSkip):
+/// the row, its stationary watch and the last state measured, which a try
+/// that is not quiet restores.
+struct Checkpoint {
+  explicit Checkpoint(const StationaryWatch& w) : watch(w) {}
+  void save(spectrum::Row& r, const StationaryWatch& w, const State& now) {
+    r.renumber();
+    r.save(row);
+    watch = w;
+    last = now;
+  }
+  void restore(spectrum::Row& r, StationaryWatch& w, State& now) const {
+    r.restore(row);
+    w = watch;
+    now = last;
+  }
+  spectrum::Row::Snapshot row;
+  StationaryWatch watch;
+  State last;
+};
+
+/// The row at fixed depth over the history (sample_history's callbacks): a
+/// segment that has reached its stationary state keeps it
+/// (stationary_watch.hpp).
+class DepthRun {
+public:
+  DepthRun(const Case& c, spectrum::Row& row, StationaryWatch watch, StationaryStates& states)
+      : row_(row), watch_(watch), states_(states), at_change_(watch), w_now_(c.history.v0),
+        w_before_(w_now_) {}
+
+  void change(double w) {
+    steady_ = first_ || watch_.frozen();
+    first_ = false;
+    row_.change_velocity(w);
+    w_before_ = w_now_;
+    w_now_ = w;
+    watch_.start(w, true);
+  }
+  void advance(double dt) {
+    if (watch_.frozen()) return;
+    row_.renumber();
+    row_.advance(dt);
+    watch_.moved(w_now_ * dt);
+  }
+  State measure(spectrum::Edge edge) {
+    if (watch_.frozen()) return now_;
+    now_ = row_.measure(edge);
+    if (!watch_.due()) return now_;
+    const State& ss = states_.at(w_now_);
+    if (!(ss.FN > 0.0)) {
+      watch_.stop();
+      return now_;
+    }
+    watch_.check(now_.FN / ss.FN - 1.0,
+                 (now_.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
+    // (the state a frozen segment keeps for its samples: at the confirmed edge)
+    if (watch_.frozen() && edge != spectrum::Edge::Confirmed) now_ = row_.measure();
+    return now_;
+  }
+  /// The segment's probe rule: `probe`, with a quiet start where it starts
+  /// from a stationary state (quiet_start; a1: the contact's width).
+  ProbeRule rule(const ProbeRule& probe, double a1) const {
+    return quiet_start(probe, steady_, a1 / std::max(w_before_, w_now_));
+  }
+  /// The quiet start's checkpoint (ProbeSkip): saved at t = 0+, and back.
+  void save() { at_change_.save(row_, watch_, now_); }
+  void restore() { at_change_.restore(row_, watch_, now_); }
+
+private:
+  spectrum::Row& row_;
+  StationaryWatch watch_;
+  StationaryStates& states_;
+  Checkpoint at_change_;
+  State now_;
+  double w_now_, w_before_;
+  // the segment starts from a stationary state (the pre-state, or a frozen
+  // segment): its first probes may be skipped where quiet (ProbeSkip)
+  bool first_ = true, steady_ = true;
+};
+
+ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, double phase,
+                       double fine, const SpectrumOptions& o, const RunControl& control,
+                       StationaryStates& states) {
+  check_travel(c, cells);
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.set_layer_width(c.a1() / fine);
   row.start_stationary(c.history.v0);
@@ -99,13 +185,9 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // (the companions of the estimate, at other phases, are not probed: their
   // series serve the estimate only)
   const ProbeRule probe{kFirstProbe * shortest_time(c, c.a1()), kProbeRatio, phase != o.phase};
-  // a segment that has reached its stationary state keeps it (stationary_watch.hpp)
-  StationaryWatch watch(o.rtol, 2.0 * c.a1(), o.keep_stationary);
-  State now;
-  double w_now = c.history.v0, w_before = w_now;
-  // the segment starts from a stationary state (the pre-state, or a frozen
-  // segment): its first probes may be skipped where quiet (ProbeSkip)
-  bool first = true, steady = true;
+  DepthRun run(c, row, StationaryWatch(o.rtol, 2.0 * c.a1(), o.keep_stationary), states);
+  const ProbeSkip skip{[&] { run.save(); }, [&] { run.restore(); },
+                       [&](double mu0, double mu) { return quiet(mu0, mu, o.rtol); }};
   // The samples measure at the confirmed trailing edge; the probes (the
   // event metrics' instants, most of the steps after a change of a broad
   // spectrum: 24 a decade from 1e-2 of its shortest time) where the contact
@@ -113,56 +195,11 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   // inside the edge's cell the force there is ~0 and an O(dx^4) shift of the
   // edge moves the forces by O(dx^8); elsewhere (a re-touch front, the tip's
   // cell) the confirmed search runs anyway (Row::predicted_only).
-  spectrum::Row::Snapshot snap;
-  StationaryWatch watch_at_change = watch;
-  State now_at_change;
-  const ProbeSkip skip{[&] {
-                         row.renumber();
-                         row.save(snap);
-                         watch_at_change = watch;
-                         now_at_change = now;
-                       },
-                       [&] {
-                         row.restore(snap);
-                         watch = watch_at_change;
-                         now = now_at_change;
-                       },
-                       [&](double mu0, double mu) { return quiet(mu0, mu, o.rtol); }};
-  auto measure = [&](spectrum::Edge edge) {
-    if (watch.frozen()) return now;
-    now = row.measure(edge);
-    if (!watch.due()) return now;
-    const State& ss = states.at(w_now);
-    if (!(ss.FN > 0.0)) {
-      watch.stop();
-      return now;
-    }
-    watch.check(now.FN / ss.FN - 1.0,
-                (now.mu - ss.mu) / std::max(std::abs(ss.mu), kNegligibleFriction));
-    // (the state a frozen segment keeps for its samples: at the confirmed edge)
-    if (watch.frozen() && edge != spectrum::Edge::Confirmed) now = row.measure();
-    return now;
-  };
   out.series = sample_history(
-      c, control,
-      [&](double w) {
-        steady = first || watch.frozen();
-        first = false;
-        row.change_velocity(w);
-        w_before = w_now;
-        w_now = w;
-        watch.start(w, true);
-      },
-      [&](double dt, double) {
-        if (watch.frozen()) return;
-        row.renumber();
-        row.advance(dt);
-        watch.moved(w_now * dt);
-      },
-      [&] { return measure(spectrum::Edge::Confirmed); },
-      [&] { return measure(spectrum::Edge::Predicted).mu; },
-      [&](std::size_t) { return quiet_start(probe, steady, c.a1() / std::max(w_before, w_now)); },
-      out.probes, skip);
+      c, control, [&](double w) { run.change(w); }, [&](double dt, double) { run.advance(dt); },
+      [&] { return run.measure(spectrum::Edge::Confirmed); },
+      [&] { return run.measure(spectrum::Edge::Predicted).mu; },
+      [&](std::size_t) { return run.rule(probe, c.a1()); }, out.probes, skip);
   out.elements = static_cast<long>(row.capacity());
   out.steps = row.steps();
   out.updates = row.updates();
