@@ -97,6 +97,91 @@ inline std::vector<double> probe_times(const ProbeRule& r, double until, double 
   return ts;
 }
 
+namespace probe_detail {
+
+/// Where the probes of sample_history (below) stand: the segment's probes
+/// and rule, the offset reached in it and its next probe.
+struct ProbeCursor {
+  Probes* p = nullptr; // the segment's (none before the first change: pre)
+  std::size_t k = 0;
+  double prev = 0.0, next = 0.0, T = 0.0;
+  ProbeRule r;
+  bool try_skip = false; ///< a quiet start (ProbeSkip) still to try
+};
+
+/// A change to w starts the next segment k (after the solver's change(w):
+/// `rule(k)` may depend on it): its probes go to probes[k].
+template <class Rule>
+void start_segment(ProbeCursor& s, const Case& c, double w, Rule& rule, std::vector<Probes>& probes,
+                   const ProbeSkip& skip) {
+  if (s.p != nullptr) ++s.k;
+  s.p = &probes[s.k];
+  s.r = rule(s.k);
+  if (c.history.before(s.k) == w) s.r.off = true; // no change: the samples suffice
+  s.T = c.history.segments[s.k].T;
+  s.prev = 0.0;
+  s.next = s.r.next(0.0);
+  s.try_skip = skip.on() && !s.r.off && s.r.quiet_until > 0.0;
+}
+
+/// The quiet start (see ProbeSkip; at the segment's first advance, mu(0+)
+/// probed, to before `target`): jumps to the latest quiet probe tried, if any.
+template <class Advance, class Probe>
+void skip_quiet(ProbeCursor& s, double target, double w, Advance& advance, Probe& probe,
+                const ProbeSkip& skip) {
+  const std::vector<double> ts = probe_times(s.r, s.r.quiet_until, target);
+  const auto decade = static_cast<std::size_t>(std::log(10.0) / std::log1p(s.r.ratio));
+  for (std::size_t m = ts.size(); m > 0; m = m > decade ? m - decade : 0) {
+    const double t = ts[m - 1];
+    skip.save();
+    advance(t, w);
+    const double mu = probe();
+    if (skip.quiet(s.p->mu.front(), mu)) {
+      s.p->t.push_back(t);
+      s.p->mu.push_back(mu);
+      s.prev = t;
+      s.next = s.r.next(t);
+      return;
+    }
+    skip.restore();
+  }
+}
+
+/// advance(dt, w) to the next output instant, through the segment's probes
+/// before it (probe() at each), trying the quiet start first.
+template <class Advance, class Probe>
+void advance_probing(ProbeCursor& s, double dt, double w, Advance& advance, Probe& probe,
+                     const ProbeSkip& skip) {
+  const double target = s.prev + dt;
+  if (s.try_skip && dt > 0.0) { // (the first advance past t = 0: mu(0+) is the probe there)
+    s.try_skip = false;
+    if (s.prev == 0.0 && s.p->t.size() == 1) skip_quiet(s, target, w, advance, probe, skip);
+  }
+  for (; !s.r.off && s.next < target; s.next = s.r.next(s.next)) {
+    advance(s.next - s.prev, w);
+    s.prev = s.next;
+    s.p->t.push_back(s.next);
+    s.p->mu.push_back(probe());
+  }
+  advance(target - s.prev, w);
+  s.prev = target;
+}
+
+/// The mu of a measure() as a probe where the instant is one: mu(0+), a
+/// probe's instant or the segment's end (not an output instant only).
+inline void probe_measured(ProbeCursor& s, double mu) {
+  if (s.p == nullptr || s.r.off) return;
+  if (s.prev == s.next)
+    s.next = s.r.next(s.next);
+  else if (s.prev != 0.0 && s.prev != s.T)
+    return;                                               // an output instant only
+  if (!s.p->t.empty() && s.p->t.back() == s.prev) return; // (the end twice: no samples between)
+  s.p->t.push_back(s.prev);
+  s.p->mu.push_back(mu);
+}
+
+} // namespace probe_detail
+
 /// sample_history, and between the output instants the probes of `rule(k)`
 /// for segment k: advance to each, probe() there into probes[k] (with the
 /// measure() of mu(0+) and of the segment's end, which every sampling has).
@@ -107,66 +192,17 @@ Series sample_history(const Case& c, const RunControl& control, Change change, A
                       Measure measure, Probe probe, Rule rule, std::vector<Probes>& probes,
                       const ProbeSkip& skip = {}) {
   probes.assign(c.history.size(), Probes{});
-  Probes* p = nullptr; // the segment's (none before the first change: pre)
-  std::size_t k = 0;
-  double prev = 0.0, next = 0.0, T = 0.0;
-  ProbeRule r;
-  bool try_skip = false;
-  // (see ProbeSkip; at the segment's first advance, mu(0+) probed, to before `target`)
-  auto skip_quiet = [&](double target, double w) {
-    const std::vector<double> ts = probe_times(r, r.quiet_until, target);
-    const auto decade = static_cast<std::size_t>(std::log(10.0) / std::log1p(r.ratio));
-    for (std::size_t m = ts.size(); m > 0; m = m > decade ? m - decade : 0) {
-      const double t = ts[m - 1];
-      skip.save();
-      advance(t, w);
-      const double mu = probe();
-      if (skip.quiet(p->mu.front(), mu)) {
-        p->t.push_back(t);
-        p->mu.push_back(mu);
-        prev = t;
-        next = r.next(t);
-        return;
-      }
-      skip.restore();
-    }
-  };
+  probe_detail::ProbeCursor s;
   auto change_k = [&](double w) {
     change(w);
-    if (p != nullptr) ++k;
-    p = &probes[k];
-    r = rule(k);
-    if (c.history.before(k) == w) r.off = true; // no change: the samples suffice
-    T = c.history.segments[k].T;
-    prev = 0.0;
-    next = r.next(0.0);
-    try_skip = skip.on() && !r.off && r.quiet_until > 0.0;
+    probe_detail::start_segment(s, c, w, rule, probes, skip);
   };
   auto advance_k = [&](double dt, double w) {
-    const double target = prev + dt;
-    if (try_skip && dt > 0.0) { // (the first advance past t = 0: mu(0+) is the probe there)
-      try_skip = false;
-      if (prev == 0.0 && p->t.size() == 1) skip_quiet(target, w);
-    }
-    for (; !r.off && next < target; next = r.next(next)) {
-      advance(next - prev, w);
-      prev = next;
-      p->t.push_back(next);
-      p->mu.push_back(probe());
-    }
-    advance(target - prev, w);
-    prev = target;
+    probe_detail::advance_probing(s, dt, w, advance, probe, skip);
   };
   auto measure_k = [&] {
     const State st = measure();
-    if (p == nullptr || r.off) return st;
-    if (prev == next)
-      next = r.next(next);
-    else if (prev != 0.0 && prev != T)
-      return st;                                         // an output instant only
-    if (!p->t.empty() && p->t.back() == prev) return st; // (the end twice: no samples between)
-    p->t.push_back(prev);
-    p->mu.push_back(st.mu);
+    probe_detail::probe_measured(s, st.mu);
     return st;
   };
   return sample_history(c, control, change_k, advance_k, measure_k);
