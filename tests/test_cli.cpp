@@ -7,13 +7,17 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
+#include <random>
 #include <regex>
 #include <set>
 #include <spawn.h>
@@ -2957,4 +2961,93 @@ TEST(cli, StudyHelpHasNoStaleProfileStatement) {
   ASSERT_EQ(r.code, 0);
   EXPECT_EQ(r.out.find("case fails"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("parabola only"), std::string::npos) << r.out;
+}
+
+// --- The tables' number format (app/csv_output.hpp) ---------------------------
+
+namespace {
+
+/// What write_csv_line writes for these values, read back from a temporary file.
+std::string csv_line_text(const std::vector<double>& values) {
+  std::FILE* f = std::tmpfile();
+  if (f == nullptr) return "(no tmpfile)";
+  mdrmap::app::write_csv_line(f, values.data(), values.size());
+  std::rewind(f);
+  std::string text;
+  for (int ch = std::fgetc(f); ch != EOF; ch = std::fgetc(f))
+    text += static_cast<char>(ch);
+  std::fclose(f);
+  return text;
+}
+
+/// format_double's rule: printf's "%.17g", but "nan" for every NaN and "0" for -0.
+std::string printf_g17(double x) {
+  if (std::isnan(x)) return "nan";
+  if (x == 0.0) return "0";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+} // namespace
+
+TEST(CsvFormat, FormatDoubleIsPercent17gWithoutMinusZeroOrMinusNan) {
+  using mdrmap::app::format_double;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::pair<double, const char*> cases[] = {
+      {0.1, "0.10000000000000001"},
+      {1e-300, "1e-300"},
+      {1e-5, "1.0000000000000001e-05"},
+      {-0.0, "0"},
+      {0.0, "0"},
+      {1.0, "1"},
+      {100.0, "100"},
+      {1e16, "10000000000000000"},
+      {1e21, "1e+21"},
+      {123456789012345678.0, "1.2345678901234568e+17"},
+      {5e-324, "4.9406564584124654e-324"},
+      {-2.2250738585072014e-308, "-2.2250738585072014e-308"},
+      {1.7976931348623157e308, "1.7976931348623157e+308"},
+      {inf, "inf"},
+      {-inf, "-inf"},
+      {nan, "nan"},
+      {-nan, "nan"}};
+  for (const auto& [x, text] : cases) {
+    EXPECT_EQ(format_double(x), text);
+    char buf[mdrmap::app::kDoubleChars];
+    EXPECT_EQ(std::string(buf, mdrmap::app::format_double_to(buf, x)), text);
+  }
+}
+
+TEST(CsvFormat, FormatDoubleToMatchesPrintfOnRandomBits) {
+  std::mt19937_64 bits(20261129);
+  for (int n = 0; n < 20000; ++n) {
+    const std::uint64_t b = bits();
+    double x;
+    std::memcpy(&x, &b, sizeof x);
+    char buf[mdrmap::app::kDoubleChars];
+    char* end = mdrmap::app::format_double_to(buf, x);
+    ASSERT_LE(end - buf, static_cast<std::ptrdiff_t>(mdrmap::app::kDoubleChars));
+    ASSERT_EQ(std::string(buf, end), printf_g17(x)) << "bits " << b;
+    ASSERT_EQ(mdrmap::app::format_double(x), printf_g17(x)) << "bits " << b;
+  }
+}
+
+TEST(CsvFormat, CsvLineIsFormatDoubleCommaSeparatedWithNewline) {
+  using mdrmap::app::format_double;
+  const std::vector<double> row = {
+      0.1, 1e-300, -0.0, 123456789012345678.0, 5e-324, std::numeric_limits<double>::quiet_NaN()};
+  EXPECT_EQ(csv_line_text(row),
+            "0.10000000000000001,1e-300,0,1.2345678901234568e+17,4.9406564584124654e-324,nan\n");
+  EXPECT_EQ(csv_line_text({}), "\n");
+  EXPECT_EQ(csv_line_text({-1.5}), "-1.5\n");
+  // a line longer than the writer's stack buffer: the same text
+  std::vector<double> wide;
+  std::string want;
+  for (int k = 0; k < 40; ++k) {
+    wide.push_back(-2.2250738585072014e-308 * static_cast<double>(k + 1));
+    want += (k == 0 ? "" : ",") + format_double(wide.back());
+  }
+  EXPECT_EQ(csv_line_text(wide), want + "\n");
 }

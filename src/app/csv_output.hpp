@@ -50,6 +50,7 @@
 //
 // Every floating-point number is printed with 17 significant digits, which
 // reads back to the same double.
+#include <cstddef>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -63,6 +64,19 @@ namespace mdrmap::app {
 /// `%.17g`: round-trips every finite double; NaN prints as "nan" (never
 /// "-nan"), -0 as "0".
 std::string format_double(double x);
+
+/// The room format_double_to needs: its longest text is 24 characters
+/// ("-2.2250738585072014e-308").
+inline constexpr std::size_t kDoubleChars = 32;
+
+/// Writes format_double(x) at `p`, which has room for kDoubleChars
+/// characters, and returns the end of what it wrote (no terminating NUL):
+/// format_double without a std::string, for the rows of a table.
+char* format_double_to(char* p, double x);
+
+/// Writes one CSV line to `out`: format_double of each of the n values,
+/// comma-separated, then '\n', in one fwrite.
+void write_csv_line(std::FILE* out, const double* values, std::size_t n);
 
 /// A history as "W1:T1,W2:T2,...", each number with 17 significant digits.
 std::string format_history(const History& h);

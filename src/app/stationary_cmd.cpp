@@ -107,10 +107,8 @@ void write_csv(std::FILE* out, const StationaryInput& a, const std::vector<State
   std::fprintf(out, "%s\n%s\n", stationary_case_line(a.in.c, a.in.temperature).c_str(), kColumns);
   for (std::size_t k = 0; k < states.size(); ++k) {
     const State& s = states[k];
-    std::string row = format_double(a.velocities[k]);
-    for (const double x : {s.d, s.a1, s.a2, s.FN, s.Fx, s.mu})
-      row += "," + format_double(x);
-    std::fprintf(out, "%s\n", row.c_str());
+    const double row[] = {a.velocities[k], s.d, s.a1, s.a2, s.FN, s.Fx, s.mu};
+    write_csv_line(out, row, sizeof row / sizeof row[0]);
   }
 }
 
