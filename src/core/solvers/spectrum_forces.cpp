@@ -358,9 +358,8 @@ Row::Layer Row::leading_layer() const {
 double Row::Layer::at(double s) const {
   double v = s < s_c ? shift : 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (s < s_c && now[i].amp != 0.0) v += now[i].amp * std::exp(-s / now[i].width);
-    if (s >= s_c && before[i].amp != 0.0)
-      v += before[i].amp * std::exp(-(s - s_c) / before[i].width);
+    if (s < s_c && now[i].amp != 0.0) v += now[i].amp * decay(s / now[i].width);
+    if (s >= s_c && before[i].amp != 0.0) v += before[i].amp * decay((s - s_c) / before[i].width);
   }
   return v;
 }

@@ -28,14 +28,6 @@ void phis(double z, double e, double& pa, double& pb) {
   pb = 1.0 - 2.0 / z + 2.0 * omd / (z * z);
 }
 
-// exp(-z), without the call where it underflows to 0 (z >= 746: below half
-// the least subnormal), as it does for the fast branches and modes over most
-// steps (of 11 terms 1e-9 .. 10, the four fastest over a step of 1e-3):
-// glibc's exp takes its slow path there.
-double decay(double z) {
-  return z >= 746.0 ? 0.0 : std::exp(-z);
-}
-
 } // namespace
 
 void jacobi_eigen(std::vector<double>& a, std::size_t n, std::vector<double>& lam,

@@ -269,7 +269,10 @@ void Row::grid(Grid& g, double dt, double w, double a, double longest) const {
   // sub-step; step_material would take its coefficients for a full one)
   if (g.K > 1 && !(dt - static_cast<double>(g.K - 1) * g.D > 0.0)) --g.K;
   law_.coef(dt - static_cast<double>(g.K - 1) * g.D, g.first);
-  law_.coef(g.D, g.full);
+  if (g.K == 1 && g.first.dt == g.D)
+    g.full = g.first; // (one sub-step: the same set, formed once)
+  else
+    law_.coef(g.D, g.full);
 }
 
 double Row::full_substep(double dt, double w, double a) const {
