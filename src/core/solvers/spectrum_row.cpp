@@ -325,14 +325,17 @@ void Row::advance(double dt, double d1, double dd1) {
       Entry{dt, w_, P_, step_grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k});
   logged();
   const Grid& g = *log_.back().g;
-  for (long long j = jlo_; j <= jhi_; ++j) {
-    const std::size_t sl = slot(j);
-    if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
-    const long before = updates_;
-    step_material(mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, Path{d0, s - k * dt, k});
-    // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
-    control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
-  }
+  shape([&](const auto& img) {
+    for (long long j = jlo_; j <= jhi_; ++j) {
+      const std::size_t sl = slot(j);
+      if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
+      const long before = updates_;
+      step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g,
+                    Path{d0, s - k * dt, k});
+      // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
+      control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
+    }
+  });
   if (d1 > 0.0) {
     d_ = d1;
     dd_ = dd1;
@@ -371,11 +374,17 @@ void Row::too_much_memory() const {
 // depth p.at(t).
 void Row::step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
                         const Path& p) const {
+  shape([&](const auto& img) { step_material(img, md, y, xe, dt, w, g, p); });
+}
+
+template <class Img>
+void Row::step_material(const Img& img, Mode& md, double* y, double xe, double dt, double w,
+                        const Grid& g, const Path& p) const {
   double t = 0.0;
   if (md == Mode::Fresh) { // enters where the leading edge -a1(t) passes it
     const double xs = xe - w * dt;
     auto behind = [&](double tt) { // > 0 while ahead of the edge
-      return -(xs + w * tt) - radius(std::max(0.0, p.at(tt)));
+      return -(xs + w * tt) - img.leading_edge(std::max(0.0, p.at(tt)));
     };
     if (!(behind(dt) < 0.0)) return;
     t = solve(behind, dt);
@@ -403,7 +412,8 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
       law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
     }
     ++updates_;
-    const double done = substep(md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents, p.from(t));
+    const double done =
+        substep(img, md, y, xe - w * (dt - t), h, w, *c, events < kMaxEvents, p.from(t));
     if (done < h) {
       t += done;
       ++events;
@@ -417,26 +427,27 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
 // the exact update, or, where the element switches during it (if it still
 // may), the update up to the switch, located, and the switch. Returns the time
 // advanced.
-double Row::substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                    bool may_switch, const Path& q) const {
+template <class Img>
+double Row::substep(const Img& img, Mode& md, double* y, double x, double h, double w,
+                    const StepCoef& c, bool may_switch, const Path& q) const {
   // (stepped in place, its start kept in y0: a switch's search starts there)
   double y0[kMaxBranches + 1], tmp[kMaxBranches + 1];
   StepCoef& at = coef_scratch_[1];
   const double xn = x + w * h, dn = q.at(h);
   if (md == Mode::Contact) {
-    const Forcing u = forcing(x, w, h, q);
-    const double p = law_.contact_step_pressure(y, y0, depth(xn, dn), q.rate(h) - lift(xn, w), u.h0,
-                                                u.h1, u.h2, c);
+    const auto u = img.template forcing<Forcing>(x, w, h, q);
+    const double p = law_.contact_step_pressure(y, y0, img.depth(xn, dn),
+                                                q.rate(h) - img.lift(xn, w), u.h0, u.h1, u.h2, c);
     if (!(may_switch && p < -p_tiny_)) return h;
     const double tc = locate(true, y0, x, h, w, q, c); // lets go
     law_.coef(tc, at, Part::Contact);
     law_.contact_step(y0, tmp, u.h0, u.h1, u.h2, at);
-    law_.to_modal(depth(x + w * tc, q.at(tc)), tmp, y);
+    law_.to_modal(img.depth(x + w * tc, q.at(tc)), tmp, y);
     md = Mode::Free;
     return tc;
   }
-  const double gap = depth(xn, dn) - law_.free_step_u(y, y0, c);
-  if (!(may_switch && gap > psi_tiny_ && inside(xn, dn))) return h;
+  const double gap = img.depth(xn, dn) - law_.free_step_u(y, y0, c);
+  if (!(may_switch && gap > psi_tiny_ && img.inside(xn, dn))) return h;
   const double tc = locate(false, y0, x, h, w, q, c); // touches
   law_.coef(tc, at, Part::Free);
   law_.free_step(y0, tmp, at);

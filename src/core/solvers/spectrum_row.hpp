@@ -200,8 +200,15 @@ private:
   std::shared_ptr<const Grid> step_grid(double dt, double w, double a) const;
   void step_material(Mode& md, double* y, double xe, double dt, double w, const Grid& g,
                      const Path& p) const;
-  double substep(Mode& md, double* y, double x, double h, double w, const StepCoef& c,
-                 bool may_switch, const Path& q) const;
+  /// step_material and substep for the shape's image type Img (the loops of
+  /// advance() and carry() call the image's functions directly, not through
+  /// the variant at each call).
+  template <class Img>
+  void step_material(const Img& img, Mode& md, double* y, double xe, double dt, double w,
+                     const Grid& g, const Path& p) const;
+  template <class Img>
+  double substep(const Img& img, Mode& md, double* y, double x, double h, double w,
+                 const StepCoef& c, bool may_switch, const Path& q) const;
   void change_material(Mode& md, double* y, double x, double w, double d, double dd) const;
   static double deepest(const Entry& e);
   std::vector<Entry>::const_iterator uniform_until(std::vector<Entry>::const_iterator it,
