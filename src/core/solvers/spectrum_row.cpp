@@ -19,6 +19,15 @@ constexpr std::size_t kMaxTracers = 64; // replayed points kept (a few per conta
 constexpr double kSubCells = 1.0;       // largest travel of an interpolated sub-step, in dx
 /// A switch's force (gap) within kNoise of G0 u (u) is zero to rounding.
 constexpr double kNoise = 4.0 * std::numeric_limits<double>::epsilon();
+/// A switch is located where its force (gap) has just crossed zero, by at
+/// most kSwitchTol of G0 u (u): the time then errs by that over the force's
+/// rate, and the state after the switch by its square (the two sides' paths
+/// leave the switch with one value), far below any rtol. On the far side the
+/// element does not switch back at once (a contact let go in tension moves
+/// off the indenter; a free point caught inside it presses). Rounding-level
+/// searches (kNoise) took 3.3 coefficient sets a switch under load, 4.4 on a
+/// hold; this takes about 2.
+constexpr double kSwitchTol = 1e-9;
 constexpr long long kPast = 5; // nodes kept past the window: four free ones predict an edge there
 // The row's memory (window, its snapshot, the log of steps and their
 // coefficient sets) is bounded: a case that would need more fails at once
@@ -80,9 +89,10 @@ double hermite_zero(double f0, double m0, double f1, double m1) {
 // A switch's time in (0, h): the root of f with f(0) = f0 > 0 > f(h) (else 0
 // or h, as solve) and f'(0) = df0. Newton as bracketed_newton, from the zero
 // of the Hermite cubic of f and f' at both ends (the secant's point where
-// that is not inside), until a step is within 4 ulps of h or |f| is within
-// `noise` (its rounding: near a tangency the steps it leaves are far longer
-// than 4 ulps, and bisection took some twenty more points). It returns the
+// that is not inside), until a step is within 4 ulps of h or f is within
+// `noise` below zero (at the switch or just past it: see kSwitchTol; near a
+// tangency, where f is rounding, the steps it leaves are far longer than 4
+// ulps, and bisection took some twenty more points). It returns the
 // point it evaluated last (within those of the root), whose coefficient set
 // the caller's f formed last: from the secant's start the search took about
 // five sets a switch, and the switch's update one more; from this one about
@@ -97,7 +107,7 @@ template <class F> double switch_time(F f, double f0, double df0, double h, doub
   const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
   for (int it = 0; it < 100; ++it) {
     f(t, v, dv);
-    if (std::abs(v) <= noise) return t;
+    if (v <= 0.0 && v >= -noise) return t; // (switched: see kSwitchTol)
     (v > 0.0 ? lo : hi) = t;
     double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
     // (a converged step first: at the root it may round onto the bracket's end)
@@ -330,8 +340,7 @@ void Row::advance(double dt, double d1, double dd1) {
       const std::size_t sl = slot(j);
       if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
       const long before = updates_;
-      step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g,
-                    Path{d0, s - k * dt, k});
+      step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, Path{d0, s - k * dt, k});
       // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
       control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
     }
@@ -705,7 +714,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
       v = law_.pressure(un, du, tmp);
       dv = law_.pressure_rate(un, du, 2.0 * u.h2, tmp);
     };
-    const double noise = kNoise * (law_.G0() * scale + law_.G() * law_.tau() * std::abs(rate0));
+    const double noise = kSwitchTol * (law_.G0() * scale + law_.G() * law_.tau() * std::abs(rate0));
     return switch_time(f, law_.pressure(u0, rate0, y), law_.pressure_rate(u0, rate0, 2.0 * u.h2, y),
                        h, noise);
   }
@@ -715,7 +724,7 @@ double Row::locate(bool contact, const double* y, double x, double h, double w, 
     v = law_.free_u(tmp) - depth(xn, q.at(tau));
     dv = law_.free_rate(tmp) - (q.rate(tau) - lift(xn, w));
   };
-  return switch_time(f, law_.free_u(y) - u0, law_.free_rate(y) - rate0, h, kNoise * scale);
+  return switch_time(f, law_.free_u(y) - u0, law_.free_rate(y) - rate0, h, kSwitchTol * scale);
 }
 
 double Row::pressure_at(const double* q, double x) const {
