@@ -180,6 +180,7 @@ ResolutionRun run_once(const Case& c, const spectrum::Law& law, double cells, do
   check_travel(c, cells);
   spectrum::Row row(c, law, cells, phase, o.sub_travel, kEdgeTol * o.rtol, control, kName);
   row.set_layer_width(c.a1() / fine);
+  row.set_composed(o.composed_steps);
   row.start_stationary(c.history.v0);
   ResolutionRun out;
   // (the companions of the estimate, at other phases, are not probed: their
@@ -581,6 +582,7 @@ ResolutionRun run_once_load(const Case& c, const spectrum::Law& law, double cell
   spectrum::Row row(c, law, geo.d_pre, dx, a_win, phase, o.sub_travel, kEdgeTol * o.rtol, control,
                     kName);
   row.set_layer_width(geo.a_ref / fine);
+  row.set_composed(o.composed_steps);
   start_under_load(row, c, geo.d_pre, o.rtol);
   LoadRun run(c, row, cells, kBalanceTol * o.rtol,
               StationaryWatch(o.rtol, 2.0 * a_win, o.keep_stationary), states);

@@ -26,6 +26,10 @@ struct SpectrumOptions {
   /// Under load, a segment that has reached its stationary state keeps it
   /// without further steps (spectrum.cpp, LoadRun::Watch); false: steps on.
   bool keep_stationary = true;
+  /// The parabola's element updates composed over each step's sub-steps
+  /// (spectrum_composed.cpp); false: sub-step by sub-step (the tests compare
+  /// the two).
+  bool composed_steps = true;
   /// Work budget and stop flag (nullptr: the default budget, no stop flag).
   const RunControl* control = nullptr;
 };

@@ -98,6 +98,8 @@ public:
   double free_span(const double* z0, double* z, double T) const;
   /// Free depression u of modal state z.
   double free_u(const double* z) const;
+  /// Its weights: u = sum_i free_weight(i) z_i.
+  double free_weight(std::size_t i) const { return cu_[i]; }
   /// Its rate (each mode decays at its rate).
   double free_rate(const double* z) const;
 

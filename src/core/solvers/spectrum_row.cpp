@@ -119,13 +119,6 @@ template <class F> double switch_time(F f, double f0, double df0, double h, doub
   return t;
 }
 
-// static_cast<long long>(std::ceil(r)) for 0 <= r < 2^63, without the
-// libm call that std::ceil is on x86-64 without SSE4.1 (once per sub-step)
-long long ceil_count(double r) {
-  const auto n = static_cast<long long>(r);
-  return static_cast<double>(n) < r ? n + 1 : n;
-}
-
 } // namespace
 
 Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
@@ -335,12 +328,15 @@ void Row::advance(double dt, double d1, double dd1) {
       Entry{dt, w_, P_, step_grid(dt, w_, radius(d1 > 0.0 ? std::min(d0, d1) : d0)), d0, s, k});
   logged();
   const Grid& g = *log_.back().g;
+  const Path path{d0, s - k * dt, k};
+  const bool composed = compose(g, dt, w_, path);
   shape([&](const auto& img) {
     for (long long j = jlo_; j <= jhi_; ++j) {
       const std::size_t sl = slot(j);
       if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
       const long before = updates_;
-      step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, Path{d0, s - k * dt, k});
+      if (!(composed && composed_step(sl, xi(j) - w_ * dt, path)))
+        step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, path);
       // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
       control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
     }

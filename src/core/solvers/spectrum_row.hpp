@@ -129,6 +129,10 @@ public:
   /// The runs of one error estimate share the finest run's cell, so that a
   /// layer one to two fine cells wide is taken out in all of them or in none.
   void set_layer_width(double width) { layer_dx_ = width; }
+  /// Whether advance() takes the composed update (spectrum_composed.cpp)
+  /// where it applies (the default) or steps every element sub-step by
+  /// sub-step.
+  void set_composed(bool on) { composed_on_ = on; }
   /// Velocity change to w: contact elements whose force turns negative let go
   /// (dd: the depth rate just after the change, for the parallel dashpot).
   void change_velocity(double w, double dd = 0.0);
@@ -145,6 +149,8 @@ public:
 
   std::size_t capacity() const { return cap_; }
   long updates() const { return updates_; }
+  /// The element steps advance() took composed (spectrum_composed.cpp).
+  long composed_steps() const { return composed_steps_; }
   long steps() const { return steps_; }
 
 private:
@@ -281,6 +287,26 @@ private:
                     bool leading, Value value, Piece piece) const;
   double part_value(const double* y, double x, bool rest) const;
 
+  /// A step's contact update composed over its sub-steps, for the parabola
+  /// (spectrum_composed.cpp): an element in contact at the step's start, at
+  /// x then, ends it at q_k = E_k q0_k + A_k + B_k x + C_k x^2, and its force
+  /// at the end of sub-step i is pi_i(x) - sum_k W_ik q0_k.
+  /// A free element's: z(dt) = M z0, its depression at the end of sub-step
+  /// i sum_m V_im z0_m, the indenter's depth there hi_i(x).
+  struct Composed {
+    bool on = false;
+    std::size_t K = 0;              // sub-steps
+    std::vector<double> E, A, B, C; // per branch
+    std::vector<double> pi, W;      // 3 per sub-step; N per sub-step
+    std::vector<double> M, V, hi;   // per mode; m per sub-step; 3 per sub-step
+    std::vector<double> ends;       // the sub-steps' ends
+    std::vector<StepCoef> own;      // sub-steps' sets that are not the grid's
+  };
+  bool compose(const Grid& g, double dt, double w, const Path& p);
+  bool composed_step(std::size_t sl, double x, const Path& p);
+  bool composed_contact(double* y, double x) const;
+  bool composed_free(double* y, double x, double w, const Path& p) const;
+
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
   struct Forcing {
@@ -336,6 +362,14 @@ private:
   double g(double x) const {
     return shape([&](const auto& i) { return i.g(x); });
   }
+  /// c of g = c x^2 where the image is the parabola (compose()).
+  double g_coefficient() const { return g(1.0); }
+  /// ceil(r) as a count, for 0 <= r < 2^63, without the libm call that
+  /// std::ceil is on x86-64 without SSE4.1 (once per sub-step).
+  static long long ceil_count(double r) {
+    const auto n = static_cast<long long>(r);
+    return static_cast<double>(n) < r ? n + 1 : n;
+  }
   /// g''(x) (x != 0).
   double curvature(double x) const {
     return shape([&](const auto& i) { return i.curvature(x); });
@@ -383,6 +417,9 @@ private:
   // coefficient sets of a partial sub-step and of a switch's search, whose
   // last is the switch's (kept: their vectors are allocated once)
   mutable StepCoef coef_scratch_[2];
+  Composed comp_;           // the last step's (compose)
+  bool composed_on_ = true; // set_composed
+  long composed_steps_ = 0;
   // the last span of log entries at one velocity and depth a replay crossed
   // in one step (uniform_until): entries [from, last] found from `from`
   // within [from, to), and the grid of the step over them (its coefficient
