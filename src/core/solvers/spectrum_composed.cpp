@@ -95,8 +95,13 @@ bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
 // fresh or switches during the step (step_material takes it).
 bool Row::composed_step(std::size_t sl, double x, const Path& p) {
   double* y = &y_[sl * stride_];
-  const bool done = (mode_[sl] == Mode::Contact && composed_contact(y, x)) ||
-                    (mode_[sl] == Mode::Free && composed_free(y, x, w_, p));
+  double pe = 0.0;
+  const bool contact = mode_[sl] == Mode::Contact && composed_contact(y, x, pe);
+  const bool done = contact || (mode_[sl] == Mode::Free && composed_free(y, x, w_, p));
+  if (contact) {
+    p_end_[sl] = pe;
+    p_gen_[sl] = state_gen_;
+  }
   if (done) {
     updates_ += static_cast<long>(comp_.K);
     ++composed_steps_;
@@ -106,8 +111,8 @@ bool Row::composed_step(std::size_t sl, double x, const Path& p) {
 
 // The composed step of an element in contact at x (the step's start), state
 // y: false (y unchanged) where its force turns negative at a sub-step's end,
-// as substep's switch test sees it (p < -p_tiny_).
-bool Row::composed_contact(double* y, double x) const {
+// as substep's switch test sees it (p < -p_tiny_); pe: its force at the end.
+bool Row::composed_contact(double* y, double x, double& pe) const {
   const std::size_t n = law_.branches();
   const double* W = comp_.W.data();
   for (std::size_t i = 0; i < comp_.K; ++i, W += n) {
@@ -116,6 +121,7 @@ bool Row::composed_contact(double* y, double x) const {
     for (std::size_t k = 0; k < n; ++k)
       p -= W[k] * y[k];
     if (p < -p_tiny_) return false;
+    pe = p;
   }
   for (std::size_t k = 0; k < n; ++k)
     y[k] = comp_.E[k] * y[k] + comp_.A[k] + (comp_.B[k] + comp_.C[k] * x) * x;

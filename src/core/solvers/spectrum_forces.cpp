@@ -132,6 +132,11 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     const double v = part_value(y, x, rest);
     return x - xl < layer.reach ? v - layer.at(x - xl) : v;
   };
+  auto node_value = [&](long long k) { // (node_p: the force its last step left, if kept)
+    const double x = xi(k);
+    const double v = rest ? node_rest(k) : node_p(k);
+    return x - xl < layer.reach ? v - layer.at(x - xl) : v;
+  };
   std::pair<double, long double> in[kMaxSeams];
   std::size_t n = 0;
   for (const Seam& m : seams_) {
@@ -144,7 +149,7 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     scratch_v_.clear();
     for (long long k = a; k <= b; ++k) {
       scratch_x_.push_back(xi(k));
-      scratch_v_.push_back(value(&y_[slot(k) * stride_], xi(k)));
+      scratch_v_.push_back(node_value(k));
     }
   };
   double x0 = xl, v0 = vl;
@@ -178,7 +183,7 @@ void Row::across_seams(long long ja, long long jb, double xl, double vl, double 
     v0 = v;
   }
   if (smooth_ && law_.branches() > 0 && jb - j0 >= 2 * kZoneCells + 8 && resting())
-    return ends_at_rest(j0, jb, x0, v0, xr, vr, leading && j0 == ja, value, piece);
+    return ends_at_rest(j0, jb, x0, v0, xr, vr, leading && j0 == ja, value, node_value, piece);
   nodes(j0, jb);
   piece(Points{scratch_x_.data(), scratch_v_.data(), static_cast<long long>(scratch_x_.size())}, x0,
         v0, xr, vr);
@@ -211,9 +216,9 @@ bool Row::resting() const {
 // they changed with every step of the edge.) A cell's
 // points are fewer than 8, so `piece` takes them by local cubics (few_nodes). The nodes between
 // take the Gregory rule.
-template <class Value, class Piece>
+template <class Value, class NodeValue, class Piece>
 void Row::ends_at_rest(long long ja, long long jb, double xl, double vl, double xr, double vr,
-                       bool leading, Value value, Piece piece) const {
+                       bool leading, Value value, NodeValue node_value, Piece piece) const {
   double px[kZoneSplit], pv[kZoneSplit];
   // the cell from node j: its points strictly inside (lo, hi), by `piece` from lo to hi
   auto cell = [&](long long j, double lo, double flo, double hi, double fhi) {
@@ -230,7 +235,7 @@ void Row::ends_at_rest(long long ja, long long jb, double xl, double vl, double 
     }
     piece(Points{px, pv, n}, lo, flo, hi, fhi);
   };
-  auto node = [&](long long j) { return value(&y_[slot(j) * stride_], xi(j)); };
+  auto node = [&](long long j) { return node_value(j); };
   const long long za = leading ? ja + kZoneCells : ja, zb = jb - kZoneCells;
   if (leading) {
     cell(ja - 1, xl, vl, xi(ja), node(ja));

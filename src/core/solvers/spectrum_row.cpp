@@ -143,6 +143,8 @@ Row::Row(const Case& c, const Law& law, double d, double dx, double a_win, doubl
   if (!(window_bytes_ <= kMaxBytes)) too_much_memory();
   y_.assign(cap_ * stride_, 0.0);
   mode_.assign(cap_, Mode::Fresh);
+  p_end_.assign(cap_, 0.0);
+  p_gen_.assign(cap_, 0);
   // switches need a force or gap beyond rounding: a point that let go at a
   // tangency (p = 0 and h - u = 0 together) must not flip back and forth
   psi_tiny_ = 1e-13 * d_;
@@ -167,6 +169,7 @@ void Row::save(Snapshot& s) const {
 }
 
 void Row::restore(const Snapshot& s) {
+  ++state_gen_;
   y_ = s.y;
   mode_ = s.mode;
   set_position(s.P);
@@ -220,6 +223,7 @@ void Row::start_stationary(double v0) {
 }
 
 void Row::change_velocity(double w, double dd) {
+  ++state_gen_;
   control_.charge(unit_ * static_cast<double>(jhi_ - jlo_ + 1), name_);
   add_seam(log_.size(), w);
   if (w != w_ || dd != dd_) {
@@ -308,6 +312,7 @@ void Row::renumber() {
     for (Tracer& t : tracers_)
       t.J += static_cast<long double>(K);
     ++log_gen_; // (the positions are the same, their arithmetic not)
+    ++state_gen_;
     for (Seam& m : seams_)
       m.J += static_cast<long double>(K);
     lead_ += static_cast<long double>(K);
@@ -317,6 +322,7 @@ void Row::renumber() {
 void Row::advance(double dt, double d1, double dd1) {
   if (!(dt > 0.0)) return;
   ++steps_;
+  ++state_gen_;
   const double d0 = d_, s = d1 > 0.0 ? (d1 - d0) / dt : 0.0;
   // the path ends at the rate dd1 (a dashpot's force sees it): the parabola
   // through the step's ends with that slope at dd1's end
@@ -728,7 +734,9 @@ double Row::pressure_at(const double* q, double x) const {
 }
 
 double Row::node_p(long long j) const {
-  return pressure_at(&y_[slot(j) * stride_], xi(j));
+  const std::size_t sl = slot(j);
+  if (p_gen_[sl] == state_gen_) return p_end_[sl];
+  return pressure_at(&y_[sl * stride_], xi(j));
 }
 
 // What the edge search sees of material in mode md, state y, at x: s = p/G0
@@ -753,7 +761,7 @@ double Row::predicted_edge(long long jb, bool contact) const {
     const std::size_t sl = slot(j0 + i);
     if (mode_[sl] != (contact ? Mode::Contact : Mode::Free)) return std::nan("");
     const double x = xi(j0 + i);
-    f[i] = contact ? pressure_at(&y_[sl * stride_], x) : depth(x) - law_.free_u(&y_[sl * stride_]);
+    f[i] = contact ? node_p(j0 + i) : depth(x) - law_.free_u(&y_[sl * stride_]);
   }
   // the cubic through (t0 + i, f[i]) in powers of u = t - t0 (Horner)
   const double c0 = f[0], c1 = (-11.0 * f[0] + 18.0 * f[1] - 9.0 * f[2] + 2.0 * f[3]) / 6.0,

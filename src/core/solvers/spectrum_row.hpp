@@ -282,9 +282,9 @@ private:
   void across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
                     bool rest, bool leading, const Layer& layer, Piece piece) const;
   bool resting() const;
-  template <class Value, class Piece>
+  template <class Value, class NodeValue, class Piece>
   void ends_at_rest(long long ja, long long jb, double xl, double vl, double xr, double vr,
-                    bool leading, Value value, Piece piece) const;
+                    bool leading, Value value, NodeValue node_value, Piece piece) const;
   double part_value(const double* y, double x, bool rest) const;
 
   /// A step's contact update composed over its sub-steps, for the parabola
@@ -304,7 +304,7 @@ private:
   };
   bool compose(const Grid& g, double dt, double w, const Path& p);
   bool composed_step(std::size_t sl, double x, const Path& p);
-  bool composed_contact(double* y, double x) const;
+  bool composed_contact(double* y, double x, double& p) const;
   bool composed_free(double* y, double x, double w, const Path& p) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
@@ -419,6 +419,12 @@ private:
   mutable StepCoef coef_scratch_[2];
   Composed comp_;           // the last step's (compose)
   bool composed_on_ = true; // set_composed
+  // the force each slot's element ended its last step with, where the
+  // composed step formed it (node_p), valid while p_gen_[slot] == state_gen_
+  // (the state and the depth unchanged since)
+  std::vector<double> p_end_;
+  std::vector<std::uint64_t> p_gen_;
+  std::uint64_t state_gen_ = 1;
   long composed_steps_ = 0;
   // the last span of log entries at one velocity and depth a replay crossed
   // in one step (uniform_until): entries [from, last] found from `from`
