@@ -18,13 +18,22 @@
 #include "core/solvers/spectrum_row.hpp"
 
 namespace mdrmap::spectrum {
+namespace {
+
+/// The most sub-steps of a step that compose() forms (its arrays grow with
+/// them; a step with more takes step_material, as before).
+constexpr long long kMaxComposed = 256;
+
+} // namespace
 // The sub-steps of an element in contact from the step's start (those of
 // step_material, whose loop this follows) composed into comp_; false where
 // the profile is not the parabola (its sub-steps are cut at the tip, or its
 // forcing interpolated).
 bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
   comp_.on = false;
-  if (!(composed_on_ && smooth_ && exact_force_)) return false;
+  // (a stiff case's step can have millions of sub-steps: those go element by
+  // element as before, charged to the work budget as they are taken)
+  if (!(composed_on_ && smooth_ && exact_force_ && g.K <= kMaxComposed)) return false;
   const std::size_t n = law_.branches();
   const double cg = g_coefficient(), G0 = law_.G0(), eta = law_.G() * law_.tau();
   comp_.E.assign(n, 1.0);
@@ -40,6 +49,7 @@ bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
   comp_.K = 0;
   std::size_t owned = 0;
   for (double t = 0.0; t < dt;) {
+    if (comp_.K > static_cast<std::size_t>(kMaxComposed)) return false; // (rounding: g.K + 1)
     const long long i = std::max(0LL, ceil_count((dt - t) / g.D) - 1);
     double tn = dt - static_cast<double>(i) * g.D;
     if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
