@@ -6,7 +6,7 @@
 // metrics read off its step ends, do not depend on the output samples. A
 // sample strictly inside a grid step is a side step from the grid's last
 // step end, after which the grid carries on as if it never happened. Shared
-// by the element row under load (spectrum.cpp, LoadRun) and kelvin_load
+// by the element row under load (spectrum_load_run.cpp, LoadRun) and kelvin_load
 // (load.cpp, Stepper).
 #include <algorithm>
 #include <cmath>

@@ -24,7 +24,7 @@ struct SpectrumOptions {
   double sub_travel = 0.25;   ///< largest travel of a sub-step, in a1 (switch detection)
   bool estimate_error = true; ///< run the half-resolution companion for error_estimate
   /// Under load, a segment that has reached its stationary state keeps it
-  /// without further steps (spectrum.cpp, LoadRun::Watch); false: steps on.
+  /// without further steps (spectrum_load_run.cpp, LoadRun::Watch); false: steps on.
   bool keep_stationary = true;
   /// The parabola's element updates composed over each step's sub-steps
   /// (spectrum_composed.cpp); false: sub-step by sub-step (the tests compare
@@ -35,7 +35,7 @@ struct SpectrumOptions {
 };
 
 /// Under load control (c.loading.by_force()) the depth is free: each time step
-/// ends at the depth that balances F_N = F0 (spectrum.cpp, "load control"),
+/// ends at the depth that balances F_N = F0 (spectrum_load_run.cpp, "load control"),
 /// the run starts from stationary sliding at v0 under F0, and Series d, a1
 /// are filled. Throws CaseAbandoned when the estimate stays above rtol or past
 /// the work budget. The case was checked where it was made (CheckedCase);
