@@ -24,6 +24,15 @@ namespace {
 /// them; a step with more takes step_material, as before).
 constexpr long long kMaxComposed = 256;
 
+/// c[0] + c[1] x + c[2] x^2 - sum_k w_k y_k: an element's force (a free
+/// point's gap) at a sub-step's end from its state y at the step's start.
+double at_end(const double* c, const double* w, const double* y, std::size_t n, double x) {
+  double v = c[0] + (c[1] + c[2] * x) * x;
+  for (std::size_t k = 0; k < n; ++k)
+    v -= w[k] * y[k];
+  return v;
+}
+
 } // namespace
 // The sub-steps of an element in contact from the step's start (those of
 // step_material, whose loop this follows) composed into comp_; false where
@@ -50,16 +59,10 @@ bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
   std::size_t owned = 0;
   for (double t = 0.0; t < dt;) {
     if (comp_.K > static_cast<std::size_t>(kMaxComposed)) return false; // (rounding: g.K + 1)
-    const long long i = std::max(0LL, ceil_count((dt - t) / g.D) - 1);
-    double tn = dt - static_cast<double>(i) * g.D;
-    if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
-    const double h = tn - t;
-    const StepCoef* c = nullptr;
-    if (t == 0.0 && i == g.K - 1 && h == g.first.dt) {
-      c = &g.first;
-    } else if (std::abs(h - g.D) <= 1e-13 * g.D) {
-      c = &g.full;
-    } else {
+    const Grid::Sub sub = g.from(dt, t);
+    const double tn = sub.tn, h = tn - t;
+    const StepCoef* c = g.set(t, sub.i, h);
+    if (c == nullptr) {
       if (comp_.own.size() <= owned) comp_.own.emplace_back();
       law_.coef(h, comp_.own[owned], Part::Both);
       c = &comp_.own[owned++];
@@ -126,10 +129,7 @@ bool Row::composed_contact(double* y, double x, double& pe) const {
   const std::size_t n = law_.branches();
   const double* W = comp_.W.data();
   for (std::size_t i = 0; i < comp_.K; ++i, W += n) {
-    const double* c = &comp_.pi[3 * i];
-    double p = c[0] + (c[1] + c[2] * x) * x;
-    for (std::size_t k = 0; k < n; ++k)
-      p -= W[k] * y[k];
+    const double p = at_end(&comp_.pi[3 * i], W, y, n, x);
     if (p < -p_tiny_) return false;
     pe = p;
   }
@@ -145,10 +145,7 @@ bool Row::composed_free(double* y, double x, double w, const Path& p) const {
   const std::size_t m = law_.free_dim();
   const double* V = comp_.V.data();
   for (std::size_t i = 0; i < comp_.K; ++i, V += m) {
-    const double* c = &comp_.hi[3 * i];
-    double gap = c[0] + (c[1] + c[2] * x) * x;
-    for (std::size_t k = 0; k < m; ++k)
-      gap -= V[k] * y[k];
+    const double gap = at_end(&comp_.hi[3 * i], V, y, m, x);
     const double tn = comp_.ends[i];
     if (gap > psi_tiny_ && inside(x + w * tn, p.at(tn))) return false;
   }

@@ -128,14 +128,12 @@ double Row::part_value(const double* y, double x, bool rest) const {
 template <class Piece>
 void Row::across_seams(long long ja, long long jb, double xl, double vl, double xr, double vr,
                        bool rest, bool leading, const Layer& layer, Piece piece) const {
-  auto value = [&](const double* y, double x) {
-    const double v = part_value(y, x, rest);
+  auto less_layer = [&](double v, double x) {
     return x - xl < layer.reach ? v - layer.at(x - xl) : v;
   };
+  auto value = [&](const double* y, double x) { return less_layer(part_value(y, x, rest), x); };
   auto node_value = [&](long long k) { // (node_p: the force its last step left, if kept)
-    const double x = xi(k);
-    const double v = rest ? node_rest(k) : node_p(k);
-    return x - xl < layer.reach ? v - layer.at(x - xl) : v;
+    return less_layer(rest ? node_rest(k) : node_p(k), xi(k));
   };
   std::pair<double, long double> in[kMaxSeams];
   std::size_t n = 0;

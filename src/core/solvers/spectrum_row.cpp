@@ -119,7 +119,27 @@ template <class F> double switch_time(F f, double f0, double df0, double h, doub
   return t;
 }
 
+// static_cast<long long>(std::ceil(r)) for 0 <= r < 2^63, without the
+// libm call that std::ceil is on x86-64 without SSE4.1 (once per sub-step)
+long long ceil_count(double r) {
+  const auto n = static_cast<long long>(r);
+  return static_cast<double>(n) < r ? n + 1 : n;
+}
+
 } // namespace
+
+Row::Grid::Sub Row::Grid::from(double end, double t) const {
+  const long long i = std::max(0LL, ceil_count((end - t) / D) - 1);
+  double tn = end - static_cast<double>(i) * D;
+  if (!(tn > t)) tn = i > 0 ? end - static_cast<double>(i - 1) * D : end;
+  return {tn, i};
+}
+
+const StepCoef* Row::Grid::set(double t, long long i, double h) const {
+  if (t == 0.0 && i == K - 1 && h == first.dt) return &first;
+  if (std::abs(h - D) <= 1e-13 * D) return &full;
+  return nullptr;
+}
 
 Row::Row(const Case& c, const Law& law, double cells_per_a1, double phase, double sub_travel,
          double edge_tol, const RunControl& control, const char* name)
@@ -405,22 +425,13 @@ void Row::step_material(const Img& img, Mode& md, double* y, double xe, double d
   StepCoef& local = coef_scratch_[0];
   int events = 0;
   while (t < dt) {
-    const long long i = std::max(0LL, ceil_count((dt - t) / g.D) - 1);
-    double tn = dt - static_cast<double>(i) * g.D;
-    if (!(tn > t)) tn = i > 0 ? dt - static_cast<double>(i - 1) * g.D : dt;
-    const double cut = smooth_ ? tn : next_cut(xe - w * dt, t, tn, w);
-    const bool whole = cut == tn;
-    tn = cut;
+    const Grid::Sub sub = g.from(dt, t);
+    const double tn = smooth_ ? sub.tn : next_cut(xe - w * dt, t, sub.tn, w);
     const double h = tn - t;
-    const StepCoef* c = &local;
-    if (!whole) {
+    const StepCoef* c = tn == sub.tn ? g.set(t, sub.i, h) : nullptr;
+    if (c == nullptr) {
       law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
-    } else if (t == 0.0 && i == g.K - 1 && h == g.first.dt) {
-      c = &g.first;
-    } else if (std::abs(h - g.D) <= 1e-13 * g.D) {
-      c = &g.full;
-    } else {
-      law_.coef(h, local, md == Mode::Contact ? Part::Contact : Part::Free);
+      c = &local;
     }
     ++updates_;
     const double done =

@@ -160,6 +160,16 @@ private:
     double dt = 0.0, D = 0.0;
     long long K = 1; // sub-steps of an element that starts at 0
     StepCoef first, full;
+    /// The sub-step from t of a step ending at `end`: its end tn (before a
+    /// cut at a tip) and the full sub-steps i after it.
+    struct Sub {
+      double tn;
+      long long i;
+    };
+    Sub from(double end, double t) const;
+    /// The set for the sub-step of h from t (i full ones after it): first,
+    /// full, or nullptr (a set of its own length).
+    const StepCoef* set(double t, long long i, double h) const;
   };
   /// One entry of the log: a step of dt at w ending at travel P (cells), or
   /// (dt < 0) a velocity change to w.
@@ -364,12 +374,6 @@ private:
   }
   /// c of g = c x^2 where the image is the parabola (compose()).
   double g_coefficient() const { return g(1.0); }
-  /// ceil(r) as a count, for 0 <= r < 2^63, without the libm call that
-  /// std::ceil is on x86-64 without SSE4.1 (once per sub-step).
-  static long long ceil_count(double r) {
-    const auto n = static_cast<long long>(r);
-    return static_cast<double>(n) < r ? n + 1 : n;
-  }
   /// g''(x) (x != 0).
   double curvature(double x) const {
     return shape([&](const auto& i) { return i.curvature(x); });
