@@ -361,8 +361,9 @@ void Row::advance(double dt, double d1, double dd1) {
       const std::size_t sl = slot(j);
       if (j < lo0 || j > hi0) mode_[sl] = Mode::Fresh; // entered during the step
       const long before = updates_;
-      if (!(composed && composed_step(sl, xi(j) - w_ * dt, path)))
-        step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, path);
+      double t = 0.0; // (where composed_step leaves off)
+      if (!(composed && composed_step(sl, xi(j) - w_ * dt, path, t)))
+        step_material(img, mode_[sl], &y_[sl * stride_], xi(j), dt, w_, g, path, t, composed);
       // (charged per element: one element of a stiff branch can take 1e9 sub-steps)
       control_.charge(unit_ * static_cast<double>(updates_ - before), name_);
     }
@@ -410,8 +411,7 @@ void Row::step_material(Mode& md, double* y, double xe, double dt, double w, con
 
 template <class Img>
 void Row::step_material(const Img& img, Mode& md, double* y, double xe, double dt, double w,
-                        const Grid& g, const Path& p) const {
-  double t = 0.0;
+                        const Grid& g, const Path& p, double t, bool composed) const {
   if (md == Mode::Fresh) { // enters where the leading edge -a1(t) passes it
     const double xs = xe - w * dt;
     auto behind = [&](double tt) { // > 0 while ahead of the edge
@@ -441,6 +441,15 @@ void Row::step_material(const Img& img, Mode& md, double* y, double xe, double d
       ++events;
     } else {
       t = tn;
+      // the rest of the step's sub-steps, the full ones after sub-step l, composed
+      const auto ahead = static_cast<std::size_t>(sub.i); // (full sub-steps after this one)
+      const std::size_t l = comp_.K - 1 - ahead;
+      if (composed && comp_.suffix && ahead > 0 && ahead < comp_.K && tn == sub.tn &&
+          events < kMaxEvents && comp_.ends[l] == tn && md != Mode::Fresh) {
+        t = md == Mode::Contact ? rest_contact(y, xe - w * dt, l)
+                                : rest_free(y, xe - w * dt, w, p, l);
+        updates_ += static_cast<long>(std::lround((t - tn) / g.D));
+      }
     }
   }
 }

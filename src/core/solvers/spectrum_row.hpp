@@ -219,9 +219,11 @@ private:
   /// step_material and substep for the shape's image type Img (the loops of
   /// advance() and carry() call the image's functions directly, not through
   /// the variant at each call).
+  /// (From t, the element's state y there; composed: its later sub-steps
+  /// may take the step's composition, comp_, which is of this step.)
   template <class Img>
   void step_material(const Img& img, Mode& md, double* y, double xe, double dt, double w,
-                     const Grid& g, const Path& p) const;
+                     const Grid& g, const Path& p, double t = 0.0, bool composed = false) const;
   template <class Img>
   double substep(const Img& img, Mode& md, double* y, double x, double h, double w,
                  const StepCoef& c, bool may_switch, const Path& q) const;
@@ -299,23 +301,35 @@ private:
 
   /// A step's contact update composed over its sub-steps, for the parabola
   /// (spectrum_composed.cpp): an element in contact at the step's start, at
-  /// x then, ends it at q_k = E_k q0_k + A_k + B_k x + C_k x^2, and its force
-  /// at the end of sub-step i is pi_i(x) - sum_k W_ik q0_k.
-  /// A free element's: z(dt) = M z0, its depression at the end of sub-step
-  /// i sum_m V_im z0_m, the indenter's depth there hi_i(x).
+  /// x then, is after sub-step l at q_k = E_lk q0_k + P_lk(x), P_lk(x) =
+  /// A_lk + B_lk x + C_lk x^2, and its force at the end of sub-step l is
+  /// pi_l(x) - sum_k W_lk q0_k (W_lk = G_k E_lk).
+  /// A free element's: after sub-step l z = M_l z0, its depression there
+  /// sum_m V_lm z0_m (V_lm = w_m M_lm), the indenter's depth hi_l(x).
+  /// Sub-steps 1.. share the grid's full set (suffix): from the end of
+  /// sub-step l an element goes on r more of them as e^r (Ep: e_k^r, Wp:
+  /// G_k e_k^r; Mp, Vp for the free modes), so an element that enters or
+  /// switches within the step takes its own sub-steps only up to the end of
+  /// the one it does so in (rest_contact, rest_free).
   struct Composed {
-    bool on = false;
-    std::size_t K = 0;              // sub-steps
-    std::vector<double> E, A, B, C; // per branch
-    std::vector<double> pi, W;      // 3 per sub-step; N per sub-step
-    std::vector<double> M, V, hi;   // per mode; m per sub-step; 3 per sub-step
-    std::vector<double> ends;       // the sub-steps' ends
-    std::vector<StepCoef> own;      // sub-steps' sets that are not the grid's
+    bool on = false, suffix = false;
+    std::size_t K = 0, n = 0, m = 0;           // sub-steps, branches, free modes
+    std::vector<double> E, A, B, C, W, Ep, Wp; // n per sub-step (Ep, Wp: per power)
+    std::vector<double> pi, hi;                // 3 per sub-step
+    std::vector<double> M, V, Mp, Vp;          // m per sub-step (Mp, Vp: per power)
+    std::vector<double> ends;                  // the sub-steps' ends
+    std::vector<StepCoef> own;                 // sub-steps' sets that are not the grid's
+    /// P_l(x) into q.
+    void prefix(std::size_t l, double x, double* q) const;
   };
   bool compose(const Grid& g, double dt, double w, const Path& p);
-  bool composed_step(std::size_t sl, double x, const Path& p);
-  bool composed_contact(double* y, double x, double& p) const;
-  bool composed_free(double* y, double x, double w, const Path& p) const;
+  void compose_substep(const StepCoef& c, double t, double tn, double w, const Path& p);
+  void compose_powers(const StepCoef& full);
+  bool composed_step(std::size_t sl, double x, const Path& p, double& t);
+  std::size_t composed_contact(double* y, double x, double& p) const;
+  std::size_t composed_free(double* y, double x, double w, const Path& p) const;
+  double rest_contact(double* y, double x, std::size_t l) const;
+  double rest_free(double* y, double x, double w, const Path& p, std::size_t l) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
