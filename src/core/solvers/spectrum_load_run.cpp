@@ -227,7 +227,12 @@ private:
   }
 
   /// The segment's stationary state under F0 (watch_ decides when it holds).
-  void start_watch(double w) { watch_.start(w, true); }
+  void start_watch(double w) {
+    watch_.start(w, true);
+    if (!(w > 0.0)) return;
+    const State& ss = states_.at(w);
+    if (ss.FN > 0.0) watch_.set_traverse(2.0 * ss.a1);
+  }
   void watch(double h) {
     watch_.moved(watch_w_ * h);
     if (!watch_.due()) return;
