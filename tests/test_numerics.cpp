@@ -165,6 +165,57 @@ long double phi_reference(int n, long double z) {
 
 } // namespace
 
+// newton_in_bracket: the row's switch times and edge predictions.
+TEST(Root, NewtonInBracketFindsTheRootToItsLastUlps) {
+  // f = 1 - t - t^3 / 2 on (0, 2): one root, Newton converging from the secant
+  auto f = [](double t, double& v, double& dv) {
+    v = 1.0 - t - 0.5 * t * t * t;
+    dv = -1.0 - 1.5 * t * t;
+  };
+  long double lo = 0.0L, hi = 2.0L; // (the root by bisection in long double)
+  for (int i = 0; i < 200; ++i) {
+    const long double m = 0.5L * (lo + hi);
+    (1.0L - m - 0.5L * m * m * m > 0.0L ? lo : hi) = m;
+  }
+  const double h = 2.0, root = mdrmap::numerics::newton_in_bracket(f, 1.0, h);
+  EXPECT_NEAR(root, static_cast<double>(lo), 8.0 * std::numeric_limits<double>::epsilon() * h);
+}
+
+TEST(Root, NewtonInBracketEndsAtItsEnds) {
+  auto f = [](double t, double& v, double& dv) {
+    v = 1.0 - t;
+    dv = -1.0;
+  };
+  EXPECT_EQ(mdrmap::numerics::newton_in_bracket(f, 0.0, 0.5), 0.0); // (no root after a zero start)
+  EXPECT_EQ(mdrmap::numerics::newton_in_bracket(f, 1.0, 0.5), 0.5); // (still positive at h)
+  EXPECT_EQ(mdrmap::numerics::newton_in_bracket(f, 1.0, 1.0), 1.0); // (zero at h: not past it)
+}
+
+// With a noise, a point just past the root is accepted, and it is the last
+// point evaluated (the caller's state there is formed); from a start far off,
+// the steps that would leave the bracket bisect it.
+TEST(Root, NewtonInBracketAcceptsThePointJustPastTheRoot) {
+  double last = -1.0;
+  int calls = 0;
+  auto f = [&](double t, double& v, double& dv) {
+    ++calls;
+    last = t;
+    v = std::cos(t) - 0.5; // root pi/3 on (0, 2)
+    dv = -std::sin(t);
+  };
+  const double noise = 1e-9;
+  for (const double start : {1.0, 1.99, 0.001}) {
+    calls = 0;
+    const double t = mdrmap::numerics::newton_in_bracket(
+        f, 0.5, 2.0, [&](double, double) { return start; }, noise,
+        mdrmap::numerics::NewtonEnd::Evaluated);
+    EXPECT_EQ(t, last);
+    EXPECT_LE(std::cos(t) - 0.5, 0.0);
+    EXPECT_GE(std::cos(t) - 0.5, -noise);
+    EXPECT_LT(calls, 12) << "start " << start;
+  }
+}
+
 TEST(Phi, AgainstLongDoubleFromTinyToLarge) {
   // 10 points a decade over [1e-12, 1e3], and their negatives down to -30
   // (phi_n(-z) grows like e^z: no cancellation there, the same bound)

@@ -155,4 +155,45 @@ double increasing_root(F&& f, double x0, double& k, double width, double lo_limi
   return r.mid();
 }
 
+/// What newton_in_bracket returns: the last point it evaluated f at (a
+/// caller whose f forms state at t finds it formed there), or its next
+/// Newton point (one more step: the root to the last ulps).
+enum class NewtonEnd { Evaluated, Next };
+
+/// Root in (0, h) of f with f(0) = f0 > 0 > f(h) (else 0 where f0 <= 0, h
+/// where f(h) >= 0): Newton from start(f(h), f'(h)) (the secant's point where
+/// that is not inside), kept inside the bracket (bisection where a step would
+/// leave it or the slope is not negative), until f is within `noise` below
+/// zero (0: at zero exactly) or a step is within 4 ulps of h. f(t, v, dv)
+/// gives the value and its slope.
+template <class F, class Start>
+double newton_in_bracket(F&& f, double f0, double h, Start&& start, double noise, NewtonEnd end) {
+  if (!(f0 > 0.0)) return 0.0;
+  double v = 0.0, dv = 0.0;
+  f(h, v, dv);
+  if (!(v < 0.0)) return h;
+  double lo = 0.0, hi = h, t = start(v, dv);
+  if (!(t > 0.0 && t < h)) t = h * f0 / (f0 - v);
+  const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
+  const bool next = end == NewtonEnd::Next;
+  for (int it = 0; it < 100; ++it) {
+    f(t, v, dv);
+    if (v <= 0.0 && v >= -noise) return t;
+    (v > 0.0 ? lo : hi) = t;
+    double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
+    // (a converged step first: at the root it may round onto the bracket's end)
+    if (!next && std::abs(tn - t) <= tiny) return t;
+    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
+    if (std::abs(tn - t) <= tiny || hi - lo <= tiny) return next ? tn : t;
+    t = tn;
+  }
+  return next ? 0.5 * (lo + hi) : t;
+}
+
+/// The same from the secant's point, to f = 0, its next Newton point.
+template <class F> double newton_in_bracket(F&& f, double f0, double h) {
+  return newton_in_bracket(
+      f, f0, h, [](double, double) { return -1.0; }, 0.0, NewtonEnd::Next);
+}
+
 } // namespace mdrmap::numerics

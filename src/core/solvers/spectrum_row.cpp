@@ -50,35 +50,12 @@ template <class F> double solve(F f, double hi) {
       .mid();
 }
 
-// Root in (0, h) of f, with f(0) = f0 > 0 > f(h) (else 0 or h, as solve):
-// Newton from the secant's point, kept inside the bracket (bisection where
-// it would leave it or the slope is not negative), until a step is within 4
-// ulps of h. f(t, v, dv) gives the value and its slope.
-template <class F> double bracketed_newton(F f, double f0, double h) {
-  if (!(f0 > 0.0)) return 0.0;
-  double v = 0.0, dv = 0.0;
-  f(h, v, dv);
-  if (!(v < 0.0)) return h;
-  double lo = 0.0, hi = h, t = h * f0 / (f0 - v);
-  const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
-  for (int it = 0; it < 100; ++it) {
-    f(t, v, dv);
-    if (v == 0.0) return t;
-    (v > 0.0 ? lo : hi) = t;
-    double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
-    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
-    if (std::abs(tn - t) <= tiny || hi - lo <= tiny) return tn;
-    t = tn;
-  }
-  return 0.5 * (lo + hi);
-}
-
 // The zero in (0, 1) of the cubic through f0 and f1 at 0 and 1 with slopes m0
 // and m1 there (f0 > 0 > f1; Hermite): a switch's first point, within
 // O(h^4) of it where the force (gap) is smooth over the sub-step.
 double hermite_zero(double f0, double m0, double f1, double m1) {
   const double c2 = 3.0 * (f1 - f0) - 2.0 * m0 - m1, c3 = 2.0 * (f0 - f1) + m0 + m1;
-  return bracketed_newton(
+  return numerics::newton_in_bracket(
       [&](double s, double& v, double& dv) {
         v = ((c3 * s + c2) * s + m0) * s + f0;
         dv = (3.0 * c3 * s + 2.0 * c2) * s + m0;
@@ -87,36 +64,18 @@ double hermite_zero(double f0, double m0, double f1, double m1) {
 }
 
 // A switch's time in (0, h): the root of f with f(0) = f0 > 0 > f(h) (else 0
-// or h, as solve) and f'(0) = df0. Newton as bracketed_newton, from the zero
-// of the Hermite cubic of f and f' at both ends (the secant's point where
-// that is not inside), until a step is within 4 ulps of h or f is within
+// or h, as solve) and f'(0) = df0, by numerics::newton_in_bracket from the
+// zero of the Hermite cubic of f and f' at both ends, until f is within
 // `noise` below zero (at the switch or just past it: see kSwitchTol; near a
 // tangency, where f is rounding, the steps it leaves are far longer than 4
-// ulps, and bisection took some twenty more points). It returns the
-// point it evaluated last (within those of the root), whose coefficient set
-// the caller's f formed last: from the secant's start the search took about
-// five sets a switch, and the switch's update one more; from this one about
-// three in all.
+// ulps, and bisection took some twenty more points). It returns the point it
+// evaluated last, whose coefficient set the caller's f formed last: from the
+// secant's start the search took about five sets a switch, and the switch's
+// update one more; from this one about three in all.
 template <class F> double switch_time(F f, double f0, double df0, double h, double noise) {
-  if (!(f0 > 0.0)) return 0.0;
-  double v = 0.0, dv = 0.0;
-  f(h, v, dv);
-  if (!(v < 0.0)) return h;
-  double lo = 0.0, hi = h, t = hermite_zero(f0, df0 * h, v, dv * h) * h;
-  if (!(t > 0.0 && t < h)) t = h * f0 / (f0 - v);
-  const double tiny = 4.0 * std::numeric_limits<double>::epsilon() * h;
-  for (int it = 0; it < 100; ++it) {
-    f(t, v, dv);
-    if (v <= 0.0 && v >= -noise) return t; // (switched: see kSwitchTol)
-    (v > 0.0 ? lo : hi) = t;
-    double tn = dv < 0.0 ? t - v / dv : 0.5 * (lo + hi);
-    // (a converged step first: at the root it may round onto the bracket's end)
-    if (std::abs(tn - t) <= tiny) return t;
-    if (!(tn > lo && tn < hi)) tn = 0.5 * (lo + hi);
-    if (std::abs(tn - t) <= tiny || hi - lo <= tiny) return t;
-    t = tn;
-  }
-  return t;
+  return numerics::newton_in_bracket(
+      f, f0, h, [&](double v, double dv) { return hermite_zero(f0, df0 * h, v, dv * h) * h; },
+      noise, numerics::NewtonEnd::Evaluated);
 }
 
 // static_cast<long long>(std::ceil(r)) for 0 <= r < 2^63, without the
@@ -793,7 +752,7 @@ double Row::predicted_edge(long long jb, bool contact) const {
     return ((c3 * u + c2) * u + c1) * u + c0;
   };
   if (!(cubic(0.0) >= 0.0 && cubic(1.0) < 0.0)) return std::nan("");
-  return bracketed_newton(
+  return numerics::newton_in_bracket(
       [&](double t, double& v, double& dv) {
         const double u = t - t0;
         v = cubic(t);
