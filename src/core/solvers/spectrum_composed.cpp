@@ -219,7 +219,7 @@ double Row::rest_contact(double* y, double x, std::size_t l) const {
     r[k] = y[k] - P[k]; // q_i = e^(i - l) r + P_i(x)
   std::size_t i = l + 1;
   for (; i < comp_.K; ++i)
-    if (at_end(&comp_.pi[3 * i], &comp_.Wp[(i - l) * n], r, n, x) < -p_tiny_) break;
+    if (at_end(&comp_.pi[3 * i], comp_.Wp.data() + (i - l) * n, r, n, x) < -p_tiny_) break;
   comp_.prefix(i - 1, x, P);
   for (std::size_t k = 0; k < n; ++k)
     y[k] = comp_.Ep[(i - 1 - l) * n + k] * r[k] + P[k];
@@ -232,7 +232,7 @@ double Row::rest_free(double* y, double x, double w, const Path& p, std::size_t 
   const std::size_t m = comp_.m;
   std::size_t i = l + 1;
   for (; i < comp_.K; ++i) {
-    const double gap = at_end(&comp_.hi[3 * i], &comp_.Vp[(i - l) * m], y, m, x);
+    const double gap = at_end(&comp_.hi[3 * i], comp_.Vp.data() + (i - l) * m, y, m, x);
     const double tn = comp_.ends[i];
     if (gap > psi_tiny_ && inside(x + w * tn, p.at(tn))) break;
   }
