@@ -39,7 +39,7 @@ double at_end(const double* c, const double* w, const double* y, std::size_t n, 
 // the profile is not the parabola (its sub-steps are cut at the tip, or its
 // forcing interpolated).
 bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
-  comp_.on = comp_.suffix = false;
+  comp_.suffix = false;
   // (a stiff case's step can have millions of sub-steps: those go element by
   // element as before, charged to the work budget as they are taken)
   if (!(composed_on_ && smooth_ && exact_force_ && g.K <= kMaxComposed)) return false;
@@ -71,10 +71,9 @@ bool Row::compose(const Grid& g, double dt, double w, const Path& p) {
     compose_substep(*c, t, tn, w, p);
     t = tn;
   }
-  comp_.on = comp_.K > 0;
   comp_.suffix = comp_.K > 1 && suffix;
   if (comp_.suffix) compose_powers(g.full);
-  return comp_.on;
+  return comp_.K > 0;
 }
 
 // Sub-step K (from t to tn, set c) appended to comp_: its prefix rows.
@@ -90,14 +89,13 @@ void Row::compose_substep(const StepCoef& c, double t, double tn, double w, cons
   const double de = q.at(h), re = q.rate(h);
   double p0 = G0 * (de - cg * w * w * tn * tn) + eta * (re - 2.0 * cg * w * w * tn);
   double p1 = G0 * (-2.0 * cg * w * tn) + eta * (-2.0 * cg * w), p2 = -G0 * cg;
-  const double k0 = K == 0 ? 0.0 : 1.0; // (the last row's weight: none before the first)
-  const std::size_t b = K * n, pb = K == 0 ? 0 : b - n; // this sub-step's row, the last one's
+  const std::size_t b = K * n, pb = b - n; // this sub-step's row, the last one's (K > 0)
   for (std::size_t k = 0; k < n; ++k) {
     const double e = c.e[k], a = c.a[k], bk = c.b[k], ome = 1.0 - e;
-    comp_.E[b + k] = e * (K == 0 ? 1.0 : comp_.E[pb + k]);
-    comp_.A[b + k] = k0 * e * comp_.A[pb + k] + ome * f00 + a * f10 + bk * f2;
-    comp_.B[b + k] = k0 * e * comp_.B[pb + k] + ome * f01 + a * f11;
-    comp_.C[b + k] = k0 * e * comp_.C[pb + k] + ome * f02;
+    comp_.E[b + k] = K == 0 ? e : e * comp_.E[pb + k];
+    comp_.A[b + k] = (K == 0 ? 0.0 : e * comp_.A[pb + k]) + ome * f00 + a * f10 + bk * f2;
+    comp_.B[b + k] = (K == 0 ? 0.0 : e * comp_.B[pb + k]) + ome * f01 + a * f11;
+    comp_.C[b + k] = (K == 0 ? 0.0 : e * comp_.C[pb + k]) + ome * f02;
     const double Gk = law_.Gk(k);
     p0 -= Gk * comp_.A[b + k];
     p1 -= Gk * comp_.B[b + k];
@@ -143,6 +141,15 @@ void Row::Composed::prefix(std::size_t l, double x, double* q) const {
     q[k] = A[i] + (B[i] + C[i] * x) * x;
 }
 
+// Whether a free element at x (the step's start), modal state z, touches at
+// the end of sub-step i, its depression's weights V there: as substep's test
+// sees it, a gap above psi_tiny_ inside the indenter's reach.
+bool Row::touches(std::size_t i, const double* V, const double* z, double x, double w,
+                  const Path& p) const {
+  const double tn = comp_.ends[i];
+  return at_end(&comp_.hi[3 * i], V, z, comp_.m, x) > psi_tiny_ && inside(x + w * tn, p.at(tn));
+}
+
 // The composed step of the element in slot sl, at x at the step's start
 // (along the depth path p), where it applies: false where the element is
 // fresh or switches during the step (step_material takes it, from t: the
@@ -173,7 +180,7 @@ bool Row::composed_step(std::size_t sl, double x, const Path& p, double& t) {
 // substep's switch test sees it (p < -p_tiny_): its index i (K: none), y its
 // state at that sub-step's start; pe: its force at the end (i = K).
 std::size_t Row::composed_contact(double* y, double x, double& pe) const {
-  const std::size_t n = law_.branches();
+  const std::size_t n = comp_.n;
   const double* W = comp_.W.data();
   std::size_t i = 0;
   for (; i < comp_.K; ++i, W += n) {
@@ -193,14 +200,10 @@ std::size_t Row::composed_contact(double* y, double x, double& pe) const {
 // it (a gap above psi_tiny_ inside the indenter's reach): its index (K: none),
 // y its state at that sub-step's start.
 std::size_t Row::composed_free(double* y, double x, double w, const Path& p) const {
-  const std::size_t m = law_.free_dim();
-  const double* V = comp_.V.data();
+  const std::size_t m = comp_.m;
   std::size_t i = 0;
-  for (; i < comp_.K; ++i, V += m) {
-    const double gap = at_end(&comp_.hi[3 * i], V, y, m, x);
-    const double tn = comp_.ends[i];
-    if (gap > psi_tiny_ && inside(x + w * tn, p.at(tn))) break;
-  }
+  while (i < comp_.K && !touches(i, comp_.V.data() + i * m, y, x, w, p))
+    ++i;
   if (i == 0) return 0;
   for (std::size_t k = 0; k < m; ++k)
     y[k] *= comp_.M[(i - 1) * m + k];
@@ -209,9 +212,9 @@ std::size_t Row::composed_free(double* y, double x, double w, const Path& p) con
 
 // An element in contact at the end of sub-step l (state y; x: its position at
 // the step's start) carried on through the full sub-steps after it, up to the
-// first at whose end its force turns negative: the time it gets to (dt: the
-// step's end), y its state there.
-double Row::rest_contact(double* y, double x, std::size_t l) const {
+// first at whose end its force turns negative: that sub-step's index (K: none),
+// y its state at its start.
+std::size_t Row::rest_contact(double* y, double x, std::size_t l) const {
   const std::size_t n = comp_.n;
   double r[kMaxBranches + 1], P[kMaxBranches + 1];
   comp_.prefix(l, x, P);
@@ -223,22 +226,19 @@ double Row::rest_contact(double* y, double x, std::size_t l) const {
   comp_.prefix(i - 1, x, P);
   for (std::size_t k = 0; k < n; ++k)
     y[k] = comp_.Ep[(i - 1 - l) * n + k] * r[k] + P[k];
-  return comp_.ends[i - 1];
+  return i;
 }
 
 // A free element at the end of sub-step l (modal state y) carried on likewise,
 // up to the first sub-step at whose end it touches.
-double Row::rest_free(double* y, double x, double w, const Path& p, std::size_t l) const {
+std::size_t Row::rest_free(double* y, double x, double w, const Path& p, std::size_t l) const {
   const std::size_t m = comp_.m;
   std::size_t i = l + 1;
-  for (; i < comp_.K; ++i) {
-    const double gap = at_end(&comp_.hi[3 * i], comp_.Vp.data() + (i - l) * m, y, m, x);
-    const double tn = comp_.ends[i];
-    if (gap > psi_tiny_ && inside(x + w * tn, p.at(tn))) break;
-  }
+  while (i < comp_.K && !touches(i, comp_.Vp.data() + (i - l) * m, y, x, w, p))
+    ++i;
   for (std::size_t k = 0; k < m; ++k)
     y[k] *= comp_.Mp[(i - 1 - l) * m + k];
-  return comp_.ends[i - 1];
+  return i;
 }
 
 } // namespace mdrmap::spectrum

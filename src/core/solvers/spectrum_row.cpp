@@ -402,12 +402,13 @@ void Row::step_material(const Img& img, Mode& md, double* y, double xe, double d
       t = tn;
       // the rest of the step's sub-steps, the full ones after sub-step l, composed
       const auto ahead = static_cast<std::size_t>(sub.i); // (full sub-steps after this one)
-      const std::size_t l = comp_.K - 1 - ahead;
       if (composed && comp_.suffix && ahead > 0 && ahead < comp_.K && tn == sub.tn &&
-          events < kMaxEvents && comp_.ends[l] == tn && md != Mode::Fresh) {
-        t = md == Mode::Contact ? rest_contact(y, xe - w * dt, l)
-                                : rest_free(y, xe - w * dt, w, p, l);
-        updates_ += static_cast<long>(std::lround((t - tn) / g.D));
+          events < kMaxEvents && comp_.ends[comp_.K - 1 - ahead] == tn && md != Mode::Fresh) {
+        const std::size_t l = comp_.K - 1 - ahead, // (this sub-step's index)
+            i = md == Mode::Contact ? rest_contact(y, xe - w * dt, l)
+                                    : rest_free(y, xe - w * dt, w, p, l);
+        t = comp_.ends[i - 1];
+        updates_ += static_cast<long>(i - 1 - l);
       }
     }
   }

@@ -312,7 +312,7 @@ private:
   /// switches within the step takes its own sub-steps only up to the end of
   /// the one it does so in (rest_contact, rest_free).
   struct Composed {
-    bool on = false, suffix = false;
+    bool suffix = false;
     std::size_t K = 0, n = 0, m = 0;           // sub-steps, branches, free modes
     std::vector<double> E, A, B, C, W, Ep, Wp; // n per sub-step (Ep, Wp: per power)
     std::vector<double> pi, hi;                // 3 per sub-step
@@ -328,8 +328,10 @@ private:
   bool composed_step(std::size_t sl, double x, const Path& p, double& t);
   std::size_t composed_contact(double* y, double x, double& p) const;
   std::size_t composed_free(double* y, double x, double w, const Path& p) const;
-  double rest_contact(double* y, double x, std::size_t l) const;
-  double rest_free(double* y, double x, double w, const Path& p, std::size_t l) const;
+  bool touches(std::size_t i, const double* V, const double* z, double x, double w,
+               const Path& p) const;
+  std::size_t rest_contact(double* y, double x, std::size_t l) const;
+  std::size_t rest_free(double* y, double x, double w, const Path& p, std::size_t l) const;
 
   /// The forcing u = h0 + h1 t + h2 t^2 of a contact sub-step of h from x
   /// along the depth path q.
